@@ -1,0 +1,30 @@
+# catkin, genmsg and the message generators need Debian's python3, not pyenv's.
+export PATH := /usr/bin:$(PATH)
+
+BUILD_DIR  ?= build
+BUILD_TYPE ?= Release
+JOBS       ?= 2
+CMAKE_ARGS ?=
+DEMO       := $(BUILD_DIR)/devel/lib/virtual_origami/fold_demo
+
+.PHONY: all deps configure build test run clean
+
+all: build
+
+deps:
+	bash scripts/install_deps.sh
+
+configure: deps
+	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) -DPYTHON_EXECUTABLE=/usr/bin/python3 $(CMAKE_ARGS)
+
+build: configure
+	cmake --build $(BUILD_DIR) -j $(JOBS)
+
+test: build
+	ctest --test-dir $(BUILD_DIR) --output-on-failure --no-tests=error
+
+run: build
+	$(DEMO) --out output
+
+clean:
+	rm -rf $(BUILD_DIR) output

@@ -1,0 +1,35 @@
+// FOLD format (https://github.com/edemaine/fold) read and write.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "virtual_origami/core/paper.h"
+#include "virtual_origami/core/result.h"
+
+namespace virtual_origami
+{
+/// Frames of a FOLD file, each resolved to a full paper (inheritance applied, crease
+/// pattern recovered by unfolding where the frame holds only a folded form).
+struct FoldDocument
+{
+  std::string title;
+  std::string creator;
+  std::vector<Paper> frames;  // frames[0] is the file's top-level frame
+};
+
+/// Parses FOLD text. Rejects malformed input with a message naming the field.
+Expected<FoldDocument> parseFold(const std::string& text);
+Expected<FoldDocument> readFoldFile(const std::string& path);
+
+/// Writes one state: the crease pattern as the key frame, the folded form as frame 1.
+std::string formatFold(const Paper& paper, const std::string& title = "");
+/// Writes a folding sequence, one frame per state.
+std::string formatFoldSequence(const std::vector<Paper>& steps, const std::string& title = "");
+/// Writes text to a file atomically (temporary file, then rename).
+Status writeTextFile(const std::string& path, const std::string& text);
+
+/// The state a file describes: its last frame.
+Expected<Paper> loadPaper(const std::string& path);
+
+}  // namespace virtual_origami

@@ -1,0 +1,42 @@
+// Turning a face about a crease (seed 000 §3.3.2–3.3.3), carrying its flap along.
+#pragma once
+
+#include <vector>
+
+#include "virtual_origami/core/paper.h"
+#include "virtual_origami/core/result.h"
+#include "virtual_origami/solvers/shape_solver.h"
+
+namespace virtual_origami
+{
+struct RotateRequest
+{
+  int face = -1;       // -1: the face under `click`
+  int axis_edge = -1;  // -1: the automatic axis of seed §3.3.2
+  Vec3 click = Vec3::Zero();
+  /// Radians by which the axis crease's fold angle changes; positive folds valley (FOLD).
+  double angle = 0.0;
+};
+
+struct RotateResult
+{
+  int face = -1;
+  int axis_edge = -1;
+  std::vector<int> moved_faces;  // turned rigidly with the face (its flap)
+  bool used_solver = false;
+  SolveReport solve;
+};
+
+/// Turns the face about its axis. When the creases collinear with the axis cut the sheet in
+/// two, the face's whole side (every layer connected to it there) turns rigidly, which is
+/// exact. Otherwise the face turns alone and `solver` moves the rest (with the face and
+/// the face across the axis held, and `held` vertices); without a solver that fails.
+/// On failure `paper` is untouched.
+Expected<RotateResult> rotate(Paper& paper, const RotateRequest& request, ShapeSolver* solver = nullptr,
+                              const std::vector<int>& held = {});
+
+/// The faces that turn rigidly with `face` about `axis_edge`, or empty when the axis does
+/// not separate them from the rest.
+std::vector<int> flapOf(const Paper& paper, int face, int axis_edge);
+
+}  // namespace virtual_origami

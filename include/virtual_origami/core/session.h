@@ -1,0 +1,85 @@
+// One folding session: the current paper, its operation log and undo/redo history.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "virtual_origami/core/crease.h"
+#include "virtual_origami/core/paper.h"
+#include "virtual_origami/core/rotate.h"
+#include "virtual_origami/core/snap.h"
+#include "virtual_origami/core/squash.h"
+#include "virtual_origami/solvers/shape_solver.h"
+
+namespace virtual_origami
+{
+/// A committed operation with its parameters: enough to apply it again (replay, logs).
+struct Operation
+{
+  enum class Kind
+  {
+    Crease,
+    Rotate,
+    Squash,
+    Undo,
+    Redo,
+    Reset,
+    Load,
+  };
+  Kind kind = Kind::Crease;
+  CreaseRequest crease;   // Crease: the request as given (before snapping)
+  RotateRequest rotate;   // Rotate: with face and axis resolved
+  double size = 1.0;      // Reset: the sheet's side
+  std::string path;       // Load: where the model came from
+  uint64_t revision = 0;  // the revision it produced
+};
+
+const char* kindName(Operation::Kind kind);
+
+/// Every change is a transaction: it succeeds fully and gets a new revision and a history
+/// entry, or fails with a message and leaves the paper and the revision as they were.
+class Session
+{
+public:
+  explicit Session(Paper initial = Paper::square(1.0));
+
+  const Paper& paper() const { return paper_; }
+  uint64_t revision() const { return revision_; }
+  const std::vector<Operation>& log() const { return log_; }
+  bool canUndo() const { return !undo_.empty(); }
+  bool canRedo() const { return !redo_.empty(); }
+
+  void setSolver(std::shared_ptr<ShapeSolver> solver) { solver_ = std::move(solver); }
+  ShapeSolver* solver() const { return solver_.get(); }
+  SnapSettings& snapSettings() { return snap_settings_; }
+
+  Expected<CreaseResult> crease(const CreaseRequest& request);
+  /// With commit false the result is a preview (`preview()`), not in history, and the
+  /// committed paper stays as it is; the next preview starts again from it.
+  Expected<RotateResult> rotate(const RotateRequest& request, bool commit = true);
+  const std::optional<Paper>& preview() const { return preview_; }
+  Expected<SquashResult> squash();
+  Status undo();
+  Status redo();
+  Status reset(double size);
+  Status load(Paper paper, const std::string& path);
+
+  /// Applies a logged operation again (its parameters as logged).
+  Status apply(const Operation& operation);
+
+private:
+  void commit(Paper next, Operation operation);
+
+  Paper paper_;
+  uint64_t revision_ = 0;
+  std::vector<Paper> undo_, redo_;
+  std::vector<Operation> log_;
+  std::optional<Paper> preview_;
+  std::shared_ptr<ShapeSolver> solver_;
+  SnapSettings snap_settings_;
+};
+
+}  // namespace virtual_origami

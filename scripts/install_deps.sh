@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 (bookworm) packages that virtual_origami needs to build,
+# test and run. ROS 1 comes from Debian's own packages (no /opt/ros).
+# Idempotent: apt is only touched when a package is missing.
+set -euo pipefail
+
+PACKAGES=(
+  # toolchain
+  build-essential cmake g++ pkg-config
+  # core library
+  libeigen3-dev nlohmann-json3-dev libcgal-dev
+  # unit tests
+  libgtest-dev libgmock-dev googletest
+  # catkin and message generation (genmsg + the C++/Python generators)
+  catkin python3-catkin-pkg ros-core-dev
+  ros-message-generation python3-genmsg python3-gencpp python3-genpy ros-message-runtime
+  # message packages: the -dev packages carry headers and cmake configs,
+  # the ros-* packages carry the .msg/.srv files generate_messages() reads
+  libstd-msgs-dev ros-std-msgs python3-std-msgs
+  libstd-srvs-dev ros-std-srvs
+  libgeometry-msgs-dev ros-geometry-msgs python3-geometry-msgs
+  libvisualization-msgs-dev ros-visualization-msgs
+  # ROS layer (nodes, tf, bags, interactive markers, rviz)
+  libroscpp-dev libtf2-ros-dev libtf2-geometry-msgs-dev librosbag-dev
+  libinteractive-markers-dev librviz-dev rviz
+  # ROS and end-to-end tests
+  python3-rostest python3-roslaunch xvfb xdotool imagemagick
+)
+
+missing=()
+for pkg in "${PACKAGES[@]}"; do
+  status="$(dpkg-query -W -f='${db:Status-Status}' "$pkg" 2>/dev/null || true)"
+  if [ "$status" != "installed" ]; then
+    missing+=("$pkg")
+  fi
+done
+
+if [ "${#missing[@]}" -eq 0 ]; then
+  echo "install_deps: all ${#PACKAGES[@]} packages already installed"
+  exit 0
+fi
+
+SUDO=()
+if [ "$(id -u)" -ne 0 ]; then
+  if ! command -v sudo >/dev/null 2>&1; then
+    echo "install_deps: not root and sudo not found; missing: ${missing[*]}" >&2
+    exit 1
+  fi
+  SUDO=(sudo)
+fi
+
+echo "install_deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+"${SUDO[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update
+"${SUDO[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends "${missing[@]}"

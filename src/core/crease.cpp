@@ -1,0 +1,336 @@
+#include "virtual_origami/core/crease.h"
+
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include <Eigen/Geometry>
+
+#include "virtual_origami/core/geometry.h"
+
+namespace virtual_origami
+{
+namespace
+{
+/// The part of a plane a crease cuts with: a strip (no eye) or a wedge from the eye.
+struct CutRegion
+{
+  Vec3 normal = Vec3::UnitZ();  // unit normal of the cutting plane
+  Vec3 origin = Vec3::Zero();   // a point on the plane
+  // Strip: 0 ≤ (p − origin)·across ≤ width.  Wedge: p − eye = a·ray_a + b·ray_b, a, b ≥ 0.
+  bool wedge = false;
+  Vec3 across = Vec3::Zero();
+  double width = 0.0;
+  Vec3 ray_a = Vec3::Zero(), ray_b = Vec3::Zero();
+
+  double signedDistance(const Vec3& p) const { return normal.dot(p - origin); }
+
+  bool contains(const Vec3& p, double tolerance) const
+  {
+    if (!wedge)
+    {
+      const double s = (p - origin).dot(across);
+      return s >= -tolerance && s <= width + tolerance;
+    }
+    // Inside the wedge: on the inner side of both bounding rays.
+    const Vec3 q = p - origin;
+    const double side_a = normal.dot(ray_a.cross(q));
+    const double side_b = normal.dot(q.cross(ray_b));
+    const double ahead = q.dot(ray_a + ray_b);
+    return side_a >= -tolerance && side_b >= -tolerance && ahead > 0;
+  }
+};
+
+/// The face the line is drawn on: under its midpoint (or nearest it), topmost.
+int faceUnderLine(const Paper& paper, const Vec3& start, const Vec3& end)
+{
+  const double reach = 0.05 * paper.scale();
+  for (double t : { 0.5, 0.25, 0.75, 0.0, 1.0 })
+  {
+    const int f = faceAt(paper, start + t * (end - start), reach);
+    if (f >= 0)
+      return f;
+  }
+  return -1;
+}
+
+Expected<CutRegion> makeRegion(const Paper& paper, const CreaseRequest& request)
+{
+  const Vec3 line = request.end - request.start;
+  CutRegion region;
+  region.origin = request.start;
+  if (request.eye)
+  {
+    const Vec3& eye = *request.eye;
+    region.wedge = true;
+    region.origin = eye;
+    region.ray_a = (request.start - eye).normalized();
+    region.ray_b = (request.end - eye).normalized();
+    const Vec3 n = region.ray_a.cross(region.ray_b);
+    if (n.norm() < 1e-9)
+      return Expected<CutRegion>::failure("the eye point lies on the crease line: the two rays coincide");
+    region.normal = n.normalized();
+    return region;
+  }
+  const int top = faceUnderLine(paper, request.start, request.end);
+  if (top < 0)
+    return Expected<CutRegion>::failure("the crease line misses the paper");
+  const Vec3 face_normal = paper.faceNormal(top);
+  const Vec3 n = line.cross(face_normal);
+  if (n.norm() < 1e-9 * line.norm())
+    return Expected<CutRegion>::failure("the crease line is perpendicular to the face under it");
+  region.normal = n.normalized();
+  region.across = (line - line.dot(face_normal) * face_normal).normalized();
+  region.width = line.dot(region.across);
+  return region;
+}
+
+/// A point where the cutting plane meets a face's boundary: a vertex, or inside an edge.
+struct Crossing
+{
+  int vertex = -1;  // on an existing vertex
+  int edge = -1;    // else inside this edge, at parameter t from vertices[0]
+  double t = 0.0;
+  Vec3 point = Vec3::Zero();
+  bool operator==(const Crossing& o) const { return vertex == o.vertex && edge == o.edge; }
+};
+
+struct FaceCut
+{
+  int face = -1;
+  std::array<Crossing, 2> ends;
+};
+
+class Creaser
+{
+public:
+  Creaser(Paper& paper, const CutRegion& region) : paper_(paper), region_(region)
+  {
+    scale_ = paper.scale();
+    plane_tol_ = 1e-9 * scale_;
+    region_tol_ = 1e-7 * scale_;
+  }
+
+  Expected<CreaseResult> run()
+  {
+    classifyVertices();
+    std::vector<FaceCut> cuts;
+    bool along_edge = false, partial = false;
+    for (size_t f = 0; f < paper_.faces.size(); ++f)
+    {
+      std::vector<Crossing> xs = crossings(static_cast<int>(f));
+      if (xs.size() < 2)
+        continue;
+      bool inside = true;
+      for (const Crossing& c : xs)
+        inside = inside && region_.contains(c.point, region_tol_);
+      if (alongSide(static_cast<int>(f), xs))
+      {
+        (inside ? along_edge : partial) = true;
+        continue;
+      }
+      if (xs.size() > 2 || !inside)
+      {
+        partial = true;
+        continue;
+      }
+      cuts.push_back({ static_cast<int>(f), { xs[0], xs[1] } });
+    }
+    if (cuts.empty())
+    {
+      if (along_edge)
+        return Expected<CreaseResult>::failure("the crease line runs along an existing edge: nothing new to crease");
+      if (partial)
+        return Expected<CreaseResult>::failure(
+            "the crease line does not cross any face completely (seed 000 makes only creases that split a face)");
+      return Expected<CreaseResult>::failure("the crease line misses the paper");
+    }
+    CreaseResult result;
+    for (FaceCut& cut : cuts)
+      for (Crossing& c : cut.ends)
+        if (c.vertex < 0)
+          c.vertex = splitEdge(c, result);
+    for (const FaceCut& cut : cuts)
+      splitFace(cut, result);
+    const Status linked = linkTopology(paper_);
+    if (!linked)
+      return Expected<CreaseResult>::failure("internal error while creasing: " + linked.message());
+    return result;
+  }
+
+private:
+  void classifyVertices()
+  {
+    side_.resize(paper_.vertices.size());
+    distance_.resize(paper_.vertices.size());
+    for (size_t v = 0; v < paper_.vertices.size(); ++v)
+    {
+      distance_[v] = region_.signedDistance(paper_.vertices[v].folded);
+      side_[v] = distance_[v] > plane_tol_ ? 1 : distance_[v] < -plane_tol_ ? -1 : 0;
+    }
+  }
+
+  /// Where the plane meets the face boundary, in cycle order, without repeats.
+  std::vector<Crossing> crossings(int face) const
+  {
+    const Face& f = paper_.faces[face];
+    const size_t n = f.vertices.size();
+    std::vector<Crossing> xs;
+    for (size_t i = 0; i < n; ++i)
+    {
+      const int a = f.vertices[i], b = f.vertices[(i + 1) % n];
+      if (side_[a] == 0)
+        xs.push_back({ a, -1, 0.0, paper_.vertices[a].folded });
+      if (side_[a] * side_[b] < 0)
+      {
+        const int e = f.edges[i];
+        const Edge& edge = paper_.edges[e];
+        const int e0 = edge.vertices[0], e1 = edge.vertices[1];
+        // Parameter from the edge's own first vertex, so both faces of the edge agree.
+        const double t = distance_[e0] / (distance_[e0] - distance_[e1]);
+        const Vec3 p = paper_.vertices[e0].folded + t * (paper_.vertices[e1].folded - paper_.vertices[e0].folded);
+        xs.push_back({ -1, e, t, p });
+      }
+    }
+    return xs;
+  }
+
+  /// True when every crossing is a vertex and they run along one side of the face.
+  bool alongSide(int face, const std::vector<Crossing>& xs) const
+  {
+    for (const Crossing& c : xs)
+      if (c.vertex < 0)
+        return false;
+    return chainOnPlane(face, xs.front().vertex, xs.back().vertex) ||
+           chainOnPlane(face, xs.back().vertex, xs.front().vertex);
+  }
+
+  bool chainOnPlane(int face, int from, int to) const
+  {
+    const std::vector<int>& vs = paper_.faces[face].vertices;
+    const size_t n = vs.size();
+    size_t i = 0;
+    while (vs[i] != from)
+      ++i;
+    for (size_t k = 0; k < n; ++k)
+    {
+      const int v = vs[(i + k) % n];
+      if (side_[v] != 0)
+        return false;
+      if (v == to)
+        return true;
+    }
+    return false;
+  }
+
+  /// Splits an edge at a crossing once (both faces share the new vertex); returns the vertex.
+  int splitEdge(const Crossing& c, CreaseResult& result)
+  {
+    auto known = split_vertex_.find(c.edge);
+    if (known != split_vertex_.end())
+      return known->second;
+    const int e = c.edge;
+    const int a = paper_.edges[e].vertices[0], b = paper_.edges[e].vertices[1];
+    Vertex v;
+    v.crease_pattern = paper_.vertices[a].crease_pattern + c.t * (paper_.vertices[b].crease_pattern -
+                                                                  paper_.vertices[a].crease_pattern);
+    v.folded = c.point;
+    const int m = static_cast<int>(paper_.vertices.size());
+    paper_.vertices.push_back(v);
+    result.new_vertices.push_back(m);
+    // The edge keeps its id for a–m; m–b is new, with the same assignment and angle.
+    Edge tail = paper_.edges[e];
+    tail.vertices = { m, b };
+    paper_.edges[e].vertices = { a, m };
+    paper_.edges.push_back(tail);
+    // Every face using a–b now passes through m.
+    for (Face& face : paper_.faces)
+    {
+      const size_t n = face.vertices.size();
+      for (size_t i = 0; i < n; ++i)
+      {
+        const int p = face.vertices[i], q = face.vertices[(i + 1) % n];
+        if ((p == a && q == b) || (p == b && q == a))
+        {
+          face.vertices.insert(face.vertices.begin() + static_cast<long>(i) + 1, m);
+          break;
+        }
+      }
+    }
+    split_vertex_[e] = m;
+    return m;
+  }
+
+  void splitFace(const FaceCut& cut, CreaseResult& result)
+  {
+    const std::vector<int> cycle = paper_.faces[cut.face].vertices;
+    const size_t n = cycle.size();
+    size_t i = 0, j = 0;
+    while (cycle[i] != cut.ends[0].vertex)
+      ++i;
+    while (cycle[j] != cut.ends[1].vertex)
+      ++j;
+    std::vector<int> first, second;
+    for (size_t k = i;; k = (k + 1) % n)
+    {
+      first.push_back(cycle[k]);
+      if (k == j)
+        break;
+    }
+    for (size_t k = j;; k = (k + 1) % n)
+    {
+      second.push_back(cycle[k]);
+      if (k == i)
+        break;
+    }
+    paper_.faces[cut.face].vertices = first;
+    paper_.faces.push_back({ second, {} });
+    Edge crease_edge;
+    crease_edge.vertices = { cut.ends[0].vertex, cut.ends[1].vertex };
+    crease_edge.assignment = Assignment::Unassigned;
+    crease_edge.fold_angle = 0.0;
+    result.new_edges.push_back(static_cast<int>(paper_.edges.size()));
+    result.split_faces.push_back(cut.face);
+    paper_.edges.push_back(crease_edge);
+  }
+
+  Paper& paper_;
+  const CutRegion& region_;
+  double scale_ = 1.0, plane_tol_ = 0.0, region_tol_ = 0.0;
+  std::vector<int> side_;
+  std::vector<double> distance_;
+  std::map<int, int> split_vertex_;
+};
+
+bool finite(const CreaseRequest& r) { return r.start.allFinite() && r.end.allFinite() && (!r.eye || r.eye->allFinite()); }
+}  // namespace
+
+Expected<CreaseResult> crease(Paper& paper, const CreaseRequest& request, const SnapSettings& snap_settings)
+{
+  if (!finite(request))
+    return Expected<CreaseResult>::failure("the crease line has a non-finite coordinate");
+  CreaseRequest snapped = request;
+  Snap start_snap, end_snap;
+  if (request.snap)
+  {
+    start_snap = snapPoint(paper, request.start, snap_settings);
+    snapped.start = start_snap.point;
+    end_snap = snapPoint(paper, request.end, snap_settings, start_snap.kind == SnapKind::Vertex ? start_snap.vertex : -1);
+    snapped.end = end_snap.point;
+  }
+  if ((snapped.end - snapped.start).norm() < 1e-9 * paper.scale())
+    return Expected<CreaseResult>::failure("the crease line has zero length");
+  const Expected<CutRegion> region = makeRegion(paper, snapped);
+  if (!region)
+    return Expected<CreaseResult>::failure(region.message());
+  Paper next = paper;
+  Expected<CreaseResult> result = Creaser(next, *region).run();
+  if (!result)
+    return result;
+  result->start_snap = start_snap;
+  result->end_snap = end_snap;
+  paper = std::move(next);
+  return result;
+}
+
+}  // namespace virtual_origami

@@ -1,0 +1,131 @@
+#include "virtual_origami/core/snap.h"
+
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Geometry>
+
+namespace virtual_origami
+{
+namespace
+{
+bool snapToVertex(const Paper& paper, const Vec3& cursor, double radius, Snap& snap)
+{
+  double best = radius;
+  for (size_t v = 0; v < paper.vertices.size(); ++v)
+  {
+    const double d = (paper.vertices[v].folded - cursor).norm();
+    if (d <= best)
+    {
+      best = d;
+      snap.kind = SnapKind::Vertex;
+      snap.vertex = static_cast<int>(v);
+      snap.point = paper.vertices[v].folded;
+    }
+  }
+  return snap.kind == SnapKind::Vertex;
+}
+
+bool snapToEdgeDivision(const Paper& paper, const Vec3& cursor, const SnapSettings& settings, Snap& snap)
+{
+  double best = settings.radius;
+  for (size_t e = 0; e < paper.edges.size(); ++e)
+  {
+    const Vec3& a = paper.vertices[paper.edges[e].vertices[0]].folded;
+    const Vec3& b = paper.vertices[paper.edges[e].vertices[1]].folded;
+    for (int n : settings.edge_divisions)
+      for (int k = 1; k < n; ++k)
+      {
+        const Vec3 p = a + (b - a) * (static_cast<double>(k) / n);
+        const double d = (p - cursor).norm();
+        // Prefer the coarser division when two coincide (1/2 before 2/4).
+        if (d < best - 1e-12 || (snap.edge == static_cast<int>(e) && d <= best && n < snap.divisions))
+        {
+          best = d;
+          snap.kind = SnapKind::EdgeDivision;
+          snap.edge = static_cast<int>(e);
+          snap.divisions = n;
+          snap.index = k;
+          snap.point = p;
+        }
+      }
+  }
+  if (snap.kind != SnapKind::EdgeDivision)
+    return false;
+  const Vec3& a = paper.vertices[paper.edges[snap.edge].vertices[0]].folded;
+  const Vec3& b = paper.vertices[paper.edges[snap.edge].vertices[1]].folded;
+  for (int k = 1; k < snap.divisions; ++k)
+    snap.guide_points.push_back(a + (b - a) * (static_cast<double>(k) / snap.divisions));
+  return true;
+}
+
+/// Unit directions dividing the face's angle at `vertex` into n equal parts (k = 1 … n−1).
+std::vector<Vec3> angleDivisions(const Paper& paper, int face, int vertex, int n)
+{
+  const std::vector<int>& vs = paper.faces[face].vertices;
+  const size_t count = vs.size();
+  size_t i = 0;
+  while (vs[i] != vertex)
+    ++i;
+  const Vec3& p = paper.vertices[vertex].folded;
+  const Vec3 to_next = (paper.vertices[vs[(i + 1) % count]].folded - p).normalized();
+  const Vec3 to_prev = (paper.vertices[vs[(i + count - 1) % count]].folded - p).normalized();
+  const double angle = std::acos(std::clamp(to_next.dot(to_prev), -1.0, 1.0));
+  const Vec3 axis = to_next.cross(to_prev).normalized();
+  std::vector<Vec3> dirs;
+  for (int k = 1; k < n; ++k)
+    dirs.push_back(Eigen::AngleAxisd(angle * k / n, axis) * to_next);
+  return dirs;
+}
+
+bool snapToAngleDivision(const Paper& paper, const Vec3& cursor, const SnapSettings& settings, int start, Snap& snap)
+{
+  const Vec3& p = paper.vertices[start].folded;
+  const double reach = (cursor - p).norm();
+  if (reach <= settings.radius)
+    return false;
+  double best = settings.radius;
+  for (int f : paper.facesOfVertex(start))
+    for (int n : settings.angle_divisions)
+    {
+      const std::vector<Vec3> dirs = angleDivisions(paper, f, start, n);
+      for (size_t k = 0; k < dirs.size(); ++k)
+      {
+        const double t = (cursor - p).dot(dirs[k]);
+        if (t <= 0)
+          continue;
+        const double d = (p + t * dirs[k] - cursor).norm();
+        if (d < best - 1e-12 || (snap.face == f && d <= best && n < snap.divisions))
+        {
+          best = d;
+          snap.kind = SnapKind::AngleDivision;
+          snap.vertex = start;
+          snap.face = f;
+          snap.divisions = n;
+          snap.index = static_cast<int>(k) + 1;
+          snap.point = p + t * dirs[k];
+        }
+      }
+    }
+  if (snap.kind != SnapKind::AngleDivision)
+    return false;
+  for (const Vec3& dir : angleDivisions(paper, snap.face, start, snap.divisions))
+    snap.guide_lines.push_back({ p, p + reach * dir });
+  return true;
+}
+}  // namespace
+
+Snap snapPoint(const Paper& paper, const Vec3& cursor, const SnapSettings& settings, int start_vertex)
+{
+  Snap snap;
+  snap.point = cursor;
+  if (snapToVertex(paper, cursor, settings.radius, snap))
+    return snap;
+  if (snapToEdgeDivision(paper, cursor, settings, snap))
+    return snap;
+  if (start_vertex >= 0 && start_vertex < static_cast<int>(paper.vertices.size()))
+    snapToAngleDivision(paper, cursor, settings, start_vertex, snap);
+  return snap;
+}
+
+}  // namespace virtual_origami

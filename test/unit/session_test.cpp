@@ -1,0 +1,161 @@
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "test_models.h"
+#include "virtual_origami/core/session.h"
+
+using namespace virtual_origami;
+using namespace virtual_origami::test;
+
+namespace
+{
+/// A random crease or rotation; returns whether it was committed.
+bool randomOperation(Session& session, std::mt19937& rng)
+{
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const Paper& paper = session.paper();
+  const int face = static_cast<int>(rng() % paper.faces.size());
+  if (rng() % 3 == 0)
+  {
+    // A line through a random point of a random face, in a random direction in its plane.
+    const Vec3 n = paper.faceNormal(face);
+    const Vec3 centre = paper.faceCentroid(face);
+    const Vec3 u = n.unitOrthogonal();
+    const Vec3 w = n.cross(u);
+    const double a = 2 * M_PI * unit(rng);
+    const Vec3 dir = std::cos(a) * u + std::sin(a) * w;
+    CreaseRequest request;
+    request.start = centre - 3 * paper.scale() * dir;
+    request.end = centre + 3 * paper.scale() * dir;
+    return session.crease(request).ok();
+  }
+  RotateRequest request;
+  request.face = face;
+  request.click = paper.faceCentroid(face) + 1e-3 * Vec3(unit(rng), unit(rng), 0);
+  request.angle = (unit(rng) * 2 - 1) * M_PI;
+  return session.rotate(request, true).ok();
+}
+}  // namespace
+
+TEST(Session, FailuresKeepTheRevisionAndThePaper)
+{
+  Session session;
+  CreaseRequest miss;
+  miss.start = p3(5, 5);
+  miss.end = p3(6, 6);
+  EXPECT_FALSE(session.crease(miss).ok());
+  EXPECT_EQ(session.revision(), 0u);
+  EXPECT_TRUE(session.paper() == Paper::square(1.0));
+  EXPECT_FALSE(session.undo().ok());
+  EXPECT_FALSE(session.redo().ok());
+  EXPECT_FALSE(session.reset(NAN).ok());
+  EXPECT_FALSE(session.reset(-1).ok());
+  EXPECT_EQ(session.revision(), 0u);
+  EXPECT_TRUE(session.log().empty());
+}
+
+TEST(Session, PreviewsStayOutOfHistory)
+{
+  Session session;
+  CreaseRequest line;
+  line.start = p3(0.5, -1);
+  line.end = p3(0.5, 2);
+  ASSERT_TRUE(session.crease(line).ok());
+  const Paper creased = session.paper();
+  RotateRequest request;
+  request.click = p3(0.8, 0.5);
+  for (double angle : { 0.1, 0.5, 1.0 })
+  {
+    request.angle = angle;
+    ASSERT_TRUE(session.rotate(request, false).ok());
+    ASSERT_TRUE(session.preview().has_value());
+    EXPECT_TRUE(session.paper() == creased);
+    EXPECT_EQ(session.revision(), 1u);
+  }
+  const int axis = session.rotate(request, true)->axis_edge;
+  EXPECT_EQ(session.revision(), 2u);
+  EXPECT_FALSE(session.preview().has_value());
+  EXPECT_NEAR(session.paper().edges[axis].fold_angle, 1.0, 1e-12);  // not 1.6: previews don't add up
+  ASSERT_EQ(session.log().size(), 2u);
+  EXPECT_EQ(session.log()[1].kind, Operation::Kind::Rotate);
+  EXPECT_EQ(session.log()[1].rotate.axis_edge, axis);
+  ASSERT_TRUE(session.undo().ok());
+  EXPECT_TRUE(session.paper() == creased);
+}
+
+TEST(Session, HundredRandomOperationsUndoAndRedoBitIdentically)
+{
+  std::mt19937 rng(20061);
+  Session session;
+  std::vector<Paper> states{ session.paper() };
+  while (states.size() < 101)
+    if (randomOperation(session, rng))
+      states.push_back(session.paper());
+  for (size_t i = states.size() - 1; i > 0; --i)
+  {
+    ASSERT_TRUE(session.undo().ok());
+    ASSERT_TRUE(session.paper() == states[i - 1]) << "undo to state " << i - 1;
+  }
+  EXPECT_FALSE(session.undo().ok());
+  for (size_t i = 1; i < states.size(); ++i)
+  {
+    ASSERT_TRUE(session.redo().ok());
+    ASSERT_TRUE(session.paper() == states[i]) << "redo to state " << i;
+  }
+  EXPECT_FALSE(session.redo().ok());
+  // A new operation after undo drops the redo branch.
+  ASSERT_TRUE(session.undo().ok());
+  ASSERT_TRUE(session.reset(2.0).ok());
+  EXPECT_FALSE(session.canRedo());
+}
+
+TEST(Session, ReplayingTheLogReproducesTheState)
+{
+  std::mt19937 rng(7);
+  Session session;
+  for (int committed = 0; committed < 40;)
+    committed += randomOperation(session, rng) ? 1 : 0;
+  ASSERT_TRUE(session.undo().ok());
+  ASSERT_TRUE(session.undo().ok());
+  ASSERT_TRUE(session.redo().ok());
+  Session replay;
+  for (const Operation& op : session.log())
+    ASSERT_TRUE(replay.apply(op).ok()) << kindName(op.kind);
+  EXPECT_TRUE(replay.paper() == session.paper());
+  EXPECT_EQ(replay.revision(), session.revision());
+}
+
+TEST(Session, InvariantsHoldAfterThousandsOfRandomCreasesAndRotations)
+{
+  std::mt19937 rng(2006);
+  Session session;
+  int creases = 0, rotations = 0, refused = 0;
+  for (int step = 0; creases + rotations < 1200 && step < 8000; ++step)
+  {
+    if (session.paper().faces.size() > 200)
+      ASSERT_TRUE(session.reset(1.0).ok());  // keep the sheet at a size folding keeps to
+    const Paper before = session.paper();
+    const uint64_t revision = session.revision();
+    const size_t logged = session.log().size();
+    if (randomOperation(session, rng))
+    {
+      (session.log().back().kind == Operation::Kind::Crease ? creases : rotations) += 1;
+      ASSERT_EQ(session.log().size(), logged + 1);
+      const ValidityReport report = checkValidity(session.paper());
+      ASSERT_TRUE(report.ok()) << "step " << step << ":\n" << report.summary();
+    }
+    else
+    {
+      ++refused;
+      ASSERT_TRUE(session.paper() == before) << "a refused operation changed the paper at step " << step;
+      ASSERT_EQ(session.revision(), revision);
+    }
+  }
+  EXPECT_GE(creases + rotations, 1000);
+  EXPECT_GE(creases, 300);
+  EXPECT_GE(rotations, 300);
+  RecordProperty("creases", creases);
+  RecordProperty("rotations", rotations);
+  RecordProperty("refused", refused);
+}

@@ -1,0 +1,83 @@
+#include <gtest/gtest.h>
+
+#include "test_models.h"
+#include "virtual_origami/core/snap.h"
+
+using namespace virtual_origami;
+using namespace virtual_origami::test;
+
+TEST(Snap, ToANearVertex)
+{
+  const Paper paper = Paper::square(1.0);
+  const Snap s = snapPoint(paper, p3(0.98, 1.01), SnapSettings{});
+  EXPECT_EQ(s.kind, SnapKind::Vertex);
+  EXPECT_EQ(s.vertex, 2);
+  EXPECT_EQ(s.point, paper.vertices[2].folded);
+}
+
+TEST(Snap, ToEdgeDivisionPointsWithTheirGuide)
+{
+  const Paper paper = Paper::square(1.0);
+  SnapSettings settings;
+  const Snap half = snapPoint(paper, p3(0.51, 0.01), settings);
+  EXPECT_EQ(half.kind, SnapKind::EdgeDivision);
+  EXPECT_EQ(half.edge, 0);
+  EXPECT_EQ(half.divisions, 2);  // 1/2 wins over 2/4, the same point
+  EXPECT_TRUE(half.point.isApprox(p3(0.5, 0)));
+  ASSERT_EQ(half.guide_points.size(), 1u);
+  const Snap quarter = snapPoint(paper, p3(0.99, 0.74), settings);
+  EXPECT_EQ(quarter.kind, SnapKind::EdgeDivision);
+  EXPECT_EQ(quarter.divisions, 4);
+  EXPECT_EQ(quarter.index, 3);
+  EXPECT_TRUE(quarter.point.isApprox(p3(1, 0.75)));
+  ASSERT_EQ(quarter.guide_points.size(), 3u);  // the edge's three quarter points
+  EXPECT_TRUE(quarter.guide_points[0].isApprox(p3(1, 0.25)));
+  // Thirds only when asked for.
+  settings.edge_divisions = { 3 };
+  const Snap third = snapPoint(paper, p3(0.34, 0.02), settings);
+  EXPECT_EQ(third.kind, SnapKind::EdgeDivision);
+  EXPECT_NEAR(third.point.x(), 1.0 / 3, 1e-15);
+}
+
+TEST(Snap, ToAngleDivisionsFromAStartVertex)
+{
+  const Paper paper = Paper::square(1.0);
+  // From corner 0 the right angle splits at 45° (n = 2) and 22.5°, 67.5° (n = 4).
+  const Snap diagonal = snapPoint(paper, p3(0.6, 0.62), SnapSettings{}, 0);
+  EXPECT_EQ(diagonal.kind, SnapKind::AngleDivision);
+  EXPECT_EQ(diagonal.vertex, 0);
+  EXPECT_EQ(diagonal.divisions, 2);
+  EXPECT_NEAR(diagonal.point.x(), diagonal.point.y(), 1e-15);
+  EXPECT_NEAR(diagonal.point.norm(), p3(0.6, 0.62).dot(Vec3(1, 1, 0).normalized()), 1e-12);
+  ASSERT_EQ(diagonal.guide_lines.size(), 1u);
+  EXPECT_TRUE(diagonal.guide_lines[0].a.isApprox(p3(0, 0)));
+
+  const double a = M_PI / 8;  // 22.5°
+  const Snap eighth = snapPoint(paper, p3(0.5 * std::cos(a) + 0.005, 0.5 * std::sin(a)), SnapSettings{}, 0);
+  EXPECT_EQ(eighth.kind, SnapKind::AngleDivision);
+  EXPECT_EQ(eighth.divisions, 4);
+  EXPECT_EQ(eighth.index, 1);
+  EXPECT_NEAR(std::atan2(eighth.point.y(), eighth.point.x()), a, 1e-12);
+  EXPECT_EQ(eighth.guide_lines.size(), 3u);
+  // Without a start vertex the angle rule is off.
+  EXPECT_EQ(snapPoint(paper, p3(0.6, 0.62), SnapSettings{}).kind, SnapKind::None);
+}
+
+TEST(Snap, FarFromEverythingStaysPut)
+{
+  const Paper paper = Paper::square(1.0);
+  const Snap s = snapPoint(paper, p3(0.3, 0.6), SnapSettings{}, 0);
+  EXPECT_EQ(s.kind, SnapKind::None);
+  EXPECT_EQ(s.point, p3(0.3, 0.6));
+  EXPECT_TRUE(s.guide_points.empty());
+  EXPECT_TRUE(s.guide_lines.empty());
+}
+
+TEST(Snap, VertexBeatsEdgeDivision)
+{
+  Paper paper = Paper::square(1.0);
+  creaseLine(paper, p3(0.5, -1), p3(0.5, 2));  // vertices at (0.5, 0) and (0.5, 1)
+  const Snap s = snapPoint(paper, p3(0.51, 0.01), SnapSettings{});
+  EXPECT_EQ(s.kind, SnapKind::Vertex);
+  EXPECT_TRUE(s.point.isApprox(p3(0.5, 0)));
+}
