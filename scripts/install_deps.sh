@@ -23,8 +23,12 @@ PACKAGES=(
   # ROS layer (nodes, tf, bags, interactive markers, rviz)
   libroscpp-dev libtf2-ros-dev libtf2-geometry-msgs-dev librosbag-dev
   libinteractive-markers-dev librviz-dev rviz
-  # ROS and end-to-end tests
-  python3-rostest python3-roslaunch xvfb xdotool imagemagick
+  # live-tunable solver parameters
+  libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
+  # ROS and end-to-end tests (rostest suites are Python: rospy and the Python messages)
+  python3-rostest python3-roslaunch python3-rospy python3-rosnode
+  python3-std-srvs python3-tf2-ros python3-visualization-msgs
+  xvfb xdotool imagemagick
 )
 
 missing=()

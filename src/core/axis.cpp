@@ -4,7 +4,7 @@
 
 #include "virtual_origami/core/geometry.h"
 
-namespace virtual_origami
+namespace virtual_origami::core
 {
 namespace
 {
@@ -80,4 +80,4 @@ Expected<int> farthestCreaseAxis(const Paper& paper, int face, const Vec3& click
   return best;
 }
 
-}  // namespace virtual_origami
+}  // namespace virtual_origami::core

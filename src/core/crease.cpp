@@ -8,7 +8,7 @@
 
 #include "virtual_origami/core/geometry.h"
 
-namespace virtual_origami
+namespace virtual_origami::core
 {
 namespace
 {
@@ -333,4 +333,4 @@ Expected<CreaseResult> crease(Paper& paper, const CreaseRequest& request, const 
   return result;
 }
 
-}  // namespace virtual_origami
+}  // namespace virtual_origami::core

@@ -5,7 +5,7 @@
 
 #include <Eigen/Geometry>
 
-namespace virtual_origami
+namespace virtual_origami::core
 {
 Vec3 rotateAbout(const Vec3& point, const Vec3& origin, const Vec3& axis, double angle)
 {
@@ -86,4 +86,4 @@ int faceAt(const Paper& paper, const Vec3& point, double max_distance)
 
 bool allFinite(const Vec3& v) { return v.allFinite(); }
 
-}  // namespace virtual_origami
+}  // namespace virtual_origami::core

@@ -6,7 +6,7 @@
 
 #include <Eigen/SVD>
 
-namespace virtual_origami
+namespace virtual_origami::core
 {
 Eigen::Isometry3d facePose(const Paper& paper, int face)
 {
@@ -139,4 +139,4 @@ Expected<std::vector<Vec3>> foldedPositionsFromAngles(const Paper& paper, const 
   return positions;
 }
 
-}  // namespace virtual_origami
+}  // namespace virtual_origami::core

@@ -5,7 +5,7 @@
 
 #include <Eigen/Geometry>
 
-namespace virtual_origami
+namespace virtual_origami::core
 {
 char assignmentLetter(Assignment assignment)
 {
@@ -235,4 +235,4 @@ void updateFoldAngles(Paper& paper, double assign_threshold)
   }
 }
 
-}  // namespace virtual_origami
+}  // namespace virtual_origami::core

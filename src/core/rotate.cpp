@@ -8,7 +8,7 @@
 #include "virtual_origami/core/geometry.h"
 #include "virtual_origami/core/validity.h"
 
-namespace virtual_origami
+namespace virtual_origami::core
 {
 namespace
 {
@@ -174,12 +174,10 @@ Expected<RotateResult> rotate(Paper& paper, const RotateRequest& request, ShapeS
     next.edges[e].fold_angle = expected;
   }
   const std::vector<char> moving_vertices = verticesOf(paper, moving);
-  std::vector<char> staying_faces(paper.faces.size(), 0);
-  for (size_t f = 0; f < moving.size(); ++f)
-    staying_faces[f] = !moving[f];
-  const std::vector<char> staying_vertices = verticesOf(paper, staying_faces);
+  // Every vertex of the turning faces turns, also where a face the solver moves shares it;
+  // those on the axis stay exactly where they are.
   for (size_t v = 0; v < paper.vertices.size(); ++v)
-    if (moving_vertices[v] && !staying_vertices[v])
+    if (moving_vertices[v] && axis.distance(paper.vertices[v].folded) > 1e-7 * paper.scale())
       next.vertices[v].folded = rotateAbout(paper.vertices[v].folded, axis.origin, axis.direction, turn);
 
   if (result.moved_faces.empty())
@@ -205,4 +203,4 @@ Expected<RotateResult> rotate(Paper& paper, const RotateRequest& request, ShapeS
   return result;
 }
 
-}  // namespace virtual_origami
+}  // namespace virtual_origami::core

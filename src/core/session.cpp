@@ -4,7 +4,7 @@
 
 #include "virtual_origami/core/validity.h"
 
-namespace virtual_origami
+namespace virtual_origami::core
 {
 const char* kindName(Operation::Kind kind)
 {
@@ -28,22 +28,36 @@ const char* kindName(Operation::Kind kind)
   return "unknown";
 }
 
-Session::Session(Paper initial) : paper_(std::move(initial)) {}
+Session::Session(Paper initial) { history_.paper = std::move(initial); }
+
+Session::Session(History history) : history_(std::move(history)) {}
 
 void Session::commit(Paper next, Operation operation)
 {
-  undo_.push_back(std::move(paper_));
-  redo_.clear();
-  paper_ = std::move(next);
+  history_.undo.push_back(std::move(history_.paper));
+  history_.redo.clear();
+  history_.paper = std::move(next);
   preview_.reset();
-  operation.revision = ++revision_;
-  log_.push_back(std::move(operation));
+  operation.revision = ++history_.revision;
+  history_.log.push_back(std::move(operation));
+}
+
+void Session::step(std::vector<Paper>& from, std::vector<Paper>& to, Operation::Kind kind)
+{
+  to.push_back(std::move(history_.paper));
+  history_.paper = std::move(from.back());
+  from.pop_back();
+  preview_.reset();
+  Operation op;
+  op.kind = kind;
+  op.revision = ++history_.revision;
+  history_.log.push_back(op);
 }
 
 Expected<CreaseResult> Session::crease(const CreaseRequest& request)
 {
-  Paper next = paper_;
-  Expected<CreaseResult> result = virtual_origami::crease(next, request, snap_settings_);
+  Paper next = history_.paper;
+  Expected<CreaseResult> result = core::crease(next, request, snap_settings_);
   if (result)
   {
     Operation op;
@@ -56,10 +70,15 @@ Expected<CreaseResult> Session::crease(const CreaseRequest& request)
 
 Expected<RotateResult> Session::rotate(const RotateRequest& request, bool commit_it)
 {
-  Paper next = paper_;
-  Expected<RotateResult> result = virtual_origami::rotate(next, request, solver_.get());
+  Paper next = history_.paper;
+  Expected<RotateResult> result = core::rotate(next, request, solver_.get(), held_);
   if (!result)
     return result;
+  for (int v : held_)
+    if (v >= 0 && v < static_cast<int>(next.vertices.size()) &&
+        (next.vertices[v].folded - history_.paper.vertices[v].folded).norm() > 1e-9 * next.scale())
+      return Expected<RotateResult>::failure("vertex " + std::to_string(v) +
+                                             " is pinned and the rotation would move it; release it first");
   if (!commit_it)
   {
     preview_ = std::move(next);
@@ -76,8 +95,8 @@ Expected<RotateResult> Session::rotate(const RotateRequest& request, bool commit
 
 Expected<SquashResult> Session::squash()
 {
-  Paper next = paper_;
-  Expected<SquashResult> result = virtual_origami::squash(next, solver_.get());
+  Paper next = history_.paper;
+  Expected<SquashResult> result = core::squash(next, solver_.get());
   if (result)
   {
     Operation op;
@@ -89,31 +108,17 @@ Expected<SquashResult> Session::squash()
 
 Status Session::undo()
 {
-  if (undo_.empty())
+  if (history_.undo.empty())
     return failure("nothing to undo");
-  redo_.push_back(std::move(paper_));
-  paper_ = std::move(undo_.back());
-  undo_.pop_back();
-  preview_.reset();
-  Operation op;
-  op.kind = Operation::Kind::Undo;
-  op.revision = ++revision_;
-  log_.push_back(op);
+  step(history_.undo, history_.redo, Operation::Kind::Undo);
   return success();
 }
 
 Status Session::redo()
 {
-  if (redo_.empty())
+  if (history_.redo.empty())
     return failure("nothing to redo");
-  undo_.push_back(std::move(paper_));
-  paper_ = std::move(redo_.back());
-  redo_.pop_back();
-  preview_.reset();
-  Operation op;
-  op.kind = Operation::Kind::Redo;
-  op.revision = ++revision_;
-  log_.push_back(op);
+  step(history_.redo, history_.undo, Operation::Kind::Redo);
   return success();
 }
 
@@ -171,4 +176,4 @@ Status Session::apply(const Operation& operation)
   return failure("unknown operation");
 }
 
-}  // namespace virtual_origami
+}  // namespace virtual_origami::core

@@ -5,7 +5,7 @@
 
 #include <Eigen/Geometry>
 
-namespace virtual_origami
+namespace virtual_origami::core
 {
 namespace
 {
@@ -128,4 +128,4 @@ Snap snapPoint(const Paper& paper, const Vec3& cursor, const SnapSettings& setti
   return snap;
 }
 
-}  // namespace virtual_origami
+}  // namespace virtual_origami::core

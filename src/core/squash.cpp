@@ -6,7 +6,7 @@
 
 #include "virtual_origami/core/kinematics.h"
 
-namespace virtual_origami
+namespace virtual_origami::core
 {
 namespace
 {
@@ -73,4 +73,4 @@ Expected<SquashResult> squash(Paper& paper, ShapeSolver* solver)
   return result;
 }
 
-}  // namespace virtual_origami
+}  // namespace virtual_origami::core

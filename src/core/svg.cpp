@@ -4,7 +4,7 @@
 #include <numeric>
 #include <sstream>
 
-namespace virtual_origami
+namespace virtual_origami::core
 {
 namespace
 {
@@ -84,4 +84,4 @@ std::string paperSvg(const Paper& paper, const std::string& title)
   return svg.str();
 }
 
-}  // namespace virtual_origami
+}  // namespace virtual_origami::core

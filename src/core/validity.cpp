@@ -3,7 +3,7 @@
 #include <cmath>
 #include <sstream>
 
-namespace virtual_origami
+namespace virtual_origami::core
 {
 std::string ValidityReport::summary() const
 {
@@ -104,4 +104,4 @@ ValidityReport checkValidity(const Paper& paper, const ValidityTolerance& tolera
   return report;
 }
 
-}  // namespace virtual_origami
+}  // namespace virtual_origami::core

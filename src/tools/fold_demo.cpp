@@ -11,7 +11,7 @@
 #include "virtual_origami/core/svg.h"
 #include "virtual_origami/core/validity.h"
 
-using namespace virtual_origami;
+using namespace virtual_origami::core;
 
 namespace
 {

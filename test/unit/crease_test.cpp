@@ -4,8 +4,8 @@
 #include "virtual_origami/core/crease.h"
 #include "virtual_origami/core/validity.h"
 
-using namespace virtual_origami;
-using namespace virtual_origami::test;
+using namespace virtual_origami::core;
+using namespace virtual_origami::core::test;
 
 namespace
 {

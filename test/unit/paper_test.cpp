@@ -5,8 +5,8 @@
 #include "virtual_origami/core/paper.h"
 #include "virtual_origami/core/validity.h"
 
-using namespace virtual_origami;
-using namespace virtual_origami::test;
+using namespace virtual_origami::core;
+using namespace virtual_origami::core::test;
 
 TEST(Paper, SquareIsValid)
 {

@@ -3,8 +3,8 @@
 #include "test_models.h"
 #include "virtual_origami/core/snap.h"
 
-using namespace virtual_origami;
-using namespace virtual_origami::test;
+using namespace virtual_origami::core;
+using namespace virtual_origami::core::test;
 
 TEST(Snap, ToANearVertex)
 {

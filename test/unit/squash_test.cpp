@@ -3,8 +3,8 @@
 #include "test_models.h"
 #include "virtual_origami/core/squash.h"
 
-using namespace virtual_origami;
-using namespace virtual_origami::test;
+using namespace virtual_origami::core;
+using namespace virtual_origami::core::test;
 
 namespace
 {

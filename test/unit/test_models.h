@@ -8,7 +8,7 @@
 #include "virtual_origami/core/rotate.h"
 #include "virtual_origami/core/validity.h"
 
-namespace virtual_origami::test
+namespace virtual_origami::core::test
 {
 inline Vec3 p3(double x, double y, double z = 0.0) { return Vec3(x, y, z); }
 
@@ -74,4 +74,4 @@ inline void expectValid(const Paper& paper)
   EXPECT_TRUE(report.ok()) << report.summary();
 }
 
-}  // namespace virtual_origami::test
+}  // namespace virtual_origami::core::test

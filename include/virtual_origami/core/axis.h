@@ -4,7 +4,7 @@
 #include "virtual_origami/core/paper.h"
 #include "virtual_origami/core/result.h"
 
-namespace virtual_origami
+namespace virtual_origami::core
 {
 /// Seed steps 1–5: the plane G through the click P and the face centre C, perpendicular to
 /// the face; of the face's creases G crosses, the one farthest from P ("the crease on the
@@ -15,4 +15,4 @@ Expected<int> automaticAxis(const Paper& paper, int face, const Vec3& click);
 /// show the difference in tests.
 Expected<int> farthestCreaseAxis(const Paper& paper, int face, const Vec3& click);
 
-}  // namespace virtual_origami
+}  // namespace virtual_origami::core

@@ -9,7 +9,7 @@
 #include "virtual_origami/core/result.h"
 #include "virtual_origami/core/snap.h"
 
-namespace virtual_origami
+namespace virtual_origami::core
 {
 struct CreaseRequest
 {
@@ -32,4 +32,4 @@ struct CreaseResult
 /// Creases `paper` in place on success; on failure it is untouched and the message says why.
 Expected<CreaseResult> crease(Paper& paper, const CreaseRequest& request, const SnapSettings& snap_settings = {});
 
-}  // namespace virtual_origami
+}  // namespace virtual_origami::core

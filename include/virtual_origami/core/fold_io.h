@@ -7,7 +7,7 @@
 #include "virtual_origami/core/paper.h"
 #include "virtual_origami/core/result.h"
 
-namespace virtual_origami
+namespace virtual_origami::core
 {
 /// Frames of a FOLD file, each resolved to a full paper (inheritance applied, crease
 /// pattern recovered by unfolding where the frame holds only a folded form).
@@ -32,4 +32,4 @@ Status writeTextFile(const std::string& path, const std::string& text);
 /// The state a file describes: its last frame.
 Expected<Paper> loadPaper(const std::string& path);
 
-}  // namespace virtual_origami
+}  // namespace virtual_origami::core

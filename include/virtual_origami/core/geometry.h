@@ -5,7 +5,7 @@
 
 #include "virtual_origami/core/paper.h"
 
-namespace virtual_origami
+namespace virtual_origami::core
 {
 /// `point` turned by `angle` (right hand) about the line through `origin` along unit `axis`.
 Vec3 rotateAbout(const Vec3& point, const Vec3& origin, const Vec3& axis, double angle);
@@ -28,4 +28,4 @@ int faceAt(const Paper& paper, const Vec3& point, double max_distance);
 
 bool allFinite(const Vec3& v);
 
-}  // namespace virtual_origami
+}  // namespace virtual_origami::core

@@ -8,7 +8,7 @@
 #include "virtual_origami/core/paper.h"
 #include "virtual_origami/core/result.h"
 
-namespace virtual_origami
+namespace virtual_origami::core
 {
 /// The rigid transform taking a face from the crease pattern (x, y, 0) to its folded pose,
 /// fitted to its current folded vertices (least squares, Kabsch).
@@ -22,4 +22,4 @@ Expected<std::vector<Vec3>> foldedPositionsFromAngles(const Paper& paper, const 
                                                       int root_face, const Eigen::Isometry3d& root_pose,
                                                       double tolerance);
 
-}  // namespace virtual_origami
+}  // namespace virtual_origami::core

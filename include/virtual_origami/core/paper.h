@@ -12,7 +12,7 @@
 
 #include "virtual_origami/core/result.h"
 
-namespace virtual_origami
+namespace virtual_origami::core
 {
 using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
@@ -110,4 +110,4 @@ void updateFoldAngles(Paper& paper, double assign_threshold = 1e-6);
 /// Signed dihedral of a crease from the folded positions, in (-π, π].
 double measureFoldAngle(const Paper& paper, int edge);
 
-}  // namespace virtual_origami
+}  // namespace virtual_origami::core

@@ -5,7 +5,7 @@
 #include <string>
 #include <utility>
 
-namespace virtual_origami
+namespace virtual_origami::core
 {
 /// A value, or a message saying why there is none.
 template <class T>
@@ -45,4 +45,4 @@ using Status = Expected<Done>;
 inline Status success() { return Status(Done{}); }
 inline Status failure(std::string message) { return Status::failure(std::move(message)); }
 
-}  // namespace virtual_origami
+}  // namespace virtual_origami::core

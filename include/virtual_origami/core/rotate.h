@@ -7,7 +7,7 @@
 #include "virtual_origami/core/result.h"
 #include "virtual_origami/solvers/shape_solver.h"
 
-namespace virtual_origami
+namespace virtual_origami::core
 {
 struct RotateRequest
 {
@@ -39,4 +39,4 @@ Expected<RotateResult> rotate(Paper& paper, const RotateRequest& request, ShapeS
 /// not separate them from the rest.
 std::vector<int> flapOf(const Paper& paper, int face, int axis_edge);
 
-}  // namespace virtual_origami
+}  // namespace virtual_origami::core

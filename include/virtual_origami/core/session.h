@@ -14,7 +14,7 @@
 #include "virtual_origami/core/squash.h"
 #include "virtual_origami/solvers/shape_solver.h"
 
-namespace virtual_origami
+namespace virtual_origami::core
 {
 /// A committed operation with its parameters: enough to apply it again (replay, logs).
 struct Operation
@@ -39,22 +39,38 @@ struct Operation
 
 const char* kindName(Operation::Kind kind);
 
+/// Everything a session remembers: the current paper, the states undo and redo go back
+/// and forth through, and the log of operations.
+struct History
+{
+  Paper paper;
+  uint64_t revision = 0;
+  std::vector<Paper> undo, redo;
+  std::vector<Operation> log;
+};
+
 /// Every change is a transaction: it succeeds fully and gets a new revision and a history
 /// entry, or fails with a message and leaves the paper and the revision as they were.
 class Session
 {
 public:
   explicit Session(Paper initial = Paper::square(1.0));
+  /// A session that goes on from a recorded history (see session_journal.h).
+  explicit Session(History history);
 
-  const Paper& paper() const { return paper_; }
-  uint64_t revision() const { return revision_; }
-  const std::vector<Operation>& log() const { return log_; }
-  bool canUndo() const { return !undo_.empty(); }
-  bool canRedo() const { return !redo_.empty(); }
+  const Paper& paper() const { return history_.paper; }
+  uint64_t revision() const { return history_.revision; }
+  const std::vector<Operation>& log() const { return history_.log; }
+  const History& history() const { return history_; }
+  bool canUndo() const { return !history_.undo.empty(); }
+  bool canRedo() const { return !history_.redo.empty(); }
 
   void setSolver(std::shared_ptr<ShapeSolver> solver) { solver_ = std::move(solver); }
   ShapeSolver* solver() const { return solver_.get(); }
   SnapSettings& snapSettings() { return snap_settings_; }
+  /// Vertices no operation may move (pins): solvers hold them, and a rotation that would
+  /// carry one away is refused.
+  void setHeldVertices(std::vector<int> held) { held_ = std::move(held); }
 
   Expected<CreaseResult> crease(const CreaseRequest& request);
   /// With commit false the result is a preview (`preview()`), not in history, and the
@@ -72,14 +88,13 @@ public:
 
 private:
   void commit(Paper next, Operation operation);
+  void step(std::vector<Paper>& from, std::vector<Paper>& to, Operation::Kind kind);
 
-  Paper paper_;
-  uint64_t revision_ = 0;
-  std::vector<Paper> undo_, redo_;
-  std::vector<Operation> log_;
+  History history_;
   std::optional<Paper> preview_;
   std::shared_ptr<ShapeSolver> solver_;
   SnapSettings snap_settings_;
+  std::vector<int> held_;
 };
 
-}  // namespace virtual_origami
+}  // namespace virtual_origami::core

@@ -6,7 +6,7 @@
 
 #include "virtual_origami/core/paper.h"
 
-namespace virtual_origami
+namespace virtual_origami::core
 {
 struct SnapSettings
 {
@@ -47,4 +47,4 @@ struct Snap
 /// not -1, is the vertex the line starts at and enables the angle rule.
 Snap snapPoint(const Paper& paper, const Vec3& cursor, const SnapSettings& settings, int start_vertex = -1);
 
-}  // namespace virtual_origami
+}  // namespace virtual_origami::core

@@ -5,7 +5,7 @@
 #include "virtual_origami/core/result.h"
 #include "virtual_origami/solvers/shape_solver.h"
 
-namespace virtual_origami
+namespace virtual_origami::core
 {
 struct SquashResult
 {
@@ -20,4 +20,4 @@ struct SquashResult
 /// solver that fails. On failure `paper` is untouched.
 Expected<SquashResult> squash(Paper& paper, ShapeSolver* solver = nullptr);
 
-}  // namespace virtual_origami
+}  // namespace virtual_origami::core

@@ -5,10 +5,10 @@
 
 #include "virtual_origami/core/paper.h"
 
-namespace virtual_origami
+namespace virtual_origami::core
 {
 /// Crease pattern (mountain red dash-dot, valley blue dashed, boundary black) on the left,
 /// the folded form projected on the table (faces shaded by layer height) on the right.
 std::string paperSvg(const Paper& paper, const std::string& title = "");
 
-}  // namespace virtual_origami
+}  // namespace virtual_origami::core

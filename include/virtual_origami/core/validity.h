@@ -6,7 +6,7 @@
 
 #include "virtual_origami/core/paper.h"
 
-namespace virtual_origami
+namespace virtual_origami::core
 {
 struct ValidityReport
 {
@@ -27,4 +27,4 @@ struct ValidityTolerance
 /// folded distances between vertices of a face equal their crease-pattern distances.
 ValidityReport checkValidity(const Paper& paper, const ValidityTolerance& tolerance = {});
 
-}  // namespace virtual_origami
+}  // namespace virtual_origami::core

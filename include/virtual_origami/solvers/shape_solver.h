@@ -6,15 +6,25 @@
 
 #include "virtual_origami/core/paper.h"
 
-namespace virtual_origami
+namespace virtual_origami::core
 {
 struct SolveReport
 {
   bool converged = false;
-  bool diverged = false;  // NaN or growing energy: the caller must roll back
+  bool diverged = false;  // NaN or growing energy: the solver rolled the paper back
   int iterations = 0;
-  double max_strain = 0.0;
+  double max_strain = 0.0;  // |l/l0 − 1| over every vertex pair of each face, at the end
+  double seconds = 0.0;     // wall time of the solve
   std::string message;
+};
+
+/// When a solver stops. Every solver is anytime: it stops at whichever limit comes first and
+/// leaves its best usable shape in the paper (converged false when the tolerance was not met).
+struct SolveLimits
+{
+  double tolerance = 1e-10;  // max strain that counts as converged
+  int max_iterations = 1000;
+  double max_seconds = 0.0;  // wall-time budget; 0: none
 };
 
 class ShapeSolver
@@ -22,9 +32,16 @@ class ShapeSolver
 public:
   virtual ~ShapeSolver() = default;
   virtual std::string name() const = 0;
-  /// Moves the vertices not in `fixed` (one flag per vertex) so that every face regains
-  /// its crease-pattern shape. May leave `paper` anywhere when it reports divergence.
+  /// Moves the vertices not in `fixed` (one flag per vertex; an empty vector holds none) so
+  /// that every face regains its crease-pattern shape. On divergence the paper is left as it
+  /// was given (rolled back) and the report says so; a diverged shape is never published.
   virtual SolveReport solve(Paper& paper, const std::vector<char>& fixed) = 0;
+
+  const SolveLimits& limits() const { return limits_; }
+  void setLimits(const SolveLimits& limits) { limits_ = limits; }
+
+protected:
+  SolveLimits limits_;
 };
 
-}  // namespace virtual_origami
+}  // namespace virtual_origami::core

@@ -1,0 +1,34 @@
+// Between the core's values and the package's messages. Pure functions, no node state.
+#pragma once
+
+#include <map>
+#include <string>
+
+#include <geometry_msgs/Point.h>
+#include <virtual_origami/Operation.h>
+#include <virtual_origami/PaperState.h>
+
+#include "virtual_origami/core/paper.h"
+#include "virtual_origami/core/result.h"
+#include "virtual_origami/core/session.h"
+
+namespace virtual_origami
+{
+geometry_msgs::Point toPoint(const core::Vec3& v);
+core::Vec3 toVec3(const geometry_msgs::Point& p);
+
+/// A pinned vertex: held where it is (empty frame) or following a tf frame.
+struct PinnedVertex
+{
+  std::string frame_id;
+  core::Vec3 position = core::Vec3::Zero();  // in `frame_id`, or in `paper` when empty
+};
+using Pins = std::map<int, PinnedVertex>;
+
+PaperState toMessage(const core::Paper& paper, uint64_t revision, const Pins& pins);
+/// Fails with a message on inconsistent input (lengths, indices, assignments, topology).
+core::Expected<core::Paper> fromMessage(const PaperState& state);
+
+Operation toMessage(const core::Operation& operation);
+
+}  // namespace virtual_origami

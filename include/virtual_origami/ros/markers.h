@@ -1,0 +1,30 @@
+// Markers that show the paper in rviz. Pure functions: a paper in, messages out.
+#pragma once
+
+#include <string>
+
+#include <ros/time.h>
+#include <std_msgs/ColorRGBA.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include "virtual_origami/core/paper.h"
+
+namespace virtual_origami
+{
+struct MarkerStyle
+{
+  std::string frame_id = "paper";
+  double layer_gap = 0.002;    // between coincident layers of a flat fold, in metres
+  double side_offset = 0.0004;  // front and back surfaces of one layer, apart
+  double line_width = 0.004;
+};
+
+std_msgs::ColorRGBA rgba(float r, float g, float b, float a = 1.0f);
+
+/// Namespaces: `front` and `back` (TRIANGLE_LIST, the two sides of every face in their own
+/// colours, coincident layers lifted by their stack level), `mountain`, `valley`, `crease`
+/// (unassigned/flat), `boundary` (LINE_LIST).
+visualization_msgs::MarkerArray paperMarkers(const core::Paper& paper, const MarkerStyle& style,
+                                             const ros::Time& stamp);
+
+}  // namespace virtual_origami

@@ -1,0 +1,64 @@
+// The paper_model node: owns the session, offers the services of SPEC §8, publishes the
+// state, markers, operations and tf frames, and journals every change to disk.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <ros/ros.h>
+#include <std_srvs/Trigger.h>
+#include <tf2_ros/static_transform_broadcaster.h>
+#include <tf2_ros/transform_broadcaster.h>
+#include <virtual_origami/Crease.h>
+#include <virtual_origami/Load.h>
+#include <virtual_origami/PinVertex.h>
+#include <virtual_origami/Rotate.h>
+#include <virtual_origami/Save.h>
+
+#include "virtual_origami/core/session.h"
+#include "virtual_origami/core/session_journal.h"
+#include "virtual_origami/ros/conversions.h"
+#include "virtual_origami/ros/markers.h"
+
+namespace virtual_origami
+{
+class PaperModelNode
+{
+public:
+  PaperModelNode(ros::NodeHandle nh, ros::NodeHandle private_nh);
+
+private:
+  bool crease(Crease::Request& req, Crease::Response& res);
+  bool rotate(Rotate::Request& req, Rotate::Response& res);
+  bool squash(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
+  bool undo(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
+  bool redo(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
+  bool reset(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
+  bool pin(PinVertex::Request& req, PinVertex::Response& res);
+  bool load(Load::Request& req, Load::Response& res);
+  bool save(Save::Request& req, Save::Response& res);
+
+  /// After a committed change: journal it, announce it on `operations`, publish the state.
+  void committed(const std::string& what);
+  void publishState();
+  void publishMarkers(const core::Paper& paper);
+  void broadcastPins(const ros::TimerEvent&);
+  void restoreOrStart(ros::NodeHandle& private_nh);
+  bool answer(const core::Status& status, const std::string& done, std_srvs::Trigger::Response& res);
+
+  ros::NodeHandle nh_;
+  core::Session session_;
+  core::SessionJournal journal_;
+  Pins pins_;
+  MarkerStyle style_;
+  std::string world_frame_;
+  double size_ = 1.0;
+  ros::Publisher state_pub_, markers_pub_, operations_pub_;
+  std::vector<ros::ServiceServer> services_;
+  tf2_ros::StaticTransformBroadcaster static_tf_;
+  tf2_ros::TransformBroadcaster tf_;
+  ros::Timer pin_timer_;
+};
+
+}  // namespace virtual_origami

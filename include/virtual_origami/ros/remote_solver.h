@@ -1,0 +1,28 @@
+// A ShapeSolver that asks the spring_solver node, so the solver can run (and restart) as
+// its own process, on another machine if need be.
+#pragma once
+
+#include <string>
+
+#include <ros/node_handle.h>
+
+#include "virtual_origami/solvers/shape_solver.h"
+
+namespace virtual_origami
+{
+class RemoteSolver : public core::ShapeSolver
+{
+public:
+  RemoteSolver(ros::NodeHandle nh, std::string service, double timeout);
+  std::string name() const override { return "solver service " + service_; }
+  /// Waits up to the timeout for the service; a missing or failing solver reports not
+  /// converged, so the operation is refused and the model stays as it was.
+  core::SolveReport solve(core::Paper& paper, const std::vector<char>& fixed) override;
+
+private:
+  ros::NodeHandle nh_;
+  std::string service_;
+  double timeout_;
+};
+
+}  // namespace virtual_origami

@@ -1,0 +1,1184 @@
+// FOLD read and write. Reading resolves every frame (inheritance, a crease pattern for folded
+// forms by unfolding) into a Paper; writing stores the crease pattern and the folded form.
+#include "virtual_origami/core/fold_io.h"
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <climits>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <deque>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <nlohmann/json.hpp>
+
+#include "virtual_origami/core/kinematics.h"
+
+namespace virtual_origami::core
+{
+namespace
+{
+using json = nlohmann::json;
+using ordered_json = nlohmann::ordered_json;
+
+/// Our own frame field: the crease pattern of a standalone folded-form frame.
+const char* const kCreasePatternKey = "virtual_origami:vertices_creasePattern";
+
+/// The faces around a vertex must unfold it to one place within this (relative to the sheet
+/// scale): other tools round their coordinates to about 6 digits.
+constexpr double kDevelopableTolerance = 1e-4;
+/// 3D coordinates within this of one plane (relative to their extent) are a flat sheet.
+constexpr double kCoplanarTolerance = 1e-6;
+/// Smallest allowed turn at a face corner, as a sine: a little slack for rounded files.
+constexpr double kConvexityTolerance = 1e-6;
+/// A measured fold angle this close to ±180° takes its sign from the assignment.
+constexpr double kFlatFoldTolerance = 1e-4;
+
+/// A malformed file. Field checks nest deeply, so they throw this; parseFold turns it into a
+/// failure, and nothing is thrown across the library boundary.
+struct FormatError : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
+};
+
+[[noreturn]] void fail(const std::string& message)
+{
+  throw FormatError(message);
+}
+
+std::string indexed(const std::string& name, size_t i)
+{
+  return name + "[" + std::to_string(i) + "]";
+}
+
+/// A JSON value for a message, cut short when long.
+std::string describe(const json& value)
+{
+  std::string text = value.dump();
+  if (text.size() > 40)
+    text = text.substr(0, 37) + "...";
+  return text;
+}
+
+std::string formatNumber(double x)
+{
+  std::ostringstream out;
+  out << x;
+  return out.str();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reading fields
+
+const json* findField(const json& object, const std::string& key)
+{
+  const auto it = object.find(key);
+  return it == object.end() ? nullptr : &*it;
+}
+
+void requireArray(const json& value, const std::string& name)
+{
+  if (!value.is_array())
+    fail(name + " is " + describe(value) + ", not an array");
+}
+
+double readNumber(const json& value, const std::string& name)
+{
+  if (!value.is_number())
+    fail(name + " is " + describe(value) + ", not a number");
+  const double x = value.get<double>();
+  if (!std::isfinite(x))
+    fail(name + " is not a finite number");
+  return x;
+}
+
+int readIndex(const json& value, const std::string& name)
+{
+  // Accept 3.0 as well as 3: some writers print every number as a double.
+  const double x = value.is_number() ? value.get<double>() : -1.0;
+  if (!(x >= 0 && x <= INT_MAX && x == std::floor(x)))
+    fail(name + " is " + describe(value) + ", not an index");
+  return static_cast<int>(x);
+}
+
+int readVertexIndex(const json& value, const std::string& name, size_t vertex_count)
+{
+  const int v = readIndex(value, name);
+  if (static_cast<size_t>(v) >= vertex_count)
+    fail(name + " names vertex " + std::to_string(v) + " but there are " + std::to_string(vertex_count) + " vertices");
+  return v;
+}
+
+std::optional<std::string> readOptionalString(const json& object, const std::string& key)
+{
+  const json* field = findField(object, key);
+  if (!field)
+    return std::nullopt;
+  if (!field->is_string())
+    fail(key + " is " + describe(*field) + ", not a string");
+  return field->get<std::string>();
+}
+
+std::vector<std::string> readStrings(const json& object, const std::string& key)
+{
+  std::vector<std::string> strings;
+  const json* field = findField(object, key);
+  if (!field)
+    return strings;
+  requireArray(*field, key);
+  for (size_t i = 0; i < field->size(); ++i)
+  {
+    if (!(*field)[i].is_string())
+      fail(indexed(key, i) + " is " + describe((*field)[i]) + ", not a string");
+    strings.push_back((*field)[i].get<std::string>());
+  }
+  return strings;
+}
+
+/// Checks that an edge field has one entry per edge and returns it, or nullptr when absent.
+const json* edgeField(const json& frame, const std::string& key, const std::optional<size_t>& edge_count)
+{
+  const json* field = findField(frame, key);
+  if (!field)
+    return nullptr;
+  requireArray(*field, key);
+  if (!edge_count)
+    fail(key + " is given but edges_vertices is missing");
+  if (field->size() != *edge_count)
+    fail(key + " has " + std::to_string(field->size()) + " entries but edges_vertices has " +
+         std::to_string(*edge_count));
+  return field;
+}
+
+/// One frame's fields, checked and converted (fold angles to radians).
+struct FrameData
+{
+  std::vector<Vec3> coords;
+  std::optional<std::vector<std::array<int, 2>>> edges;
+  std::optional<std::vector<Assignment>> assignments;
+  std::optional<std::vector<double>> fold_angles;
+  std::optional<std::vector<std::vector<int>>> faces;
+  std::vector<std::array<int, 3>> face_orders;  // [f, g, s] as in the file
+  std::optional<std::vector<Vec2>> crease_pattern;
+  std::vector<std::string> classes;
+};
+
+/// 2D coordinates get z = 0: whether a frame is flat is decided from the points, not their length.
+std::vector<Vec3> readCoords(const json& frame)
+{
+  const json* field = findField(frame, "vertices_coords");
+  if (!field)
+    fail("vertices_coords is missing");
+  requireArray(*field, "vertices_coords");
+  if (field->empty())
+    fail("vertices_coords is empty");
+  std::vector<Vec3> coords;
+  for (size_t i = 0; i < field->size(); ++i)
+  {
+    const json& entry = (*field)[i];
+    const std::string name = indexed("vertices_coords", i);
+    requireArray(entry, name);
+    if (entry.size() != 2 && entry.size() != 3)
+      fail(name + " has " + std::to_string(entry.size()) + " coordinates, not 2 or 3");
+    Vec3 p = Vec3::Zero();
+    for (size_t k = 0; k < entry.size(); ++k)
+      p[k] = readNumber(entry[k], indexed(name, k));
+    coords.push_back(p);
+  }
+  return coords;
+}
+
+std::optional<std::vector<std::array<int, 2>>> readEdges(const json& frame, size_t vertex_count)
+{
+  const json* field = findField(frame, "edges_vertices");
+  if (!field)
+    return std::nullopt;
+  requireArray(*field, "edges_vertices");
+  std::vector<std::array<int, 2>> edges;
+  for (size_t e = 0; e < field->size(); ++e)
+  {
+    const json& entry = (*field)[e];
+    const std::string name = indexed("edges_vertices", e);
+    if (!entry.is_array() || entry.size() != 2)
+      fail(name + " is " + describe(entry) + ", not a pair of vertices");
+    const std::array<int, 2> ends{ readVertexIndex(entry[0], name, vertex_count),
+                                   readVertexIndex(entry[1], name, vertex_count) };
+    if (ends[0] == ends[1])
+      fail(name + " joins vertex " + std::to_string(ends[0]) + " to itself");
+    edges.push_back(ends);
+  }
+  return edges;
+}
+
+std::optional<std::vector<Assignment>> readAssignments(const json& frame, const std::optional<size_t>& edge_count)
+{
+  const json* field = edgeField(frame, "edges_assignment", edge_count);
+  if (!field)
+    return std::nullopt;
+  std::vector<Assignment> assignments;
+  for (size_t e = 0; e < field->size(); ++e)
+  {
+    const json& entry = (*field)[e];
+    const std::optional<Assignment> assignment =
+        entry.is_string() ? assignmentFromLetter(entry.get<std::string>()) : std::nullopt;
+    if (!assignment)
+      fail(indexed("edges_assignment", e) + " is " + describe(entry) + ", not one of B M V F U C");
+    assignments.push_back(*assignment);
+  }
+  return assignments;
+}
+
+double toRadians(double degrees)
+{
+  return degrees * (M_PI / 180.0);
+}
+
+std::optional<std::vector<double>> readFoldAngles(const json& frame, const std::optional<size_t>& edge_count)
+{
+  // FOLD 1.0 called the field edges_foldAngles.
+  const std::string key = findField(frame, "edges_foldAngle") ? "edges_foldAngle" : "edges_foldAngles";
+  const json* field = edgeField(frame, key, edge_count);
+  if (!field)
+    return std::nullopt;
+  std::vector<double> angles;
+  for (size_t e = 0; e < field->size(); ++e)
+  {
+    const double degrees = readNumber((*field)[e], indexed(key, e));
+    if (std::abs(degrees) > 180.0 + 1e-9)
+      fail(indexed(key, e) + " is " + formatNumber(degrees) + ", outside [-180, 180]");
+    angles.push_back(toRadians(std::max(-180.0, std::min(180.0, degrees))));
+  }
+  return angles;
+}
+
+std::optional<std::vector<std::vector<int>>> readFaces(const json& frame, size_t vertex_count)
+{
+  const json* field = findField(frame, "faces_vertices");
+  if (!field)
+    return std::nullopt;
+  requireArray(*field, "faces_vertices");
+  std::vector<std::vector<int>> faces;
+  for (size_t f = 0; f < field->size(); ++f)
+  {
+    const json& entry = (*field)[f];
+    const std::string name = indexed("faces_vertices", f);
+    requireArray(entry, name);
+    if (entry.size() < 3)
+      fail(name + " has " + std::to_string(entry.size()) + " vertices; a face needs at least 3");
+    std::vector<int> cycle;
+    for (size_t i = 0; i < entry.size(); ++i)
+    {
+      const int v = readVertexIndex(entry[i], indexed(name, i), vertex_count);
+      if (std::find(cycle.begin(), cycle.end(), v) != cycle.end())
+        fail(name + " visits vertex " + std::to_string(v) + " twice");
+      cycle.push_back(v);
+    }
+    faces.push_back(cycle);
+  }
+  return faces;
+}
+
+std::vector<std::array<int, 3>> readFaceOrders(const json& frame)
+{
+  std::vector<std::array<int, 3>> orders;
+  const json* field = findField(frame, "faceOrders");
+  if (!field)
+    return orders;
+  requireArray(*field, "faceOrders");
+  for (size_t i = 0; i < field->size(); ++i)
+  {
+    const json& entry = (*field)[i];
+    const std::string name = indexed("faceOrders", i);
+    if (!entry.is_array() || entry.size() != 3)
+      fail(name + " is " + describe(entry) + ", not a triple [f, g, s]");
+    const int f = readIndex(entry[0], indexed(name, 0));
+    const int g = readIndex(entry[1], indexed(name, 1));
+    const double s = entry[2].is_number() ? entry[2].get<double>() : 2.0;
+    if (s != -1.0 && s != 0.0 && s != 1.0)
+      fail(name + " has order " + describe(entry[2]) + ", not -1, 0 or 1");
+    orders.push_back({ f, g, static_cast<int>(s) });
+  }
+  return orders;
+}
+
+std::optional<std::vector<Vec2>> readCreasePatternField(const json& frame, size_t vertex_count)
+{
+  const json* field = findField(frame, kCreasePatternKey);
+  if (!field)
+    return std::nullopt;
+  const std::string key = kCreasePatternKey;
+  requireArray(*field, key);
+  if (field->size() != vertex_count)
+    fail(key + " has " + std::to_string(field->size()) + " entries but vertices_coords has " +
+         std::to_string(vertex_count));
+  std::vector<Vec2> points;
+  for (size_t i = 0; i < field->size(); ++i)
+  {
+    const json& entry = (*field)[i];
+    if (!entry.is_array() || entry.size() != 2)
+      fail(indexed(key, i) + " is " + describe(entry) + ", not a 2D point");
+    points.emplace_back(readNumber(entry[0], indexed(indexed(key, i), 0)),
+                        readNumber(entry[1], indexed(indexed(key, i), 1)));
+  }
+  return points;
+}
+
+FrameData readFrame(const json& frame)
+{
+  FrameData data;
+  data.coords = readCoords(frame);
+  const size_t vertex_count = data.coords.size();
+  data.edges = readEdges(frame, vertex_count);
+  const std::optional<size_t> edge_count = data.edges ? std::optional<size_t>(data.edges->size()) : std::nullopt;
+  data.assignments = readAssignments(frame, edge_count);
+  data.fold_angles = readFoldAngles(frame, edge_count);
+  data.faces = readFaces(frame, vertex_count);
+  if (!data.edges && !data.faces)
+    fail("edges_vertices and faces_vertices are both missing");
+  data.face_orders = readFaceOrders(frame);
+  data.crease_pattern = readCreasePatternField(frame, vertex_count);
+  data.classes = readStrings(frame, "frame_classes");
+  readOptionalString(frame, "frame_title");
+  return data;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Crease-pattern geometry
+
+double boundingDiagonal(const std::vector<Vec2>& points)
+{
+  Vec2 low = points.front(), high = points.front();
+  for (const Vec2& p : points)
+  {
+    low = low.cwiseMin(p);
+    high = high.cwiseMax(p);
+  }
+  return (high - low).norm();
+}
+
+double cross2(const Vec2& a, const Vec2& b)
+{
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+double signedArea(const std::vector<Vec2>& polygon)
+{
+  double twice = 0;
+  for (size_t i = 0; i < polygon.size(); ++i)
+    twice += cross2(polygon[i], polygon[(i + 1) % polygon.size()]);
+  return 0.5 * twice;
+}
+
+/// The coordinates in their own plane when they lie in one, else nothing.
+std::optional<std::vector<Vec2>> planarCoordinates(const std::vector<Vec3>& coords)
+{
+  Vec3 low = coords.front(), high = coords.front(), centroid = Vec3::Zero();
+  for (const Vec3& p : coords)
+  {
+    low = low.cwiseMin(p);
+    high = high.cwiseMax(p);
+    centroid += p;
+  }
+  centroid /= static_cast<double>(coords.size());
+  const double tolerance = kCoplanarTolerance * (high - low).norm();
+  std::vector<Vec2> flat;
+  if (high.z() - low.z() <= tolerance)  // the usual z = const sheet: keep x and y as they are
+  {
+    for (const Vec3& p : coords)
+      flat.emplace_back(p.x(), p.y());
+    return flat;
+  }
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  for (const Vec3& p : coords)
+    scatter += (p - centroid) * (p - centroid).transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(scatter);
+  const Vec3 normal = solver.eigenvectors().col(0);  // smallest eigenvalue first
+  for (const Vec3& p : coords)
+    if (std::abs((p - centroid).dot(normal)) > tolerance)
+      return std::nullopt;
+  // Which side the plane is seen from does not matter: clockwise faces are mirrored later.
+  const Vec3 seed = std::abs(normal.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+  const Vec3 u = (seed - normal * normal.dot(seed)).normalized();
+  const Vec3 w = normal.cross(u);
+  for (const Vec3& p : coords)
+    flat.emplace_back((p - centroid).dot(u), (p - centroid).dot(w));
+  return flat;
+}
+
+/// The bounded faces of the planar graph the edges draw: each traced with the face on its left,
+/// so cycles come out counter-clockwise and the outer face (clockwise) is dropped.
+std::vector<std::vector<int>> traceFaces(const std::vector<Vec2>& points, const std::vector<std::array<int, 2>>& edges)
+{
+  // Half-edge 2e + s runs from edges[e][s] to edges[e][1 - s]; its twin is h ^ 1.
+  const auto from = [&](int h) { return edges[h / 2][h % 2]; };
+  const auto to = [&](int h) { return edges[h / 2][1 - h % 2]; };
+  const auto direction = [&](int h) {
+    const Vec2 d = points[to(h)] - points[from(h)];
+    return std::atan2(d.y(), d.x());
+  };
+  const int half_count = 2 * static_cast<int>(edges.size());
+  std::vector<std::vector<int>> outgoing(points.size());
+  for (int h = 0; h < half_count; ++h)
+    outgoing[from(h)].push_back(h);
+  std::vector<int> slot(half_count);
+  for (std::vector<int>& around : outgoing)
+  {
+    std::sort(around.begin(), around.end(), [&](int a, int b) { return direction(a) < direction(b); });
+    for (size_t i = 0; i < around.size(); ++i)
+      slot[around[i]] = static_cast<int>(i);
+  }
+  // Arriving along h, the face on the left continues along the first edge clockwise from the twin.
+  const auto next = [&](int h) {
+    const std::vector<int>& around = outgoing[to(h)];
+    const int n = static_cast<int>(around.size());
+    return around[(slot[h ^ 1] + n - 1) % n];
+  };
+  const double min_area = 1e-12 * std::pow(boundingDiagonal(points), 2);
+  std::vector<char> visited(half_count, 0);
+  std::vector<std::vector<int>> faces;
+  for (int start = 0; start < half_count; ++start)
+  {
+    std::vector<int> cycle;
+    std::vector<Vec2> polygon;
+    for (int h = start; !visited[h]; h = next(h))
+    {
+      visited[h] = 1;
+      cycle.push_back(from(h));
+      polygon.push_back(points[from(h)]);
+    }
+    if (!cycle.empty() && signedArea(polygon) > min_area)
+      faces.push_back(cycle);
+  }
+  return faces;
+}
+
+std::vector<std::array<int, 2>> edgesOfFaces(const std::vector<std::vector<int>>& faces)
+{
+  std::vector<std::array<int, 2>> edges;
+  std::map<std::pair<int, int>, int> seen;
+  for (const std::vector<int>& face : faces)
+    for (size_t i = 0; i < face.size(); ++i)
+    {
+      const int a = face[i], b = face[(i + 1) % face.size()];
+      if (seen.emplace(std::minmax(a, b), static_cast<int>(edges.size())).second)
+        edges.push_back({ a, b });
+    }
+  return edges;
+}
+
+std::vector<Vec2> creasePatternOf(const Paper& paper)
+{
+  std::vector<Vec2> points;
+  for (const Vertex& v : paper.vertices)
+    points.push_back(v.crease_pattern);
+  return points;
+}
+
+std::vector<Vec2> facePolygon(const Paper& paper, int face)
+{
+  std::vector<Vec2> polygon;
+  for (int v : paper.faces[face].vertices)
+    polygon.push_back(paper.vertices[v].crease_pattern);
+  return polygon;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Unfolding a folded form
+
+/// A folded face in its own plane seen from its front (Newell normal towards the viewer), so
+/// its cycle is counter-clockwise. A face lying in z = const with normal +z keeps its x and y.
+std::vector<Vec2> faceInOwnPlane(const Paper& paper, int face)
+{
+  const Vec3 normal = paper.faceNormal(face);
+  const Vec3 seed = std::abs(normal.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+  const Vec3 u = (seed - normal * normal.dot(seed)).normalized();
+  const Vec3 w = normal.cross(u);
+  std::vector<Vec2> local;
+  for (int v : paper.faces[face].vertices)
+    local.emplace_back(paper.vertices[v].folded.dot(u), paper.vertices[v].folded.dot(w));
+  return local;
+}
+
+/// Moves a polygon rigidly (no reflection) so its corners i and j match `a` and `b`: same
+/// direction, same midpoint, which splits any rounding error in the edge length evenly.
+std::vector<Vec2> matchEdge(const std::vector<Vec2>& polygon, size_t i, size_t j, const Vec2& a, const Vec2& b)
+{
+  const Vec2 from = polygon[j] - polygon[i], to = b - a;
+  const double turn = std::atan2(to.y(), to.x()) - std::atan2(from.y(), from.x());
+  const Eigen::Rotation2Dd rotation(turn);
+  const Vec2 shift = 0.5 * (a + b) - rotation * (0.5 * (polygon[i] + polygon[j]));
+  std::vector<Vec2> moved;
+  for (const Vec2& p : polygon)
+    moved.push_back(rotation * p + shift);
+  return moved;
+}
+
+size_t cornerOf(const Face& face, int vertex)
+{
+  return std::find(face.vertices.begin(), face.vertices.end(), vertex) - face.vertices.begin();
+}
+
+/// Each face laid in the plane: face 0 as seen from its front, then breadth first across
+/// shared edges, each face turned to meet its neighbour along their edge.
+std::vector<std::vector<Vec2>> layOutFaces(const Paper& paper)
+{
+  const size_t face_count = paper.faces.size();
+  std::vector<std::vector<Vec2>> placed(face_count);
+  placed[0] = faceInOwnPlane(paper, 0);
+  std::deque<int> queue{ 0 };
+  while (!queue.empty())
+  {
+    const int f = queue.front();
+    queue.pop_front();
+    const Face& face = paper.faces[f];
+    for (size_t i = 0; i < face.edges.size(); ++i)
+    {
+      const Edge& edge = paper.edges[face.edges[i]];
+      if (!edge.isCrease() || !placed[edge.otherFace(f)].empty())
+        continue;
+      const int g = edge.otherFace(f);
+      const int a = face.vertices[i], b = face.vertices[(i + 1) % face.vertices.size()];
+      const Face& other = paper.faces[g];
+      placed[g] = matchEdge(faceInOwnPlane(paper, g), cornerOf(other, a), cornerOf(other, b), placed[f][i],
+                            placed[f][(i + 1) % face.vertices.size()]);
+      queue.push_back(g);
+    }
+  }
+  for (size_t f = 0; f < face_count; ++f)
+    if (placed[f].empty())
+      fail("folded form cannot be unfolded: face " + std::to_string(f) + " is not joined to face 0 by edges");
+  return placed;
+}
+
+/// The crease pattern of a folded form: its faces laid out in the plane, each vertex at the
+/// mean of the places its faces give it, which must agree (the form must be developable).
+std::vector<Vec2> unfold(const Paper& paper)
+{
+  const std::vector<std::vector<Vec2>> placed = layOutFaces(paper);
+  double area = 0;
+  for (const std::vector<Vec2>& polygon : placed)
+    area += std::abs(signedArea(polygon));
+  const double tolerance = kDevelopableTolerance * std::sqrt(area);
+  const size_t vertex_count = paper.vertices.size();
+  std::vector<Vec2> sum(vertex_count, Vec2::Zero()), first(vertex_count, Vec2::Zero());
+  std::vector<int> count(vertex_count, 0);
+  for (size_t f = 0; f < placed.size(); ++f)
+    for (size_t i = 0; i < placed[f].size(); ++i)
+    {
+      const int v = paper.faces[f].vertices[i];
+      const Vec2& p = placed[f][i];
+      if (count[v] == 0)
+        first[v] = p;
+      else if ((p - first[v]).norm() > tolerance)
+        fail("folded form is not developable at vertex " + std::to_string(v) + ": its faces unfold it " +
+             formatNumber((p - first[v]).norm()) + " apart");
+      sum[v] += p;
+      ++count[v];
+    }
+  for (size_t v = 0; v < vertex_count; ++v)
+    sum[v] /= static_cast<double>(count[v]);  // every vertex has a face: checked before
+  return sum;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Building a paper
+
+/// FOLD faces are counter-clockwise seen from the paper's front, and the model's faces are
+/// counter-clockwise in the crease pattern. A file whose faces are all clockwise shows its
+/// crease pattern from the back. Reversing the cycles would turn the front over: every face
+/// normal in 3D would flip, and with it the sign of every fold angle and every M/V letter and
+/// face order. Mirroring the crease pattern (x → −x) instead shows it from the front: cycles,
+/// 3D positions, normals, angles and assignments all stay as the file has them.
+void orientCounterClockwise(Paper& paper)
+{
+  const double min_area = 1e-12 * std::pow(boundingDiagonal(creasePatternOf(paper)), 2);
+  int ccw = -1, cw = -1;
+  for (size_t f = 0; f < paper.faces.size(); ++f)
+  {
+    const double area = paper.faceArea(static_cast<int>(f));
+    if (std::abs(area) <= min_area)
+      fail(indexed("faces_vertices", f) + " has no area in the crease pattern");
+    (area > 0 ? ccw : cw) = static_cast<int>(f);
+  }
+  if (ccw >= 0 && cw >= 0)
+    fail(indexed("faces_vertices", cw) + " is clockwise but " + indexed("faces_vertices", ccw) +
+         " is counter-clockwise in the crease pattern");
+  if (cw >= 0)
+    for (Vertex& v : paper.vertices)
+      v.crease_pattern.x() = -v.crease_pattern.x();
+}
+
+/// Every turn of a counter-clockwise face is to the left (or straight on), once around.
+void checkConvex(const Paper& paper)
+{
+  for (size_t f = 0; f < paper.faces.size(); ++f)
+  {
+    const std::vector<Vec2> polygon = facePolygon(paper, static_cast<int>(f));
+    const size_t n = polygon.size();
+    double total_turn = 0;
+    for (size_t i = 0; i < n; ++i)
+    {
+      const Vec2 in = polygon[(i + 1) % n] - polygon[i];
+      const Vec2 out = polygon[(i + 2) % n] - polygon[(i + 1) % n];
+      const double turn = std::atan2(cross2(in, out), in.dot(out));
+      const double sine = cross2(in, out) / (in.norm() * out.norm());
+      // A corner that doubles back (turn near ±π) has a tiny sine too: reject it by angle.
+      if (!(sine >= -kConvexityTolerance) || turn > M_PI - kConvexityTolerance)
+        fail(indexed("faces_vertices", f) + " is not convex in the crease pattern (at vertex " +
+             std::to_string(paper.faces[f].vertices[(i + 1) % n]) + ")");
+      total_turn += turn;
+    }
+    if (total_turn > 3 * M_PI)  // all left turns, but winding twice: a star
+      fail(indexed("faces_vertices", f) + " is not convex in the crease pattern (it winds around twice)");
+  }
+}
+
+void checkEveryVertexUsed(const std::vector<std::vector<int>>& faces, size_t vertex_count)
+{
+  std::vector<char> used(vertex_count, 0);
+  for (const std::vector<int>& face : faces)
+    for (int v : face)
+      used[v] = 1;
+  for (size_t v = 0; v < vertex_count; ++v)
+    if (!used[v])
+      fail("vertex " + std::to_string(v) + " (" + indexed("vertices_coords", v) + ") is used by no face");
+}
+
+std::vector<FaceOrder> faceOrdersOf(const std::vector<std::array<int, 3>>& orders, size_t face_count)
+{
+  std::vector<FaceOrder> result;
+  for (size_t i = 0; i < orders.size(); ++i)
+  {
+    const auto& [f, g, s] = orders[i];
+    for (int face : { f, g })
+      if (static_cast<size_t>(face) >= face_count)
+        fail(indexed("faceOrders", i) + " names face " + std::to_string(face) + " but there are " +
+             std::to_string(face_count) + " faces");
+    // FOLD [f, g, +1]: f lies on the side g's normal points to, i.e. FaceOrder{g, f, +1}.
+    result.push_back({ g, f, s });
+  }
+  return result;
+}
+
+/// Edges with one face are the boundary; the model has no boundary edge between two faces,
+/// so such a "B" (a file's slip) becomes an unassigned crease.
+void markBoundaries(Paper& paper)
+{
+  for (Edge& edge : paper.edges)
+  {
+    if (!edge.isCrease())
+    {
+      edge.assignment = Assignment::Boundary;
+      edge.fold_angle = 0.0;
+    }
+    else if (edge.assignment == Assignment::Boundary)
+      edge.assignment = Assignment::Unassigned;
+  }
+}
+
+/// A crease pattern lies flat at z = 0, or folded by the file's fold angles when they close.
+void foldCreasePattern(Paper& paper, const std::optional<std::vector<double>>& fold_angles)
+{
+  for (Vertex& v : paper.vertices)
+    v.folded = Vec3(v.crease_pattern.x(), v.crease_pattern.y(), 0.0);
+  if (!fold_angles)
+    return;
+  std::vector<double> angles(paper.edges.size(), 0.0);
+  bool folded = false;
+  for (size_t e = 0; e < paper.edges.size(); ++e)
+    if (paper.edges[e].isCrease())
+    {
+      angles[e] = (*fold_angles)[e];
+      folded = folded || angles[e] != 0.0;
+    }
+  if (!folded)
+    return;
+  const Expected<std::vector<Vec3>> positions =
+      foldedPositionsFromAngles(paper, angles, 0, Eigen::Isometry3d::Identity(), 1e-6 * paper.scale());
+  // Angles that do not close (a non-rigid target, or rounded in the file) cannot place the
+  // faces; the crease pattern itself is still good, so it loads flat instead of failing.
+  if (!positions)
+    return;
+  for (size_t v = 0; v < paper.vertices.size(); ++v)
+    paper.vertices[v].folded = (*positions)[v];
+  for (size_t e = 0; e < paper.edges.size(); ++e)
+    paper.edges[e].fold_angle = angles[e];
+}
+
+/// A fold angle measured in 3D; ±180° cannot tell mountain from valley, the assignment can.
+double measuredFoldAngle(const Paper& paper, int e)
+{
+  const double angle = measureFoldAngle(paper, e);
+  if (M_PI - std::abs(angle) > kFlatFoldTolerance)
+    return angle;
+  switch (paper.edges[e].assignment)
+  {
+    case Assignment::Mountain:
+      return -std::abs(angle);
+    case Assignment::Valley:
+      return std::abs(angle);
+    default:
+      return angle;
+  }
+}
+
+void setFoldedFormAngles(Paper& paper, const std::optional<std::vector<double>>& fold_angles)
+{
+  for (size_t e = 0; e < paper.edges.size(); ++e)
+    if (paper.edges[e].isCrease())
+      paper.edges[e].fold_angle = fold_angles ? (*fold_angles)[e] : measuredFoldAngle(paper, static_cast<int>(e));
+}
+
+bool hasClass(const FrameData& data, const std::string& name)
+{
+  return std::find(data.classes.begin(), data.classes.end(), name) != data.classes.end();
+}
+
+/// A resolved frame, and whether the file gave it as a crease pattern.
+struct BuiltFrame
+{
+  Paper paper;
+  bool crease_pattern = false;
+};
+
+/// The crease pattern a frame gives or inherits, before any unfolding.
+std::optional<std::vector<Vec2>> givenCreasePattern(const FrameData& data, bool folded_form,
+                                                    const std::optional<std::vector<Vec2>>& flat,
+                                                    const BuiltFrame* parent)
+{
+  if (!folded_form)
+    return flat;
+  if (data.crease_pattern)
+    return data.crease_pattern;
+  if (parent && parent->crease_pattern && parent->paper.vertices.size() == data.coords.size())
+    return creasePatternOf(parent->paper);
+  return std::nullopt;
+}
+
+/// The frame's faces, traced from its edges in the crease pattern when the file has none.
+std::vector<std::vector<int>> facesOf(const FrameData& data, const std::optional<std::vector<Vec2>>& crease_pattern)
+{
+  if (data.faces)
+    return *data.faces;
+  if (!crease_pattern)
+    fail("faces_vertices is missing: a folded form needs faces_vertices to be unfolded");
+  return traceFaces(*crease_pattern, *data.edges);  // readFrame made sure there are edges
+}
+
+/// Vertices (crease pattern when known, folded = the file's coordinates), edges and faces,
+/// linked. Assignments default to unassigned; markBoundaries settles the boundary.
+Paper linkedPaper(const FrameData& data, const std::vector<std::vector<int>>& faces,
+                  const std::optional<std::vector<Vec2>>& crease_pattern)
+{
+  Paper paper;
+  for (size_t v = 0; v < data.coords.size(); ++v)
+    paper.vertices.push_back({ crease_pattern ? (*crease_pattern)[v] : Vec2::Zero(), data.coords[v] });
+  const std::vector<std::array<int, 2>> edges = data.edges ? *data.edges : edgesOfFaces(faces);
+  for (size_t e = 0; e < edges.size(); ++e)
+  {
+    const Assignment assignment = data.assignments ? (*data.assignments)[e] : Assignment::Unassigned;
+    paper.edges.push_back({ edges[e], assignment, 0.0, { -1, -1 } });
+  }
+  for (const std::vector<int>& cycle : faces)
+    paper.faces.push_back({ cycle, {} });
+  const Status linked = linkTopology(paper);
+  if (!linked)
+    fail(linked.message());
+  return paper;
+}
+
+BuiltFrame buildFrame(const json& frame, const BuiltFrame* parent)
+{
+  const FrameData data = readFrame(frame);
+  const std::optional<std::vector<Vec2>> flat = planarCoordinates(data.coords);
+  BuiltFrame built;
+  built.crease_pattern = flat && !hasClass(data, "foldedForm");
+  const std::optional<std::vector<Vec2>> crease_pattern = givenCreasePattern(data, !built.crease_pattern, flat, parent);
+  const std::vector<std::vector<int>> faces = facesOf(data, crease_pattern);
+  checkEveryVertexUsed(faces, data.coords.size());
+
+  Paper& paper = built.paper;
+  paper = linkedPaper(data, faces, crease_pattern);
+  if (!crease_pattern)
+  {
+    const std::vector<Vec2> unfolded = unfold(paper);
+    for (size_t v = 0; v < paper.vertices.size(); ++v)
+      paper.vertices[v].crease_pattern = unfolded[v];
+  }
+  orientCounterClockwise(paper);
+  checkConvex(paper);
+  paper.face_orders = faceOrdersOf(data.face_orders, paper.faces.size());
+  paper.sheet_area = 0.0;
+  for (size_t f = 0; f < paper.faces.size(); ++f)
+    paper.sheet_area += paper.faceArea(static_cast<int>(f));
+  markBoundaries(paper);
+  if (built.crease_pattern)
+    foldCreasePattern(paper, data.fold_angles);
+  else
+    setFoldedFormAngles(paper, data.fold_angles);
+  return built;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Frames
+
+/// Re-throws a frame's error with the frame named, unless it is the key frame.
+template <class F>
+auto inFrame(size_t frame, F&& body)
+{
+  try
+  {
+    return body();
+  }
+  catch (const FormatError& e)
+  {
+    if (frame == 0)
+      throw;
+    throw FormatError(indexed("file_frames", frame - 1) + ": " + e.what());
+  }
+}
+
+/// The frames' own dictionaries: frame 0 is the top level (without file metadata, which
+/// frames must not inherit), frame i + 1 is file_frames[i].
+std::vector<json> ownFrames(const json& root)
+{
+  std::vector<json> frames(1);
+  for (const auto& [key, value] : root.items())
+    if (key.rfind("file_", 0) != 0)
+      frames[0][key] = value;
+  const json* file_frames = findField(root, "file_frames");
+  if (!file_frames)
+    return frames;
+  requireArray(*file_frames, "file_frames");
+  for (size_t i = 0; i < file_frames->size(); ++i)
+  {
+    if (!(*file_frames)[i].is_object())
+      fail(indexed("file_frames", i) + " is " + describe((*file_frames)[i]) + ", not an object");
+    frames.push_back((*file_frames)[i]);
+  }
+  return frames;
+}
+
+/// The frame a frame inherits from, or -1. The key frame inherits from nothing.
+int inheritedParent(const json& frame, size_t index, size_t frame_count)
+{
+  const json* inherit = findField(frame, "frame_inherit");
+  if (index == 0 || !inherit)
+    return -1;
+  if (!inherit->is_boolean())
+    fail("frame_inherit is " + describe(*inherit) + ", not true or false");
+  if (!inherit->get<bool>())
+    return -1;
+  const json* parent = findField(frame, "frame_parent");
+  if (!parent)
+    fail("frame_inherit is true but frame_parent is missing");
+  const int p = readIndex(*parent, "frame_parent");
+  if (static_cast<size_t>(p) >= frame_count)
+    fail("frame_parent is " + std::to_string(p) + " but there are " + std::to_string(frame_count) + " frames");
+  if (static_cast<size_t>(p) == index)
+    fail("frame_parent names the frame itself");
+  return p;
+}
+
+/// The parent's fields, overridden by the child's own.
+json inheritFields(const json& parent, const json& own)
+{
+  json merged = parent;
+  merged.erase("frame_inherit");
+  merged.erase("frame_parent");
+  for (const auto& [key, value] : own.items())
+    merged[key] = value;
+  return merged;
+}
+
+std::vector<Paper> readFrames(const json& root)
+{
+  const std::vector<json> own = ownFrames(root);
+  const size_t count = own.size();
+  std::vector<int> parents(count);
+  for (size_t i = 0; i < count; ++i)
+    parents[i] = inFrame(i, [&] { return inheritedParent(own[i], i, count); });
+
+  std::vector<json> resolved(count);
+  std::vector<std::optional<BuiltFrame>> built(count);
+  for (size_t i = 0; i < count; ++i)
+  {
+    // Build the frame's unbuilt ancestors first, oldest first (a parent may come later in the file).
+    std::vector<int> chain;
+    for (int f = static_cast<int>(i); f >= 0 && !built[f]; f = parents[f])
+    {
+      if (chain.size() == count)
+        inFrame(i, [] { fail("frame_parent leads round in a loop"); });
+      chain.push_back(f);
+    }
+    for (auto it = chain.rbegin(); it != chain.rend(); ++it)
+    {
+      const int f = *it, p = parents[f];
+      resolved[f] = p >= 0 ? inheritFields(resolved[p], own[f]) : own[f];
+      built[f] = inFrame(f, [&] { return buildFrame(resolved[f], p >= 0 ? &*built[p] : nullptr); });
+    }
+  }
+  std::vector<Paper> papers;
+  for (std::optional<BuiltFrame>& frame : built)
+    papers.push_back(std::move(frame->paper));
+  return papers;
+}
+
+FoldDocument readDocument(const json& root)
+{
+  FoldDocument document;
+  const std::optional<std::string> title = readOptionalString(root, "file_title");
+  const std::optional<std::string> frame_title = readOptionalString(root, "frame_title");
+  document.title = title ? *title : frame_title.value_or("");
+  document.creator = readOptionalString(root, "file_creator").value_or("");
+  document.frames = readFrames(root);
+  return document;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Writing
+
+/// The degrees whose conversion back by toRadians gives exactly `radians` when a nearby double
+/// does, so fold angles survive a write and read bit for bit.
+double toDegrees(double radians)
+{
+  const double degrees = radians * (180.0 / M_PI);
+  double up = degrees, down = degrees;
+  for (int step = 0; step < 8; ++step)
+  {
+    if (toRadians(up) == radians)
+      return up;
+    if (toRadians(down) == radians)
+      return down;
+    up = std::nextafter(up, HUGE_VAL);
+    down = std::nextafter(down, -HUGE_VAL);
+  }
+  return degrees;
+}
+
+ordered_json creasePatternCoords(const Paper& paper)
+{
+  ordered_json coords = ordered_json::array();
+  for (const Vertex& v : paper.vertices)
+    coords.push_back({ v.crease_pattern.x(), v.crease_pattern.y() });
+  return coords;
+}
+
+ordered_json foldedCoords(const Paper& paper)
+{
+  ordered_json coords = ordered_json::array();
+  for (const Vertex& v : paper.vertices)
+    coords.push_back({ v.folded.x(), v.folded.y(), v.folded.z() });
+  return coords;
+}
+
+/// Edges, faces and layer order: everything but the coordinates.
+void addTopology(ordered_json& frame, const Paper& paper)
+{
+  ordered_json edges = ordered_json::array(), assignments = ordered_json::array(), angles = ordered_json::array();
+  for (const Edge& edge : paper.edges)
+  {
+    edges.push_back({ edge.vertices[0], edge.vertices[1] });
+    assignments.push_back(std::string(1, assignmentLetter(edge.assignment)));
+    angles.push_back(toDegrees(edge.fold_angle));
+  }
+  ordered_json faces = ordered_json::array();
+  for (const Face& face : paper.faces)
+    faces.push_back(face.vertices);
+  frame["edges_vertices"] = edges;
+  frame["edges_assignment"] = assignments;
+  frame["edges_foldAngle"] = angles;
+  frame["faces_vertices"] = faces;
+  if (paper.face_orders.empty())
+    return;
+  ordered_json orders = ordered_json::array();
+  for (const FaceOrder& order : paper.face_orders)
+    orders.push_back({ order.other, order.face, order.above });  // see faceOrdersOf
+  frame["faceOrders"] = orders;
+}
+
+ordered_json fileHeader(const std::string& title, const std::string& file_class)
+{
+  ordered_json file;
+  file["file_spec"] = 1.1;
+  file["file_creator"] = "virtual_origami";
+  file["file_classes"] = { file_class };
+  if (!title.empty())
+    file["file_title"] = title;
+  return file;
+}
+
+/// A standalone folded-form frame: 3D coordinates, with the crease pattern in our own field.
+ordered_json foldedFormFrame(const Paper& paper)
+{
+  ordered_json frame;
+  frame["frame_classes"] = { "foldedForm" };
+  frame["frame_attributes"] = { "3D" };
+  frame["vertices_coords"] = foldedCoords(paper);
+  frame[kCreasePatternKey] = creasePatternCoords(paper);
+  addTopology(frame, paper);
+  return frame;
+}
+
+/// JSON with one object key or nested array entry per line and the innermost arrays on one
+/// line: readable and diffable, and close to what other FOLD tools write. Numbers come out
+/// in the shortest form that reads back to the same double.
+void appendJson(const ordered_json& value, const std::string& indent, std::string& out)
+{
+  const std::string inner = indent + "  ";
+  if (value.is_object() && !value.empty())
+  {
+    out += "{";
+    bool first = true;
+    for (const auto& [key, item] : value.items())
+    {
+      out += (first ? "\n" : ",\n") + inner + ordered_json(key).dump() + ": ";
+      appendJson(item, inner, out);
+      first = false;
+    }
+    out += "\n" + indent + "}";
+  }
+  else if (value.is_array() && !value.empty() && value.front().is_structured())
+  {
+    out += "[";
+    for (size_t i = 0; i < value.size(); ++i)
+    {
+      out += (i == 0 ? "\n" : ",\n") + inner;
+      appendJson(value[i], inner, out);
+    }
+    out += "\n" + indent + "]";
+  }
+  else
+    out += value.dump();
+}
+
+std::string dumpFold(const ordered_json& file)
+{
+  std::string out;
+  appendJson(file, "", out);
+  return out + "\n";
+}
+
+std::string errnoText()
+{
+  return std::strerror(errno);
+}
+
+}  // namespace
+
+Expected<FoldDocument> parseFold(const std::string& text)
+{
+  json root;
+  try
+  {
+    root = json::parse(text);
+  }
+  catch (const json::exception& e)  // parse_error, and out_of_range for numbers like 1e999
+  {
+    return Expected<FoldDocument>::failure(std::string("invalid JSON: ") + e.what());
+  }
+  if (!root.is_object())
+    return Expected<FoldDocument>::failure("invalid FOLD: the top level is " + describe(root) + ", not a JSON object");
+  try
+  {
+    return readDocument(root);
+  }
+  catch (const FormatError& e)
+  {
+    return Expected<FoldDocument>::failure(e.what());
+  }
+}
+
+Expected<FoldDocument> readFoldFile(const std::string& path)
+{
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (!file)
+    return Expected<FoldDocument>::failure("cannot open " + path + ": " + errnoText());
+  std::string text;
+  char buffer[1 << 16];
+  size_t got = 0;
+  while ((got = std::fread(buffer, 1, sizeof buffer, file)) > 0)
+    text.append(buffer, got);
+  const bool read_error = std::ferror(file) != 0;
+  const std::string reason = read_error ? errnoText() : "";
+  std::fclose(file);
+  if (read_error)
+    return Expected<FoldDocument>::failure("cannot read " + path + ": " + reason);
+  return parseFold(text);
+}
+
+std::string formatFold(const Paper& paper, const std::string& title)
+{
+  ordered_json file = fileHeader(title, "singleModel");
+  file["frame_classes"] = { "creasePattern" };
+  file["frame_attributes"] = { "2D" };
+  file["vertices_coords"] = creasePatternCoords(paper);
+  addTopology(file, paper);
+  ordered_json folded;
+  folded["frame_classes"] = { "foldedForm" };
+  folded["frame_attributes"] = { "3D" };
+  folded["frame_inherit"] = true;
+  folded["frame_parent"] = 0;
+  folded["vertices_coords"] = foldedCoords(paper);
+  file["file_frames"] = ordered_json::array({ folded });
+  return dumpFold(file);
+}
+
+std::string formatFoldSequence(const std::vector<Paper>& steps, const std::string& title)
+{
+  // Steps may differ in topology (creases get added), so every frame stands alone.
+  ordered_json file = fileHeader(title, "diagrams");
+  if (steps.empty())
+    return dumpFold(file);
+  const ordered_json key_frame = foldedFormFrame(steps.front());
+  for (const auto& [key, value] : key_frame.items())
+    file[key] = value;
+  ordered_json frames = ordered_json::array();
+  for (size_t i = 1; i < steps.size(); ++i)
+    frames.push_back(foldedFormFrame(steps[i]));
+  if (!frames.empty())
+    file["file_frames"] = frames;
+  return dumpFold(file);
+}
+
+Status writeTextFile(const std::string& path, const std::string& text)
+{
+  // Write beside the target, then rename: readers never see a half-written file.
+  const std::string temporary = path + ".tmp";
+  std::FILE* file = std::fopen(temporary.c_str(), "wb");
+  if (!file)
+    return failure("cannot write " + temporary + ": " + errnoText());
+  const bool written = std::fwrite(text.data(), 1, text.size(), file) == text.size();
+  const std::string write_reason = written ? "" : errnoText();
+  const bool closed = std::fclose(file) == 0;
+  if (!written || !closed)
+  {
+    const std::string reason = written ? errnoText() : write_reason;
+    std::remove(temporary.c_str());
+    return failure("cannot write " + temporary + ": " + reason);
+  }
+  if (std::rename(temporary.c_str(), path.c_str()) != 0)
+  {
+    const std::string reason = errnoText();
+    std::remove(temporary.c_str());
+    return failure("cannot rename " + temporary + " to " + path + ": " + reason);
+  }
+  return success();
+}
+
+Expected<Paper> loadPaper(const std::string& path)
+{
+  Expected<FoldDocument> document = readFoldFile(path);
+  if (!document)
+    return Expected<Paper>::failure(document.message());
+  return std::move(document->frames.back());
+}
+
+}  // namespace virtual_origami::core

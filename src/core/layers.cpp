@@ -1,0 +1,45 @@
+#include "virtual_origami/core/layers.h"
+
+#include <deque>
+
+namespace virtual_origami::core
+{
+std::vector<int> stackLevels(const Paper& paper)
+{
+  const size_t n = paper.faces.size();
+  std::vector<std::vector<int>> above(n);  // above[f]: faces directly above f along +z
+  std::vector<int> below_count(n, 0);
+  for (const FaceOrder& o : paper.face_orders)
+  {
+    if (o.face < 0 || o.other < 0 || static_cast<size_t>(o.face) >= n || static_cast<size_t>(o.other) >= n ||
+        o.above == 0 || o.face == o.other)
+      continue;
+    // `above` is relative to the face's front normal; turn it into +z.
+    const bool face_up = paper.faceNormal(o.face).z() >= 0;
+    const bool other_is_higher = (o.above > 0) == face_up;
+    const int low = other_is_higher ? o.face : o.other;
+    const int high = other_is_higher ? o.other : o.face;
+    above[low].push_back(high);
+    ++below_count[high];
+  }
+  // Longest path from the bottom (Kahn's order); faces left in a cycle keep what they have.
+  std::vector<int> level(n, 0);
+  std::deque<int> ready;
+  for (size_t f = 0; f < n; ++f)
+    if (below_count[f] == 0)
+      ready.push_back(static_cast<int>(f));
+  while (!ready.empty())
+  {
+    const int f = ready.front();
+    ready.pop_front();
+    for (int g : above[f])
+    {
+      level[g] = std::max(level[g], level[f] + 1);
+      if (--below_count[g] == 0)
+        ready.push_back(g);
+    }
+  }
+  return level;
+}
+
+}  // namespace virtual_origami::core

@@ -1,0 +1,136 @@
+#include "virtual_origami/ros/conversions.h"
+
+namespace virtual_origami
+{
+geometry_msgs::Point toPoint(const core::Vec3& v)
+{
+  geometry_msgs::Point p;
+  p.x = v.x();
+  p.y = v.y();
+  p.z = v.z();
+  return p;
+}
+
+core::Vec3 toVec3(const geometry_msgs::Point& p) { return core::Vec3(p.x, p.y, p.z); }
+
+PaperState toMessage(const core::Paper& paper, uint64_t revision, const Pins& pins)
+{
+  PaperState state;
+  state.revision = revision;
+  for (const core::Vertex& v : paper.vertices)
+  {
+    state.vertices_crease_pattern.push_back(toPoint(core::Vec3(v.crease_pattern.x(), v.crease_pattern.y(), 0.0)));
+    state.vertices_folded.push_back(toPoint(v.folded));
+  }
+  for (const core::Edge& e : paper.edges)
+  {
+    Edge edge;
+    edge.v0 = e.vertices[0];
+    edge.v1 = e.vertices[1];
+    edge.assignment = std::string(1, core::assignmentLetter(e.assignment));
+    edge.fold_angle = e.fold_angle;
+    edge.face_left = e.faces[0];
+    edge.face_right = e.faces[1];
+    state.edges.push_back(edge);
+  }
+  for (const core::Face& f : paper.faces)
+  {
+    Face face;
+    face.vertices.assign(f.vertices.begin(), f.vertices.end());
+    state.faces.push_back(face);
+  }
+  for (const core::FaceOrder& o : paper.face_orders)
+  {
+    FaceOrder order;
+    order.face = o.face;
+    order.other = o.other;
+    order.above = static_cast<int8_t>(o.above);
+    state.face_orders.push_back(order);
+  }
+  for (const auto& [vertex, pin] : pins)
+  {
+    Pin p;
+    p.vertex = vertex;
+    p.frame_id = pin.frame_id;
+    p.position = toPoint(pin.position);
+    state.pins.push_back(p);
+  }
+  return state;
+}
+
+core::Expected<core::Paper> fromMessage(const PaperState& state)
+{
+  using Failure = core::Expected<core::Paper>;
+  if (state.vertices_crease_pattern.size() != state.vertices_folded.size())
+    return Failure::failure("vertices_crease_pattern and vertices_folded differ in length");
+  core::Paper paper;
+  for (size_t i = 0; i < state.vertices_folded.size(); ++i)
+  {
+    core::Vertex v;
+    v.crease_pattern = toVec3(state.vertices_crease_pattern[i]).head<2>();
+    v.folded = toVec3(state.vertices_folded[i]);
+    if (!v.crease_pattern.allFinite() || !v.folded.allFinite())
+      return Failure::failure("vertex " + std::to_string(i) + " has a non-finite coordinate");
+    paper.vertices.push_back(v);
+  }
+  for (size_t i = 0; i < state.edges.size(); ++i)
+  {
+    const Edge& e = state.edges[i];
+    const auto assignment = core::assignmentFromLetter(e.assignment);
+    if (!assignment)
+      return Failure::failure("edge " + std::to_string(i) + " has assignment \"" + e.assignment + "\"");
+    core::Edge edge;
+    edge.vertices = { e.v0, e.v1 };
+    edge.assignment = *assignment;
+    edge.fold_angle = e.fold_angle;
+    paper.edges.push_back(edge);
+  }
+  for (const Face& f : state.faces)
+    paper.faces.push_back({ std::vector<int>(f.vertices.begin(), f.vertices.end()), {} });
+  for (const FaceOrder& o : state.face_orders)
+    paper.face_orders.push_back({ o.face, o.other, o.above });
+  for (size_t f = 0; f < paper.faces.size(); ++f)
+    paper.sheet_area += paper.faceArea(static_cast<int>(f));
+  const core::Status linked = core::linkTopology(paper);
+  if (!linked)
+    return Failure::failure(linked.message());
+  return paper;
+}
+
+Operation toMessage(const core::Operation& op)
+{
+  Operation msg;
+  msg.revision = op.revision;
+  msg.type = core::kindName(op.kind);
+  msg.face = -1;
+  msg.axis_edge = -1;
+  msg.vertex = -1;
+  switch (op.kind)
+  {
+    case core::Operation::Kind::Crease:
+      msg.start = toPoint(op.crease.start);
+      msg.end = toPoint(op.crease.end);
+      msg.has_eye = op.crease.eye.has_value();
+      if (op.crease.eye)
+        msg.eye = toPoint(*op.crease.eye);
+      msg.snap = op.crease.snap;
+      break;
+    case core::Operation::Kind::Rotate:
+      msg.face = op.rotate.face;
+      msg.axis_edge = op.rotate.axis_edge;
+      msg.click = toPoint(op.rotate.click);
+      msg.angle = op.rotate.angle;
+      break;
+    case core::Operation::Kind::Load:
+      msg.path = op.path;
+      break;
+    case core::Operation::Kind::Reset:
+      msg.size = op.size;
+      break;
+    default:
+      break;
+  }
+  return msg;
+}
+
+}  // namespace virtual_origami

@@ -1,0 +1,112 @@
+#include "virtual_origami/ros/markers.h"
+
+#include "virtual_origami/core/layers.h"
+#include "virtual_origami/ros/conversions.h"
+
+namespace virtual_origami
+{
+std_msgs::ColorRGBA rgba(float r, float g, float b, float a)
+{
+  std_msgs::ColorRGBA c;
+  c.r = r;
+  c.g = g;
+  c.b = b;
+  c.a = a;
+  return c;
+}
+
+namespace
+{
+visualization_msgs::Marker baseMarker(const MarkerStyle& style, const ros::Time& stamp, const std::string& ns,
+                                      int type)
+{
+  visualization_msgs::Marker m;
+  m.header.frame_id = style.frame_id;
+  m.header.stamp = stamp;
+  m.ns = ns;
+  m.id = 0;
+  m.type = type;
+  m.action = visualization_msgs::Marker::ADD;
+  m.pose.orientation.w = 1.0;
+  m.scale.x = m.scale.y = m.scale.z = 1.0;
+  m.color = rgba(1, 1, 1);
+  m.frame_locked = true;
+  return m;
+}
+
+/// Each face's lift off its plane: its stack level along the stack's upward normal.
+std::vector<core::Vec3> layerLifts(const core::Paper& paper, const MarkerStyle& style)
+{
+  const std::vector<int> levels = core::stackLevels(paper);
+  std::vector<core::Vec3> lift(paper.faces.size());
+  for (size_t f = 0; f < paper.faces.size(); ++f)
+  {
+    core::Vec3 up = paper.faceNormal(static_cast<int>(f));
+    if (up.z() < 0)
+      up = -up;
+    lift[f] = up * (levels[f] * style.layer_gap);
+  }
+  return lift;
+}
+}  // namespace
+
+visualization_msgs::MarkerArray paperMarkers(const core::Paper& paper, const MarkerStyle& style,
+                                             const ros::Time& stamp)
+{
+  using visualization_msgs::Marker;
+  const std::vector<core::Vec3> lift = layerLifts(paper, style);
+  Marker front = baseMarker(style, stamp, "front", Marker::TRIANGLE_LIST);
+  Marker back = baseMarker(style, stamp, "back", Marker::TRIANGLE_LIST);
+  front.color = rgba(0.96f, 0.89f, 0.76f);  // the coloured side of the sheet
+  back.color = rgba(0.55f, 0.70f, 0.86f);
+  for (size_t f = 0; f < paper.faces.size(); ++f)
+  {
+    const std::vector<int>& vs = paper.faces[f].vertices;
+    const core::Vec3 n = paper.faceNormal(static_cast<int>(f));
+    const core::Vec3 to_front = lift[f] + n * style.side_offset;
+    const core::Vec3 to_back = lift[f] - n * style.side_offset;
+    for (size_t i = 1; i + 1 < vs.size(); ++i)  // a fan: faces are convex
+    {
+      const core::Vec3& a = paper.vertices[vs[0]].folded;
+      const core::Vec3& b = paper.vertices[vs[i]].folded;
+      const core::Vec3& c = paper.vertices[vs[i + 1]].folded;
+      for (const core::Vec3* p : { &a, &b, &c })
+        front.points.push_back(toPoint(*p + to_front));
+      for (const core::Vec3* p : { &a, &c, &b })  // wound the other way: seen from behind
+        back.points.push_back(toPoint(*p + to_back));
+    }
+  }
+  Marker mountain = baseMarker(style, stamp, "mountain", Marker::LINE_LIST);
+  Marker valley = baseMarker(style, stamp, "valley", Marker::LINE_LIST);
+  Marker other = baseMarker(style, stamp, "crease", Marker::LINE_LIST);
+  Marker boundary = baseMarker(style, stamp, "boundary", Marker::LINE_LIST);
+  mountain.color = rgba(0.84f, 0.15f, 0.16f);
+  valley.color = rgba(0.12f, 0.47f, 0.71f);
+  other.color = rgba(0.5f, 0.5f, 0.5f);
+  boundary.color = rgba(0.1f, 0.1f, 0.1f);
+  for (Marker* m : { &mountain, &valley, &other, &boundary })
+    m->scale.x = style.line_width;
+  for (const core::Edge& e : paper.edges)
+  {
+    Marker& m = e.assignment == core::Assignment::Mountain  ? mountain
+                : e.assignment == core::Assignment::Valley  ? valley
+                : e.assignment == core::Assignment::Boundary ? boundary
+                                                             : other;
+    core::Vec3 offset = core::Vec3::Zero();  // drawn with the higher of its faces
+    for (int f : e.faces)
+      if (f >= 0 && lift[f].norm() > offset.norm())
+        offset = lift[f];
+    for (int v : e.vertices)
+      m.points.push_back(toPoint(paper.vertices[v].folded + offset));
+  }
+  visualization_msgs::MarkerArray array;
+  for (Marker* m : { &front, &back, &mountain, &valley, &other, &boundary })
+  {
+    if (m->points.empty())
+      m->action = Marker::DELETE;  // rviz rejects an empty list; nothing of that kind to show
+    array.markers.push_back(*m);
+  }
+  return array;
+}
+
+}  // namespace virtual_origami

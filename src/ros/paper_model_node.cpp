@@ -1,0 +1,295 @@
+#include "virtual_origami/ros/paper_model_node.h"
+
+#include <cstdlib>
+#include <ctime>
+#include <filesystem>
+
+#include <geometry_msgs/TransformStamped.h>
+#include <tf2/LinearMath/Quaternion.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include "virtual_origami/core/fold_io.h"
+#include "virtual_origami/core/obj_export.h"
+#include "virtual_origami/ros/remote_solver.h"
+
+namespace virtual_origami
+{
+namespace
+{
+std::string defaultJournalPath(const ros::NodeHandle& nh)
+{
+  const char* ros_home = std::getenv("ROS_HOME");
+  const char* home = std::getenv("HOME");
+  const std::string base = ros_home ? ros_home : std::string(home ? home : "/tmp") + "/.ros";
+  std::string ns = nh.getNamespace();
+  for (char& c : ns)
+    if (c == '/')
+      c = '_';
+  return base + "/virtual_origami/session" + ns + ".jsonl";
+}
+
+geometry_msgs::TransformStamped transform(const std::string& parent, const std::string& child, const core::Vec3& at,
+                                          double yaw)
+{
+  geometry_msgs::TransformStamped t;
+  t.header.stamp = ros::Time::now();
+  t.header.frame_id = parent;
+  t.child_frame_id = child;
+  t.transform.translation.x = at.x();
+  t.transform.translation.y = at.y();
+  t.transform.translation.z = at.z();
+  tf2::Quaternion q;
+  q.setRPY(0, 0, yaw);
+  t.transform.rotation.x = q.x();
+  t.transform.rotation.y = q.y();
+  t.transform.rotation.z = q.z();
+  t.transform.rotation.w = q.w();
+  return t;
+}
+
+bool hasSuffix(const std::string& s, const std::string& suffix)
+{
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+}  // namespace
+
+PaperModelNode::PaperModelNode(ros::NodeHandle nh, ros::NodeHandle private_nh) : nh_(nh)
+{
+  world_frame_ = private_nh.param<std::string>("world_frame", "world");
+  style_.frame_id = private_nh.param<std::string>("paper_frame", "paper");
+  style_.layer_gap = private_nh.param("layer_gap", style_.layer_gap);
+  size_ = private_nh.param("size", 1.0);
+  core::SnapSettings& snap = session_.snapSettings();
+  snap.radius = private_nh.param("snap_radius", snap.radius * size_);
+  private_nh.param("edge_divisions", snap.edge_divisions, snap.edge_divisions);
+  private_nh.param("angle_divisions", snap.angle_divisions, snap.angle_divisions);
+  session_.setSolver(std::make_shared<RemoteSolver>(nh_, private_nh.param<std::string>("solver_service", "solve"),
+                                                    private_nh.param("solver_timeout", 2.0)));
+
+  state_pub_ = nh_.advertise<PaperState>("state", 1, true);
+  markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
+  operations_pub_ = nh_.advertise<Operation>("operations", 100);
+  restoreOrStart(private_nh);
+
+  const core::Vec3 origin(private_nh.param("paper_x", 0.0), private_nh.param("paper_y", 0.0),
+                          private_nh.param("paper_z", 0.0));
+  static_tf_.sendTransform(transform(world_frame_, style_.frame_id, origin, private_nh.param("paper_yaw", 0.0)));
+  pin_timer_ = nh_.createTimer(ros::Duration(0.1), &PaperModelNode::broadcastPins, this);
+
+  services_.push_back(nh_.advertiseService("crease", &PaperModelNode::crease, this));
+  services_.push_back(nh_.advertiseService("rotate", &PaperModelNode::rotate, this));
+  services_.push_back(nh_.advertiseService("squash", &PaperModelNode::squash, this));
+  services_.push_back(nh_.advertiseService("undo", &PaperModelNode::undo, this));
+  services_.push_back(nh_.advertiseService("redo", &PaperModelNode::redo, this));
+  services_.push_back(nh_.advertiseService("reset", &PaperModelNode::reset, this));
+  services_.push_back(nh_.advertiseService("pin", &PaperModelNode::pin, this));
+  services_.push_back(nh_.advertiseService("load", &PaperModelNode::load, this));
+  services_.push_back(nh_.advertiseService("save", &PaperModelNode::save, this));
+  publishState();
+}
+
+void PaperModelNode::restoreOrStart(ros::NodeHandle& private_nh)
+{
+  const std::string path = private_nh.param("journal", defaultJournalPath(nh_));
+  std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+  if (std::filesystem::exists(path))
+  {
+    const core::Expected<core::History> history = core::readJournal(path);
+    if (history && private_nh.param("resume", true))
+    {
+      session_ = core::Session(*history);
+      ROS_INFO("paper_model: resumed revision %lu (%zu operations) from %s",
+               static_cast<unsigned long>(session_.revision()), session_.log().size(), path.c_str());
+    }
+    else
+    {
+      // Never lose a user's work: keep the old journal beside the new one.
+      const std::string kept = path + "." + std::to_string(std::time(nullptr)) + ".old";
+      std::filesystem::rename(path, kept);
+      if (!history)
+        ROS_ERROR("paper_model: %s; kept it as %s and started afresh", history.message().c_str(), kept.c_str());
+    }
+  }
+  if (session_.revision() == 0 && size_ != 1.0)
+    session_ = core::Session(core::Paper::square(size_));
+  const core::Status started = journal_.start(path, session_);
+  if (!started)
+    ROS_ERROR("paper_model: %s; changes will not survive a restart", started.message().c_str());
+}
+
+void PaperModelNode::committed(const std::string& what)
+{
+  const core::Status journaled = journal_.record(session_);
+  if (!journaled)
+    ROS_ERROR("paper_model: %s", journaled.message().c_str());
+  Operation op = toMessage(session_.log().back());
+  op.header.stamp = ros::Time::now();
+  op.header.frame_id = style_.frame_id;
+  operations_pub_.publish(op);
+  publishState();
+  ROS_DEBUG("paper_model: %s, revision %lu", what.c_str(), static_cast<unsigned long>(session_.revision()));
+}
+
+void PaperModelNode::publishState()
+{
+  PaperState state = toMessage(session_.paper(), session_.revision(), pins_);
+  state.header.stamp = ros::Time::now();
+  state.header.frame_id = style_.frame_id;
+  state_pub_.publish(state);
+  publishMarkers(session_.paper());
+}
+
+void PaperModelNode::publishMarkers(const core::Paper& paper)
+{
+  markers_pub_.publish(paperMarkers(paper, style_, ros::Time::now()));
+}
+
+void PaperModelNode::broadcastPins(const ros::TimerEvent&)
+{
+  std::vector<geometry_msgs::TransformStamped> frames;
+  for (const auto& [vertex, pin] : pins_)
+    if (vertex < static_cast<int>(session_.paper().vertices.size()))
+      frames.push_back(transform(style_.frame_id, "pin_" + std::to_string(vertex),
+                                 session_.paper().vertices[vertex].folded, 0.0));
+  if (!frames.empty())
+    tf_.sendTransform(frames);
+}
+
+bool PaperModelNode::crease(Crease::Request& req, Crease::Response& res)
+{
+  core::CreaseRequest request;
+  request.start = toVec3(req.start);
+  request.end = toVec3(req.end);
+  if (req.has_eye)
+    request.eye = toVec3(req.eye);
+  request.snap = req.snap;
+  const auto result = session_.crease(request);
+  res.success = result.ok();
+  if (result)
+  {
+    res.new_edges.assign(result->new_edges.begin(), result->new_edges.end());
+    res.message = "creased " + std::to_string(result->split_faces.size()) + " faces";
+    committed(res.message);
+  }
+  else
+    res.message = result.message();
+  res.revision = session_.revision();
+  return true;
+}
+
+bool PaperModelNode::rotate(Rotate::Request& req, Rotate::Response& res)
+{
+  core::RotateRequest request;
+  request.face = req.face;
+  request.axis_edge = req.axis_edge;
+  request.click = toVec3(req.click);
+  request.angle = req.angle;
+  std::vector<int> held;
+  for (const auto& pinned : pins_)
+    held.push_back(pinned.first);
+  session_.setHeldVertices(held);
+  const auto result = session_.rotate(request, req.commit);
+  res.success = result.ok();
+  res.message = result ? (req.commit ? "rotated" : "preview") : result.message();
+  res.face = result ? result->face : req.face;
+  res.axis_edge = result ? result->axis_edge : req.axis_edge;
+  if (result && req.commit)
+    committed("rotated");
+  else if (result)
+    publishMarkers(*session_.preview());  // a preview is drawn, not recorded
+  res.revision = session_.revision();
+  return true;
+}
+
+bool PaperModelNode::answer(const core::Status& status, const std::string& done, std_srvs::Trigger::Response& res)
+{
+  res.success = status.ok();
+  res.message = status ? done : status.message();
+  if (status)
+    committed(done);
+  return true;
+}
+
+bool PaperModelNode::squash(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res)
+{
+  const auto result = session_.squash();
+  return answer(result ? core::success() : core::failure(result.message()),
+                result && result->exact ? "pressed flat" : "pressed flat and restored by the solver", res);
+}
+
+bool PaperModelNode::undo(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res)
+{
+  return answer(session_.undo(), "undone", res);
+}
+
+bool PaperModelNode::redo(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res)
+{
+  return answer(session_.redo(), "redone", res);
+}
+
+bool PaperModelNode::reset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res)
+{
+  const core::Status status = session_.reset(size_);
+  if (status)
+    pins_.clear();  // the vertices they held are gone
+  return answer(status, "reset to an unfolded square", res);
+}
+
+bool PaperModelNode::pin(PinVertex::Request& req, PinVertex::Response& res)
+{
+  const int count = static_cast<int>(session_.paper().vertices.size());
+  res.success = false;
+  if (req.vertex < 0 || req.vertex >= count)
+    res.message = "vertex " + std::to_string(req.vertex) + " does not exist (the model has " + std::to_string(count) + ")";
+  else if (req.release && !pins_.count(req.vertex))
+    res.message = "vertex " + std::to_string(req.vertex) + " is not pinned";
+  else
+  {
+    if (req.release)
+      pins_.erase(req.vertex);
+    else
+      pins_[req.vertex] = { req.frame_id, session_.paper().vertices[req.vertex].folded };
+    res.success = true;
+    res.message = req.release ? "released" : req.frame_id.empty() ? "pinned in place" : "pinned to " + req.frame_id;
+    Operation op;
+    op.header.stamp = ros::Time::now();
+    op.header.frame_id = style_.frame_id;
+    op.revision = session_.revision();
+    op.type = "pin";
+    op.face = op.axis_edge = -1;
+    op.vertex = req.vertex;
+    op.frame_id = req.frame_id;
+    op.release = req.release;
+    operations_pub_.publish(op);
+    publishState();
+  }
+  return true;
+}
+
+bool PaperModelNode::load(Load::Request& req, Load::Response& res)
+{
+  const core::Expected<core::Paper> paper = core::loadPaper(req.path);
+  const core::Status status = paper ? session_.load(*paper, req.path) : core::failure(paper.message());
+  res.success = status.ok();
+  res.message = status ? "loaded " + req.path : status.message();
+  if (status)
+  {
+    pins_.clear();
+    committed(res.message);
+  }
+  return true;
+}
+
+bool PaperModelNode::save(Save::Request& req, Save::Response& res)
+{
+  core::Status status = core::failure("save needs a path ending in .fold or .obj, not \"" + req.path + "\"");
+  if (hasSuffix(req.path, ".fold"))
+    status = core::writeTextFile(req.path, core::formatFold(session_.paper()));
+  else if (hasSuffix(req.path, ".obj"))
+    status = core::writeTextFile(req.path, core::formatObj(session_.paper()));
+  res.success = status.ok();
+  res.message = status ? "saved " + req.path : status.message();
+  return true;
+}
+
+}  // namespace virtual_origami

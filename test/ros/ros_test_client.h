@@ -1,0 +1,96 @@
+// What every rostest of the package needs: service calls, the latest state, waiting.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <string>
+
+#include <ros/ros.h>
+#include <std_srvs/Trigger.h>
+#include <virtual_origami/Crease.h>
+#include <virtual_origami/PaperState.h>
+#include <virtual_origami/Rotate.h>
+
+namespace virtual_origami::test
+{
+/// Spins until `done` holds or `seconds` pass; true when it held.
+inline bool waitFor(const std::function<bool()>& done, double seconds = 10.0)
+{
+  const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(seconds);
+  while (ros::ok() && ros::WallTime::now() < until)
+  {
+    ros::spinOnce();
+    if (done())
+      return true;
+    ros::WallDuration(0.01).sleep();
+  }
+  return done();
+}
+
+class PaperClient
+{
+public:
+  explicit PaperClient(const std::string& ns = "/origami") : nh_(ns)
+  {
+    state_sub_ = nh_.subscribe<PaperState>("state", 10, [this](const PaperState::ConstPtr& s) { state_ = *s; ++states_; });
+  }
+
+  template <class Service>
+  Service call(const std::string& name, const typename Service::Request& request)
+  {
+    Service srv;
+    srv.request = request;
+    const std::string resolved = nh_.resolveName(name);
+    EXPECT_TRUE(ros::service::waitForService(resolved, ros::Duration(30))) << resolved;
+    EXPECT_TRUE(ros::service::call(resolved, srv)) << resolved;
+    return srv;
+  }
+
+  std_srvs::Trigger trigger(const std::string& name) { return call<std_srvs::Trigger>(name, {}); }
+
+  Crease crease(double x0, double y0, double x1, double y1, bool snap = false)
+  {
+    Crease::Request r;
+    r.start.x = x0;
+    r.start.y = y0;
+    r.end.x = x1;
+    r.end.y = y1;
+    r.snap = snap;
+    return call<Crease>("crease", r);
+  }
+
+  Rotate rotate(int face, int axis, double x, double y, double angle, bool commit = true)
+  {
+    Rotate::Request r;
+    r.face = face;
+    r.axis_edge = axis;
+    r.click.x = x;
+    r.click.y = y;
+    r.angle = angle;
+    r.commit = commit;
+    return call<Rotate>("rotate", r);
+  }
+
+  /// The latest state once its revision is `revision`.
+  const PaperState& stateAt(uint64_t revision)
+  {
+    EXPECT_TRUE(waitFor([&] { return states_ > 0 && state_.revision == revision; }))
+        << "state stayed at revision " << state_.revision << ", expected " << revision;
+    return state_;
+  }
+  const PaperState& state()
+  {
+    waitFor([&] { return states_ > 0; });
+    return state_;
+  }
+  ros::NodeHandle& nh() { return nh_; }
+
+private:
+  ros::NodeHandle nh_;
+  ros::Subscriber state_sub_;
+  PaperState state_;
+  int states_ = 0;
+};
+
+}  // namespace virtual_origami::test

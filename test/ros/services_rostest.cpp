@@ -1,0 +1,281 @@
+// rostest: the paper_model services against their contract (SPEC §8).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
+#include <virtual_origami/Load.h>
+#include <virtual_origami/Operation.h>
+#include <virtual_origami/PinVertex.h>
+#include <virtual_origami/Save.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include "ros_test_client.h"
+#include "virtual_origami/core/session.h"
+#include "virtual_origami/ros/conversions.h"
+
+using namespace virtual_origami;
+using virtual_origami::test::PaperClient;
+using virtual_origami::test::waitFor;
+
+namespace
+{
+/// The state must be exactly what it was: a refused request changes nothing.
+void expectSameState(const PaperState& a, const PaperState& b)
+{
+  EXPECT_EQ(a.revision, b.revision);
+  EXPECT_EQ(a.vertices_folded, b.vertices_folded);
+  EXPECT_EQ(a.vertices_crease_pattern, b.vertices_crease_pattern);
+  EXPECT_EQ(a.edges, b.edges);
+  EXPECT_EQ(a.faces, b.faces);
+  EXPECT_EQ(a.pins, b.pins);
+}
+
+class Services : public ::testing::Test
+{
+protected:
+  void SetUp() override
+  {
+    ops_sub_ = client_.nh().subscribe<Operation>("operations", 100, [this](const Operation::ConstPtr& op) {
+      operations_.push_back(*op);
+    });
+    markers_sub_ = client_.nh().subscribe<visualization_msgs::MarkerArray>(
+        "markers", 10, [this](const visualization_msgs::MarkerArray::ConstPtr& m) { markers_ = *m; });
+    ASSERT_TRUE(client_.trigger("reset").response.success);
+    base_ = client_.state().revision;
+    waitFor([&] { return !operations_.empty() && operations_.back().revision == base_; });
+    operations_.clear();
+  }
+
+  /// A refused request: success false, a message, nothing changed.
+  template <class Response>
+  void expectRefused(const Response& response, const PaperState& before)
+  {
+    EXPECT_FALSE(response.success);
+    EXPECT_FALSE(response.message.empty());
+    ros::WallDuration(0.2).sleep();
+    ros::spinOnce();
+    expectSameState(client_.state(), before);
+  }
+
+  int markerPoints(const std::string& ns)
+  {
+    for (const auto& m : markers_.markers)
+      if (m.ns == ns && m.action == visualization_msgs::Marker::ADD)
+        return static_cast<int>(m.points.size());
+    return 0;
+  }
+
+  PaperClient client_;
+  ros::Subscriber ops_sub_, markers_sub_;
+  std::vector<Operation> operations_;
+  visualization_msgs::MarkerArray markers_;
+  uint64_t base_ = 0;
+};
+}  // namespace
+
+TEST_F(Services, CreaseSucceedsOrChangesNothing)
+{
+  const Crease ok = client_.crease(0.5, -0.1, 0.5, 1.1);
+  ASSERT_TRUE(ok.response.success) << ok.response.message;
+  EXPECT_EQ(ok.response.revision, base_ + 1);
+  EXPECT_EQ(ok.response.new_edges.size(), 1u);
+  const PaperState state = client_.stateAt(base_ + 1);
+  EXPECT_EQ(state.faces.size(), 2u);
+  EXPECT_EQ(state.edges[ok.response.new_edges[0]].assignment, "U");
+
+  const Crease miss = client_.crease(3, 3, 4, 4);
+  EXPECT_EQ(miss.response.revision, base_ + 1);
+  expectRefused(miss.response, state);
+  expectRefused(client_.crease(0.2, 0.2, 0.2, 0.2).response, state);  // zero length
+  expectRefused(client_.crease(NAN, 0, 1, 1).response, state);
+  expectRefused(client_.crease(0.5, -0.1, 0.5, 1.1).response, state);  // along the crease made
+}
+
+TEST_F(Services, RotateSucceedsOrChangesNothing)
+{
+  ASSERT_TRUE(client_.crease(0.5, -0.1, 0.5, 1.1).response.success);
+  const PaperState creased = client_.stateAt(base_ + 1);
+  // A preview is not committed.
+  const Rotate preview = client_.rotate(-1, -1, 0.8, 0.5, 0.7, false);
+  ASSERT_TRUE(preview.response.success) << preview.response.message;
+  EXPECT_EQ(preview.response.revision, base_ + 1);
+  const Rotate turned = client_.rotate(-1, -1, 0.8, 0.5, M_PI / 2);
+  ASSERT_TRUE(turned.response.success) << turned.response.message;
+  EXPECT_EQ(turned.response.revision, base_ + 2);
+  const PaperState state = client_.stateAt(base_ + 2);
+  EXPECT_NEAR(state.edges[turned.response.axis_edge].fold_angle, M_PI / 2, 1e-12);
+  EXPECT_EQ(state.edges[turned.response.axis_edge].assignment, "V");
+  (void)creased;
+
+  expectRefused(client_.rotate(99, -1, 0.8, 0.5, 0.1).response, state);
+  expectRefused(client_.rotate(-1, 99, 0.8, 0.5, 0.1).response, state);
+  expectRefused(client_.rotate(-1, 0, 0.8, 0.5, 0.1).response, state);  // a boundary edge
+  expectRefused(client_.rotate(-1, -1, 0.8, 0.5, NAN).response, state);
+  expectRefused(client_.rotate(-1, -1, 5.0, 5.0, 0.1).response, state);  // no face there
+}
+
+TEST_F(Services, SquashUndoRedoReset)
+{
+  EXPECT_FALSE(client_.trigger("redo").response.success);
+  ASSERT_TRUE(client_.crease(0.5, -0.1, 0.5, 1.1).response.success);
+  ASSERT_TRUE(client_.rotate(-1, -1, 0.8, 0.5, 2.0).response.success);
+  const PaperState turned = client_.stateAt(base_ + 2);
+  const std_srvs::Trigger squashed = client_.trigger("squash");
+  ASSERT_TRUE(squashed.response.success) << squashed.response.message;
+  const PaperState flat = client_.stateAt(base_ + 3);
+  for (const auto& p : flat.vertices_folded)
+    EXPECT_NEAR(p.z, 0.0, 1e-12);
+  ASSERT_TRUE(client_.trigger("undo").response.success);
+  const PaperState undone = client_.stateAt(base_ + 4);
+  EXPECT_EQ(undone.vertices_folded, turned.vertices_folded);
+  ASSERT_TRUE(client_.trigger("redo").response.success);
+  EXPECT_EQ(client_.stateAt(base_ + 5).vertices_folded, flat.vertices_folded);
+  expectRefused(client_.trigger("redo").response, client_.stateAt(base_ + 5));
+  ASSERT_TRUE(client_.trigger("reset").response.success);
+  EXPECT_EQ(client_.stateAt(base_ + 6).faces.size(), 1u);
+  // Every committed operation was announced, in order, with its revision.
+  ASSERT_TRUE(waitFor([&] { return operations_.size() >= 6; }));
+  const std::vector<std::string> types{ "crease", "rotate", "squash", "undo", "redo", "reset" };
+  for (size_t i = 0; i < types.size(); ++i)
+  {
+    EXPECT_EQ(operations_[i].type, types[i]);
+    EXPECT_EQ(operations_[i].revision, base_ + 1 + i);
+  }
+  EXPECT_EQ(operations_[1].axis_edge, 6);  // resolved, not -1
+}
+
+TEST_F(Services, PinAndRelease)
+{
+  const PaperState start = client_.state();
+  PinVertex::Request pin;
+  pin.vertex = 2;
+  ASSERT_TRUE(client_.call<PinVertex>("pin", pin).response.success);
+  ASSERT_TRUE(waitFor([&] { return client_.state().pins.size() == 1; }));
+  EXPECT_EQ(client_.state().pins[0].vertex, 2);
+  // A pinned vertex is in tf as pin_2, at its position in the paper frame.
+  tf2_ros::Buffer buffer;
+  tf2_ros::TransformListener listener(buffer);
+  EXPECT_TRUE(buffer.canTransform("paper", "pin_2", ros::Time(0), ros::Duration(5.0)));
+  EXPECT_TRUE(buffer.canTransform("world", "paper", ros::Time(0), ros::Duration(5.0)));
+  const auto t = buffer.lookupTransform("paper", "pin_2", ros::Time(0));
+  EXPECT_NEAR(t.transform.translation.x, 1.0, 1e-9);
+  EXPECT_NEAR(t.transform.translation.y, 1.0, 1e-9);
+  // A rotation that would carry the pin away is refused.
+  ASSERT_TRUE(client_.crease(0.5, -0.1, 0.5, 1.1).response.success);
+  const PaperState creased = client_.stateAt(base_ + 1);
+  expectRefused(client_.rotate(-1, -1, 0.8, 0.5, 1.0).response, creased);
+
+  const PaperState pinned = client_.state();
+  PinVertex::Request bad;
+  bad.vertex = -5;
+  expectRefused(client_.call<PinVertex>("pin", bad).response, pinned);
+  bad.vertex = 3;
+  bad.release = true;  // not pinned
+  expectRefused(client_.call<PinVertex>("pin", bad).response, pinned);
+  pin.release = true;
+  ASSERT_TRUE(client_.call<PinVertex>("pin", pin).response.success);
+  ASSERT_TRUE(waitFor([&] { return client_.state().pins.empty(); }));
+  EXPECT_TRUE(client_.rotate(-1, -1, 0.8, 0.5, 1.0).response.success);
+  (void)start;
+}
+
+TEST_F(Services, SaveAndLoad)
+{
+  ASSERT_TRUE(client_.crease(0, 0, 1, 1).response.success);
+  ASSERT_TRUE(client_.rotate(-1, -1, 0.2, 0.8, M_PI).response.success);
+  const PaperState folded = client_.stateAt(base_ + 2);
+  const std::string path = "/tmp/virtual_origami_rostest_" + std::to_string(::getpid()) + ".fold";
+  Save::Request save;
+  save.path = path;
+  ASSERT_TRUE(client_.call<Save>("save", save).response.success);
+  save.path = "/tmp/virtual_origami_rostest_" + std::to_string(::getpid()) + ".obj";
+  ASSERT_TRUE(client_.call<Save>("save", save).response.success);
+  save.path = "/no/such/folder/x.fold";
+  EXPECT_FALSE(client_.call<Save>("save", save).response.success);
+  save.path = "/tmp/x.png";
+  EXPECT_FALSE(client_.call<Save>("save", save).response.success);
+
+  ASSERT_TRUE(client_.trigger("reset").response.success);
+  Load::Request load;
+  load.path = path;
+  const Load loaded = client_.call<Load>("load", load);
+  ASSERT_TRUE(loaded.response.success) << loaded.response.message;
+  const PaperState back = client_.stateAt(base_ + 4);
+  ASSERT_EQ(back.vertices_folded.size(), folded.vertices_folded.size());
+  for (size_t i = 0; i < back.vertices_folded.size(); ++i)
+  {
+    EXPECT_NEAR(back.vertices_folded[i].x, folded.vertices_folded[i].x, 1e-12);
+    EXPECT_NEAR(back.vertices_folded[i].y, folded.vertices_folded[i].y, 1e-12);
+    EXPECT_NEAR(back.vertices_folded[i].z, folded.vertices_folded[i].z, 1e-12);
+  }
+  // A broken file and a missing one are refused.
+  const std::string broken = "/tmp/virtual_origami_rostest_broken_" + std::to_string(::getpid()) + ".fold";
+  std::ofstream(broken) << "{\"vertices_coords\": [[0,0],[1,0]], \"faces_vertices\": [[0,1,7]]}";
+  load.path = broken;
+  expectRefused(client_.call<Load>("load", load).response, back);
+  load.path = "/no/such/file.fold";
+  expectRefused(client_.call<Load>("load", load).response, back);
+  std::remove(path.c_str());
+  std::remove(broken.c_str());
+}
+
+TEST_F(Services, ASequenceEndsWhereTheCoreAloneEnds)
+{
+  core::Session session;
+  const auto crease = [&](double x0, double y0, double x1, double y1) {
+    ASSERT_TRUE(client_.crease(x0, y0, x1, y1).response.success);
+    core::CreaseRequest r;
+    r.start = core::Vec3(x0, y0, 0);
+    r.end = core::Vec3(x1, y1, 0);
+    ASSERT_TRUE(session.crease(r).ok());
+  };
+  const auto rotate = [&](double x, double y, double angle) {
+    ASSERT_TRUE(client_.rotate(-1, -1, x, y, angle).response.success);
+    core::RotateRequest r;
+    r.click = core::Vec3(x, y, 0);
+    r.angle = angle;
+    ASSERT_TRUE(session.rotate(r).ok());
+  };
+  crease(0, 0, 1, 1);
+  rotate(0.2, 0.8, M_PI);
+  crease(1.1, -0.1, 0.4, 0.6);
+  rotate(0.3, 0.1, M_PI);
+  ASSERT_TRUE(client_.trigger("undo").response.success);
+  ASSERT_TRUE(session.undo().ok());
+  rotate(0.3, 0.1, 2.0);
+  ASSERT_TRUE(client_.trigger("squash").response.success);
+  ASSERT_TRUE(session.squash().ok());
+  const PaperState expected = toMessage(session.paper(), base_ + session.revision(), {});
+  const PaperState& got = client_.stateAt(base_ + session.revision());
+  EXPECT_EQ(got.vertices_folded, expected.vertices_folded);  // bit for bit
+  EXPECT_EQ(got.vertices_crease_pattern, expected.vertices_crease_pattern);
+  EXPECT_EQ(got.edges, expected.edges);
+  EXPECT_EQ(got.faces, expected.faces);
+}
+
+TEST_F(Services, MarkersFollowEveryOperation)
+{
+  ASSERT_TRUE(waitFor([&] { return markerPoints("front") == 6; }));  // one square: two triangles
+  EXPECT_EQ(markerPoints("boundary"), 8);
+  ASSERT_TRUE(client_.crease(0.5, -0.1, 0.5, 1.1).response.success);
+  ASSERT_TRUE(waitFor([&] { return markerPoints("crease") == 2; }));
+  EXPECT_EQ(markerPoints("front"), 12);
+  EXPECT_EQ(markerPoints("back"), 12);
+  ASSERT_TRUE(client_.rotate(-1, -1, 0.8, 0.5, -1.0).response.success);
+  ASSERT_TRUE(waitFor([&] { return markerPoints("mountain") == 2; }));
+  EXPECT_EQ(markerPoints("crease"), 0);
+  for (const auto& m : markers_.markers)
+    EXPECT_EQ(m.header.frame_id, "paper");
+}
+
+int main(int argc, char** argv)
+{
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "services_rostest");
+  ros::NodeHandle keep_alive;
+  return RUN_ALL_TESTS();
+}
