@@ -5,7 +5,6 @@ BUILD_DIR  ?= build
 BUILD_TYPE ?= Release
 JOBS       ?= 2
 CMAKE_ARGS ?=
-DEMO       := $(BUILD_DIR)/devel/lib/virtual_origami/fold_demo
 
 .PHONY: all deps configure build test run clean
 
@@ -24,7 +23,7 @@ test: build
 	ctest --test-dir $(BUILD_DIR) --output-on-failure --no-tests=error
 
 run: build
-	$(DEMO) --out output
+	bash scripts/run.sh output
 
 clean:
 	rm -rf $(BUILD_DIR) output

@@ -40,24 +40,30 @@ const char* strokeOf(Assignment a)
 std::string paperSvg(const Paper& paper, const std::string& title)
 {
   const double panel = 400, margin = 20;
+  // The folded form seen obliquely from above the front, so that raised flaps show.
+  const Eigen::Matrix3d view =
+      (Eigen::AngleAxisd(-0.85, Vec3::UnitX()) * Eigen::AngleAxisd(-0.45, Vec3::UnitZ())).toRotationMatrix();
+  const auto seen = [&](const Vec3& p) { return Vec3(view * p); };
   Box cp, folded;
   for (const Vertex& v : paper.vertices)
   {
     cp.add(v.crease_pattern.x(), v.crease_pattern.y());
-    folded.add(v.folded.x(), v.folded.y());
+    folded.add(seen(v.folded).x(), seen(v.folded).y());
   }
   // SVG's y runs down; the paper's y runs up.
   const auto cpX = [&](const Vec2& p) { return margin + (p.x() - cp.min_x) / cp.size() * panel; };
   const auto cpY = [&](const Vec2& p) { return margin + (cp.max_y - p.y()) / cp.size() * panel; };
-  const auto fX = [&](const Vec3& p) { return 2 * margin + panel + margin + (p.x() - folded.min_x) / folded.size() * panel; };
-  const auto fY = [&](const Vec3& p) { return margin + (folded.max_y - p.y()) / folded.size() * panel; };
+  const auto fX = [&](const Vec3& p) {
+    return 2 * margin + panel + margin + (seen(p).x() - folded.min_x) / folded.size() * panel;
+  };
+  const auto fY = [&](const Vec3& p) { return margin + (folded.max_y - seen(p).y()) / folded.size() * panel; };
 
   std::ostringstream svg;
   svg << R"(<svg xmlns="http://www.w3.org/2000/svg" width=")" << 2 * panel + 4 * margin << R"(" height=")"
       << panel + 3 * margin << R"(" font-family="sans-serif" font-size="12">)" << '\n';
   svg << R"(<rect width="100%" height="100%" fill="white"/>)" << '\n';
   svg << "<text x=\"" << margin << "\" y=\"" << panel + 2.6 * margin << "\">crease pattern</text>\n";
-  svg << "<text x=\"" << 3 * margin + panel << "\" y=\"" << panel + 2.6 * margin << "\">folded, seen from above"
+  svg << "<text x=\"" << 3 * margin + panel << "\" y=\"" << panel + 2.6 * margin << "\">folded, seen from above the front"
       << (title.empty() ? "" : ": " + title) << "</text>\n";
   for (const Edge& e : paper.edges)
   {
@@ -66,17 +72,18 @@ std::string paperSvg(const Paper& paper, const std::string& title)
     svg << "<line x1=\"" << cpX(a) << "\" y1=\"" << cpY(a) << "\" x2=\"" << cpX(b) << "\" y2=\"" << cpY(b) << "\" "
         << strokeOf(e.assignment) << " stroke-width=\"1.5\"/>\n";
   }
-  // Folded faces back to front (lowest first), front side light, back side darker.
+  // Folded faces far to near (painter's order), front side light, back side darker.
   std::vector<int> order(paper.faces.size());
   std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(),
-                   [&](int a, int b) { return paper.faceCentroid(a).z() < paper.faceCentroid(b).z(); });
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return seen(paper.faceCentroid(a)).z() < seen(paper.faceCentroid(b)).z();
+  });
   for (int f : order)
   {
     svg << "<polygon points=\"";
     for (int v : paper.faces[f].vertices)
       svg << fX(paper.vertices[v].folded) << ',' << fY(paper.vertices[v].folded) << ' ';
-    const bool front = paper.faceNormal(f).z() >= 0;
+    const bool front = seen(paper.faceNormal(f)).z() >= 0;  // the side facing the viewer
     svg << "\" fill=\"" << (front ? "#f4e3c1" : "#c9a66b") << "\" fill-opacity=\"0.85\" stroke=\"#5a4630\" "
         << "stroke-width=\"1\"/>\n";
   }

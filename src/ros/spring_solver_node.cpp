@@ -1,0 +1,66 @@
+#include "virtual_origami/ros/spring_solver_node.h"
+
+#include "virtual_origami/ros/conversions.h"
+#include "virtual_origami/solvers/solver_factory.h"
+
+namespace virtual_origami
+{
+SpringSolverNode::SpringSolverNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
+  : reconfigure_server_(private_nh)
+{
+  // The server calls reconfigure() once at once with the parameters (or their defaults).
+  reconfigure_server_.setCallback([this](SpringSolverConfig& c, uint32_t level) { reconfigure(c, level); });
+  service_ = nh.advertiseService("solve", &SpringSolverNode::solve, this);
+}
+
+void SpringSolverNode::reconfigure(SpringSolverConfig& config, uint32_t)
+{
+  std::unique_ptr<core::ShapeSolver> solver = core::makeSolver(config.solver);
+  if (!solver)
+  {
+    ROS_ERROR("spring_solver: no solver named \"%s\"; keeping %s", config.solver.c_str(),
+              solver_ ? solver_->name().c_str() : "none");
+    if (solver_)
+      return;
+    solver = core::makeSolver("newton");
+  }
+  core::SolveLimits limits;
+  limits.tolerance = config.tolerance;
+  limits.max_iterations = config.max_iterations;
+  limits.max_seconds = config.max_seconds;
+  solver->setLimits(limits);
+  solver_ = std::move(solver);
+  ROS_INFO("spring_solver: %s, tolerance %g, at most %d iterations", solver_->name().c_str(), limits.tolerance,
+           limits.max_iterations);
+}
+
+bool SpringSolverNode::solve(Solve::Request& req, Solve::Response& res)
+{
+  core::Expected<core::Paper> paper = fromMessage(req.paper);
+  res.success = false;
+  if (!paper)
+  {
+    res.message = "cannot solve this paper: " + paper.message();
+    return true;
+  }
+  std::vector<char> fixed(paper->vertices.size(), 0);
+  for (int v : req.fixed_vertices)
+  {
+    if (v < 0 || v >= static_cast<int>(fixed.size()))
+    {
+      res.message = "fixed vertex " + std::to_string(v) + " does not exist";
+      return true;
+    }
+    fixed[v] = 1;
+  }
+  const core::SolveReport report = solver_->solve(*paper, fixed);
+  res.success = report.converged && !report.diverged;
+  res.message = solver_->name() + ": " + report.message;
+  res.iterations = report.iterations;
+  res.max_strain = report.max_strain;
+  for (const core::Vertex& v : paper->vertices)
+    res.positions.push_back(toPoint(v.folded));
+  return true;
+}
+
+}  // namespace virtual_origami
