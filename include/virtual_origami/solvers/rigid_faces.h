@@ -1,0 +1,38 @@
+// One rigid shape constraint per face (shape matching): the face's crease-pattern polygon,
+// turned and moved to fit its folded vertices best. Shared by the exact solvers.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "virtual_origami/core/paper.h"
+#include "virtual_origami/solvers/positions.h"
+
+namespace virtual_origami::core
+{
+struct RigidFace
+{
+  std::vector<int> vertices;
+  Eigen::Matrix2Xd rest;  // crease-pattern positions minus their mean, one column per vertex
+};
+
+std::vector<RigidFace> rigidFaces(const Paper& paper);
+
+/// The rotation that best turns the face's rest shape onto the centred folded vertices. The
+/// rest shape is planar, so only the first two columns are fitted (the polar factor of a
+/// 3 × 2 matrix) and the third is their cross product: always proper, and a face folded
+/// over is just turned, never mirrored.
+Eigen::Matrix3d fitRotation(const RigidFace& face, const Positions& x);
+
+/// E = ½ Σ_f Σ_{v∈f} |(x_v − x̄_f) − R_f p̃_v|², each R_f fitted: zero exactly when every
+/// face has its crease-pattern shape.
+struct RigidFit
+{
+  double energy = 0.0;
+  double max_residual = 0.0;  // largest |(x_v − x̄_f) − R_f p̃_v|
+  std::vector<Eigen::Matrix3d> rotations;
+};
+RigidFit fitRigidFaces(const std::vector<RigidFace>& faces, const Positions& x);
+
+}  // namespace virtual_origami::core

@@ -1,0 +1,252 @@
+#include "virtual_origami/solvers/newton_solver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include <Eigen/Dense>
+#include <Eigen/Sparse>
+
+#include "virtual_origami/solvers/face_springs.h"
+#include "virtual_origami/solvers/rigid_faces.h"
+#include "virtual_origami/solvers/solve_budget.h"
+
+namespace virtual_origami::core
+{
+namespace
+{
+using SparseMatrix = Eigen::SparseMatrix<double>;
+
+Eigen::Matrix3d skew(const Eigen::Vector3d& q)
+{
+  Eigen::Matrix3d s;
+  s << 0, -q.z(), q.y(), q.z(), 0, -q.x(), -q.y(), q.x(), 0;
+  return s;
+}
+
+Eigen::Vector3d faceMean(const RigidFace& face, const Positions& x)
+{
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (int v : face.vertices)
+    mean += x.col(v);
+  return mean / static_cast<double>(face.vertices.size());
+}
+
+/// The reduced Gauss–Newton matrix over the free vertices (3 rows each), with its sparsity
+/// pattern and symbolic factorisation set up once per solve and refilled every step.
+class ReducedSystem
+{
+public:
+  ReducedSystem(const std::vector<RigidFace>& faces, const std::vector<int>& free_index, int free_count)
+    : faces_(faces), free_index_(free_index), size_(3 * free_count)
+  {
+    std::vector<Eigen::Triplet<double>> triplets;
+    for (const RigidFace& face : faces)
+      for (int v : face.vertices)
+        for (int w : face.vertices)
+          if (free_index[v] >= 0 && free_index[w] >= 0)
+            for (int a = 0; a < 3; ++a)
+              for (int b = 0; b < 3; ++b)
+                triplets.emplace_back(3 * free_index[v] + a, 3 * free_index[w] + b, 0.0);
+    for (int i = 0; i < size_; ++i)
+      triplets.emplace_back(i, i, 0.0);
+    matrix_.resize(size_, size_);
+    matrix_.setFromTriplets(triplets.begin(), triplets.end());
+    matrix_.makeCompressed();
+    // Where each face's 3 × 3 blocks land among the stored values.
+    slots_.resize(faces.size());
+    for (size_t f = 0; f < faces.size(); ++f)
+      for (int v : faces[f].vertices)
+        for (int w : faces[f].vertices)
+          if (free_index[v] >= 0 && free_index[w] >= 0)
+            for (int b = 0; b < 3; ++b)
+              for (int a = 0; a < 3; ++a)
+                slots_[f].push_back(slot(3 * free_index[v] + a, 3 * free_index[w] + b));
+    for (int i = 0; i < size_; ++i)
+      diagonal_.push_back(slot(i, i));
+    solver_.analyzePattern(matrix_);
+  }
+
+  /// Fills the matrix for the fitted rotations, adds μ on the diagonal and factors it.
+  bool factor(const std::vector<Eigen::Matrix3d>& rotations, double mu)
+  {
+    double* values = matrix_.valuePtr();
+    std::fill(values, values + matrix_.nonZeros(), 0.0);
+    std::vector<Eigen::Vector3d> q;
+    for (size_t f = 0; f < faces_.size(); ++f)
+    {
+      const RigidFace& face = faces_[f];
+      const size_t n = face.vertices.size();
+      q.resize(n);
+      Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+      for (size_t k = 0; k < n; ++k)
+      {
+        q[k] = rotations[f].leftCols<2>() * face.rest.col(static_cast<Eigen::Index>(k));
+        inertia += q[k].squaredNorm() * Eigen::Matrix3d::Identity() - q[k] * q[k].transpose();
+      }
+      // Eliminating the face's rotation: C_f ⊗ I minus B D⁻¹ Bᵀ with B_v = [q_v]×, D the inertia.
+      const Eigen::Matrix3d inertia_inv = inertia.inverse();
+      const double inv_n = 1.0 / static_cast<double>(n);
+      size_t s = 0;
+      for (size_t k = 0; k < n; ++k)
+      {
+        if (free_index_[face.vertices[k]] < 0)
+          continue;
+        const Eigen::Matrix3d left = skew(q[k]) * inertia_inv;
+        for (size_t l = 0; l < n; ++l)
+        {
+          if (free_index_[face.vertices[l]] < 0)
+            continue;
+          Eigen::Matrix3d block = left * skew(q[l]);
+          block.diagonal().array() += (k == l ? 1.0 : 0.0) - inv_n;
+          for (int b = 0; b < 3; ++b)
+            for (int a = 0; a < 3; ++a)
+              values[slots_[f][s++]] += block(a, b);
+        }
+      }
+    }
+    for (int i : diagonal_)
+      values[i] += mu;
+    solver_.factorize(matrix_);
+    return solver_.info() == Eigen::Success;
+  }
+
+  Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const
+  {
+    return solver_.solve(rhs);
+  }
+
+private:
+  int slot(int row, int col) const
+  {
+    const int* rows = matrix_.innerIndexPtr();
+    const int begin = matrix_.outerIndexPtr()[col], end = matrix_.outerIndexPtr()[col + 1];
+    return static_cast<int>(std::lower_bound(rows + begin, rows + end, row) - rows);
+  }
+
+  const std::vector<RigidFace>& faces_;
+  const std::vector<int>& free_index_;
+  int size_;
+  SparseMatrix matrix_;
+  std::vector<std::vector<int>> slots_;
+  std::vector<int> diagonal_;
+  Eigen::SimplicialLDLT<SparseMatrix> solver_;
+};
+
+/// Gradient of the rigid-face energy over the free vertices (3 per vertex): with the
+/// rotations fitted, it is the sum of each vertex's residuals over its faces.
+Eigen::VectorXd gradient(const std::vector<RigidFace>& faces, const RigidFit& fit, const Positions& x,
+                         const std::vector<int>& free_index, int free_count)
+{
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(3 * free_count);
+  for (size_t f = 0; f < faces.size(); ++f)
+  {
+    const RigidFace& face = faces[f];
+    const Eigen::Vector3d mean = faceMean(face, x);
+    for (size_t k = 0; k < face.vertices.size(); ++k)
+    {
+      const int i = free_index[face.vertices[k]];
+      if (i >= 0)
+        g.segment<3>(3 * i) += x.col(face.vertices[k]) - mean -
+                               fit.rotations[f].leftCols<2>() * face.rest.col(static_cast<Eigen::Index>(k));
+    }
+  }
+  return g;
+}
+
+void moveFree(Positions& x, const Positions& from, const Eigen::VectorXd& step, double alpha,
+              const std::vector<int>& free_index)
+{
+  for (Eigen::Index v = 0; v < x.cols(); ++v)
+    if (free_index[v] >= 0)
+      x.col(v) = from.col(v) + alpha * step.segment<3>(3 * free_index[v]);
+}
+}  // namespace
+
+NewtonSolver::NewtonSolver(NewtonOptions options) : options_(options)
+{
+  limits_.max_iterations = 200;
+}
+
+SolveReport NewtonSolver::solve(Paper& paper, const std::vector<char>& fixed)
+{
+  SolveBudget budget(limits_);
+  SolveReport report;
+  const std::vector<RigidFace> faces = rigidFaces(paper);
+  const std::vector<Spring> springs = faceSprings(paper);
+  int free_count = 0;
+  const std::vector<int> free_index = freeIndices(fixed, paper.vertices.size(), &free_count);
+  const Positions start = foldedPositions(paper);
+  Positions x = start, trial = start;
+  const double residual_tolerance = limits_.tolerance * paper.scale();
+
+  ReducedSystem system(faces, free_index, free_count);
+  RigidFit fit = fitRigidFaces(faces, x);
+  std::string stuck;
+  bool diverged = !std::isfinite(fit.energy);
+  while (!diverged)
+  {
+    report.max_strain = springStrain(springs, x).max;
+    if (report.max_strain <= limits_.tolerance && fit.max_residual <= residual_tolerance)
+    {
+      report.converged = true;
+      break;
+    }
+    if (budget.exhausted(report.iterations))
+      break;
+    ++report.iterations;
+    const Eigen::VectorXd g = gradient(faces, fit, x, free_index, free_count);
+    double mu = std::max(options_.min_damping, options_.damping * g.norm() / paper.scale());
+    bool accepted = false;
+    // A rejected step raises the damping, turning Gauss–Newton towards gradient descent.
+    for (int attempt = 0; attempt < 4 && !accepted; ++attempt, mu *= 100)
+    {
+      if (!system.factor(fit.rotations, mu))
+        continue;
+      const Eigen::VectorXd step = system.solve(-g);
+      const double slope = g.dot(step);
+      if (!std::isfinite(slope) || slope >= 0)
+        continue;
+      double alpha = 1.0;
+      for (int k = 0; k < options_.max_line_search; ++k, alpha *= 0.5)
+      {
+        moveFree(trial, x, step, alpha, free_index);
+        RigidFit trial_fit = fitRigidFaces(faces, trial);
+        if (trial_fit.energy <= fit.energy + options_.armijo * alpha * slope)
+        {
+          std::swap(x, trial);
+          fit = std::move(trial_fit);
+          accepted = true;
+          break;
+        }
+      }
+    }
+    if (!accepted)
+    {
+      stuck = "no step lowers the rigid-face energy any further";
+      break;
+    }
+    diverged = !std::isfinite(fit.energy);
+  }
+  report.seconds = budget.seconds();
+  if (diverged)
+  {
+    setFoldedPositions(paper, start);
+    report.diverged = true;
+    report.max_strain = springStrain(springs, start).max;
+    report.message = "newton produced non-finite positions; rolled back";
+    return report;
+  }
+  setFoldedPositions(paper, x);
+  report.max_strain = springStrain(springs, x).max;
+  if (!report.converged)
+  {
+    std::ostringstream msg;
+    msg << (stuck.empty() ? "stopped" : stuck) << " after " << report.iterations << " iterations at max strain "
+        << report.max_strain << " (tolerance " << limits_.tolerance << "), face residual " << fit.max_residual;
+    report.message = msg.str();
+  }
+  return report;
+}
+
+}  // namespace virtual_origami::core

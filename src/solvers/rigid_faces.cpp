@@ -1,0 +1,82 @@
+#include "virtual_origami/solvers/rigid_faces.h"
+
+#include <cmath>
+
+#include <Eigen/Geometry>
+#include <Eigen/SVD>
+
+namespace virtual_origami::core
+{
+std::vector<RigidFace> rigidFaces(const Paper& paper)
+{
+  std::vector<RigidFace> faces;
+  faces.reserve(paper.faces.size());
+  for (const Face& face : paper.faces)
+  {
+    RigidFace rigid;
+    rigid.vertices = face.vertices;
+    rigid.rest.resize(2, static_cast<Eigen::Index>(face.vertices.size()));
+    for (size_t k = 0; k < face.vertices.size(); ++k)
+      rigid.rest.col(static_cast<Eigen::Index>(k)) = paper.vertices[face.vertices[k]].crease_pattern;
+    rigid.rest.colwise() -= rigid.rest.rowwise().mean();
+    faces.push_back(std::move(rigid));
+  }
+  return faces;
+}
+
+Eigen::Matrix3d fitRotation(const RigidFace& face, const Positions& x)
+{
+  const Eigen::Index n = face.rest.cols();
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (int v : face.vertices)
+    mean += x.col(v);
+  mean /= static_cast<double>(n);
+  Eigen::Matrix<double, 3, 2> m = Eigen::Matrix<double, 3, 2>::Zero();
+  for (Eigen::Index k = 0; k < n; ++k)
+    m += (x.col(face.vertices[k]) - mean) * face.rest.col(k).transpose();
+  // Polar factor q = m (mᵀm)^(-1/2), with the closed-form square root of a 2 × 2 SPD matrix.
+  const Eigen::Matrix2d s = m.transpose() * m;
+  const double det = s.determinant(), trace = s.trace();
+  Eigen::Matrix<double, 3, 2> q;
+  if (det > 1e-12 * trace * trace)
+  {
+    const double root_det = std::sqrt(det);
+    const Eigen::Matrix2d root = (s + root_det * Eigen::Matrix2d::Identity()) / std::sqrt(trace + 2 * root_det);
+    q = m * root.inverse();
+  }
+  else  // the face is squashed to a segment or a point: any orthonormal fit will do
+  {
+    Eigen::JacobiSVD<Eigen::Matrix<double, 3, 2>> svd(m, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    q = svd.matrixU().leftCols<2>() * svd.matrixV().transpose();
+  }
+  Eigen::Matrix3d r;
+  r.col(0) = q.col(0);
+  r.col(1) = q.col(1);
+  r.col(2) = q.col(0).cross(q.col(1));
+  return r;
+}
+
+RigidFit fitRigidFaces(const std::vector<RigidFace>& faces, const Positions& x)
+{
+  RigidFit fit;
+  fit.rotations.reserve(faces.size());
+  for (const RigidFace& face : faces)
+  {
+    const Eigen::Matrix3d r = fitRotation(face, x);
+    fit.rotations.push_back(r);
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (int v : face.vertices)
+      mean += x.col(v);
+    mean /= static_cast<double>(face.vertices.size());
+    for (Eigen::Index k = 0; k < face.rest.cols(); ++k)
+    {
+      const Eigen::Vector3d residual = x.col(face.vertices[k]) - mean - r.leftCols<2>() * face.rest.col(k);
+      const double norm = residual.norm();
+      fit.energy += 0.5 * norm * norm;
+      fit.max_residual = std::isfinite(norm) ? std::max(fit.max_residual, norm) : INFINITY;
+    }
+  }
+  return fit;
+}
+
+}  // namespace virtual_origami::core
