@@ -6,6 +6,7 @@
 
 #include <Eigen/Geometry>
 
+#include "virtual_origami/core/face_orders.h"
 #include "virtual_origami/core/geometry.h"
 
 namespace virtual_origami::core
@@ -150,11 +151,18 @@ public:
       for (Crossing& c : cut.ends)
         if (c.vertex < 0)
           c.vertex = splitEdge(c, result);
+    const int first_new_face = static_cast<int>(paper_.faces.size());
     for (const FaceCut& cut : cuts)
       splitFace(cut, result);
     const Status linked = linkTopology(paper_);
     if (!linked)
       return Expected<CreaseResult>::failure("internal error while creasing: " + linked.message());
+    // Both halves of a split face keep its place in the layer order, with the faces they
+    // still overlap.
+    for (size_t k = 0; k < cuts.size(); ++k)
+      inheritFaceOrders(paper_, cuts[k].face, first_new_face + static_cast<int>(k));
+    if (!paper_.face_orders.empty())
+      pruneFaceOrders(paper_, region_tol_);
     return result;
   }
 

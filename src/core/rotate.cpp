@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "virtual_origami/core/axis.h"
+#include "virtual_origami/core/face_orders.h"
 #include "virtual_origami/core/geometry.h"
 #include "virtual_origami/core/validity.h"
 
@@ -100,6 +101,135 @@ Expected<std::pair<int, int>> resolveFaceAndAxis(const Paper& paper, const Rotat
 }
 }  // namespace
 
+namespace
+{
+/// True when the faces in `moving` share no vertex off the axis with the rest: they can
+/// turn rigidly about it while the rest stays.
+bool separable(const Paper& paper, const std::vector<char>& moving, const Axis& axis, double tolerance)
+{
+  std::vector<char> staying(paper.faces.size(), 0);
+  for (size_t f = 0; f < moving.size(); ++f)
+    staying[f] = !moving[f];
+  const std::vector<char> moving_vertices = verticesOf(paper, moving);
+  const std::vector<char> staying_vertices = verticesOf(paper, staying);
+  for (size_t v = 0; v < paper.vertices.size(); ++v)
+    if (moving_vertices[v] && staying_vertices[v] && axis.distance(paper.vertices[v].folded) > tolerance)
+      return false;
+  return true;
+}
+
+/// The flat stack the pressed face lies in, and the side of the axis it lies on.
+struct Stack
+{
+  Vec3 normal;  // the pressed face's front normal
+  Vec3 origin;  // a point of the axis
+  Vec3 across;  // in the stack's plane, perpendicular to the axis, towards the pressed face
+  double tolerance;
+
+  /// In the stack's plane, on the pressed face's side of the axis.
+  bool holds(const Paper& paper, int face) const
+  {
+    if (std::abs(std::abs(paper.faceNormal(face).dot(normal)) - 1.0) > 1e-9)
+      return false;
+    for (int v : paper.faces[face].vertices)
+      if (std::abs(normal.dot(paper.vertices[v].folded - origin)) > tolerance)
+        return false;
+    return across.dot(paper.faceCentroid(face) - origin) > tolerance;
+  }
+
+  /// Where `other` lies from `face` along `normal` by the recorded layer order: +1, −1, or 0.
+  int side(const Paper& paper, int face, int other) const
+  {
+    const int order = faceOrder(paper, face, other);
+    return paper.faceNormal(face).dot(normal) > 0 ? order : -order;
+  }
+};
+
+Stack stackOf(const Paper& paper, int face, const Axis& axis, double tolerance)
+{
+  Stack stack;
+  stack.normal = paper.faceNormal(face);
+  stack.origin = axis.origin;
+  stack.across = stack.normal.cross(axis.direction).normalized();
+  if (stack.across.dot(paper.faceCentroid(face) - axis.origin) < 0)
+    stack.across = -stack.across;
+  stack.tolerance = tolerance;
+  return stack;
+}
+
+/// Adds to `moving` every layer of the stack, on the moving side of the axis, that lies
+/// between a moving layer and where the turn takes it (or whose order is unknown), so no
+/// layer passes through another; with `components`, each with the faces joined to it on its
+/// side of the axis. Faces in `blocked` are never taken. Repeats until nothing is added.
+void carryStack(const Paper& paper, const Stack& stack, int swing, const Axis& axis, const std::vector<char>& blocked,
+                bool components, std::vector<char>& moving)
+{
+  const size_t n = paper.faces.size();
+  std::vector<char> in_stack(n, 0);
+  for (size_t f = 0; f < n; ++f)
+    in_stack[f] = stack.holds(paper, static_cast<int>(f));
+  for (bool grew = true; grew;)
+  {
+    grew = false;
+    for (size_t h = 0; h < n; ++h)
+    {
+      if (!moving[h] || !in_stack[h])
+        continue;
+      for (size_t g = 0; g < n; ++g)
+      {
+        if (moving[g] || blocked[g] || !in_stack[g] ||
+            !facesStacked(paper, static_cast<int>(h), static_cast<int>(g), stack.tolerance))
+          continue;
+        const int side = stack.side(paper, static_cast<int>(h), static_cast<int>(g));
+        if (side != 0 && side != swing)
+          continue;  // out of the way of the turn
+        if (components)
+        {
+          const std::vector<char> joined = sideOf(paper, static_cast<int>(g), axis, stack.tolerance);
+          for (size_t f = 0; f < n; ++f)
+            moving[f] = moving[f] || joined[f];
+        }
+        moving[g] = 1;
+        grew = true;
+      }
+    }
+  }
+}
+
+std::vector<int> facesIn(const std::vector<char>& flags)
+{
+  std::vector<int> faces;
+  for (size_t f = 0; f < flags.size(); ++f)
+    if (flags[f])
+      faces.push_back(static_cast<int>(f));
+  return faces;
+}
+
+/// Layer order after a rigid turn: faces that now lie flat on a face that stayed are on the
+/// side they arrived from (half-way through the turn); orders among faces that moved together
+/// or stayed together hold as they were; pairs no longer stacked are dropped.
+void updateFaceOrders(Paper& next, const Paper& before, const std::vector<char>& moving, const Axis& axis, double turn,
+                      double tolerance)
+{
+  clearFaceOrdersAcross(next, moving);
+  for (size_t m = 0; m < moving.size(); ++m)
+  {
+    if (!moving[m])
+      continue;
+    const Vec3 half_way = rotateAbout(before.faceCentroid(static_cast<int>(m)), axis.origin, axis.direction, turn / 2);
+    for (size_t s = 0; s < moving.size(); ++s)
+    {
+      if (moving[s] || !facesStacked(next, static_cast<int>(s), static_cast<int>(m), tolerance))
+        continue;
+      const double from = next.faceNormal(static_cast<int>(s)).dot(half_way - next.faceCentroid(static_cast<int>(s)));
+      if (std::abs(from) > tolerance)
+        setFaceOrder(next, static_cast<int>(s), static_cast<int>(m), from > 0 ? 1 : -1);
+    }
+  }
+  pruneFaceOrders(next, tolerance);
+}
+}  // namespace
+
 std::vector<int> flapOf(const Paper& paper, int face, int axis_edge)
 {
   const double tolerance = 1e-7 * paper.scale();
@@ -108,19 +238,9 @@ std::vector<int> flapOf(const Paper& paper, int face, int axis_edge)
   const Edge& hinge = paper.edges[axis_edge];
   if (moving[hinge.faces[0]] && moving[hinge.faces[1]])
     return {};
-  std::vector<char> staying(paper.faces.size(), 0);
-  for (size_t f = 0; f < moving.size(); ++f)
-    staying[f] = !moving[f];
-  const std::vector<char> moving_vertices = verticesOf(paper, moving);
-  const std::vector<char> staying_vertices = verticesOf(paper, staying);
-  for (size_t v = 0; v < paper.vertices.size(); ++v)
-    if (moving_vertices[v] && staying_vertices[v] && axis.distance(paper.vertices[v].folded) > tolerance)
-      return {};  // the two sides share a vertex off the axis: they cannot part rigidly
-  std::vector<int> flap;
-  for (size_t f = 0; f < moving.size(); ++f)
-    if (moving[f])
-      flap.push_back(static_cast<int>(f));
-  return flap;
+  if (!separable(paper, moving, axis, tolerance))
+    return {};  // the two sides share a vertex off the axis: they cannot part rigidly
+  return facesIn(moving);
 }
 
 Expected<RotateResult> rotate(Paper& paper, const RotateRequest& request, ShapeSolver* solver,
@@ -134,21 +254,35 @@ Expected<RotateResult> rotate(Paper& paper, const RotateRequest& request, ShapeS
   result.axis_edge = resolved->second;
   const Edge& hinge = paper.edges[result.axis_edge];
   const Axis axis = axisOf(paper, result.axis_edge);
-
-  result.moved_faces = flapOf(paper, result.face, result.axis_edge);
-  std::vector<char> moving(paper.faces.size(), 0);
-  for (int f : result.moved_faces)
-    moving[f] = 1;
-  if (result.moved_faces.empty())
-    moving[result.face] = 1;  // the face turns alone; the solver moves the rest
-  int side = -1;              // which of the hinge's faces turns
-  if (moving[hinge.faces[0]] != moving[hinge.faces[1]])
-    side = moving[hinge.faces[0]] ? 0 : 1;
-  if (side < 0)
-    return Failure::failure("face " + std::to_string(result.face) + " lies on neither side of edge " +
-                            std::to_string(result.axis_edge) + "; choose an axis on its side");
+  const double tolerance = 1e-7 * paper.scale();
+  const int across = hinge.otherFace(result.face);
+  const size_t face_count = paper.faces.size();
   // Left face turning by +θ about vertices[0]→vertices[1] raises the fold angle by θ.
-  const double turn = side == 0 ? request.angle : -request.angle;
+  const double turn = hinge.faces[0] == result.face ? request.angle : -request.angle;
+  const Stack stack = stackOf(paper, result.face, axis, tolerance);
+  // The pressed face's points start moving along turn·(direction × across): the way its
+  // layers swing, measured along the stack's normal.
+  const int swing = turn * stack.normal.dot(axis.direction.cross(stack.across)) > 0 ? 1 : -1;
+
+  // Rigid when the axis parts the face's side from the rest, carrying the layers in the way.
+  std::vector<char> moving = sideOf(paper, result.face, axis, tolerance);
+  bool rigid = !moving[across];
+  if (rigid && request.carry_stack)
+    carryStack(paper, stack, swing, axis, sideOf(paper, across, axis, tolerance), true, moving);
+  rigid = rigid && !moving[across] && separable(paper, moving, axis, tolerance);
+  if (!rigid)
+  {
+    // The face turns alone, with the layers it would pass through; the solver moves the rest.
+    moving.assign(face_count, 0);
+    moving[result.face] = 1;
+    if (request.carry_stack)
+    {
+      std::vector<char> blocked(face_count, 0);
+      blocked[across] = 1;
+      carryStack(paper, stack, swing, axis, blocked, false, moving);
+    }
+  }
+  result.moved_faces = facesIn(moving);
 
   Paper next = paper;
   // Hinge creases change by the turn exactly; telling updateFoldAngles so keeps ±180° on
@@ -159,8 +293,8 @@ Expected<RotateResult> rotate(Paper& paper, const RotateRequest& request, ShapeS
     if (!edge.isCrease() || moving[edge.faces[0]] == moving[edge.faces[1]])
       continue;
     const Vec3 dir = paper.vertices[edge.vertices[1]].folded - paper.vertices[edge.vertices[0]].folded;
-    if (axis.distance(paper.vertices[edge.vertices[0]].folded) > 1e-7 * paper.scale() ||
-        axis.distance(paper.vertices[edge.vertices[1]].folded) > 1e-7 * paper.scale())
+    if (axis.distance(paper.vertices[edge.vertices[0]].folded) > tolerance ||
+        axis.distance(paper.vertices[edge.vertices[1]].folded) > tolerance)
       continue;
     const double delta = (moving[edge.faces[0]] ? turn : -turn) * (dir.dot(axis.direction) > 0 ? 1.0 : -1.0);
     const double expected = edge.fold_angle + delta;
@@ -177,17 +311,17 @@ Expected<RotateResult> rotate(Paper& paper, const RotateRequest& request, ShapeS
   // Every vertex of the turning faces turns, also where a face the solver moves shares it;
   // those on the axis stay exactly where they are.
   for (size_t v = 0; v < paper.vertices.size(); ++v)
-    if (moving_vertices[v] && axis.distance(paper.vertices[v].folded) > 1e-7 * paper.scale())
+    if (moving_vertices[v] && axis.distance(paper.vertices[v].folded) > tolerance)
       next.vertices[v].folded = rotateAbout(paper.vertices[v].folded, axis.origin, axis.direction, turn);
 
-  if (result.moved_faces.empty())
+  if (!rigid)
   {
     if (!solver)
       return Failure::failure("turning face " + std::to_string(result.face) + " about edge " +
                               std::to_string(result.axis_edge) +
                               " drags faces held by other creases; a solver is needed and none is selected");
     std::vector<char> fixed = moving_vertices;
-    for (int v : paper.faces[hinge.otherFace(result.face)].vertices)
+    for (int v : paper.faces[across].vertices)
       fixed[v] = 1;
     for (int v : held)
       if (v >= 0 && v < static_cast<int>(fixed.size()))
@@ -199,6 +333,7 @@ Expected<RotateResult> rotate(Paper& paper, const RotateRequest& request, ShapeS
                               "; the model is unchanged");
   }
   updateFoldAngles(next);
+  updateFaceOrders(next, paper, moving, axis, turn, tolerance);
   paper = std::move(next);
   return result;
 }

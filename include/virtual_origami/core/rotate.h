@@ -16,22 +16,28 @@ struct RotateRequest
   Vec3 click = Vec3::Zero();
   /// Radians by which the axis crease's fold angle changes; positive folds valley (FOLD).
   double angle = 0.0;
+  /// Carry the flap: the layers stacked with the face on its side of the axis that the turn
+  /// would otherwise pass through, by the recorded layer order (seed Fig. 15).
+  bool carry_stack = true;
 };
 
 struct RotateResult
 {
   int face = -1;
   int axis_edge = -1;
-  std::vector<int> moved_faces;  // turned rigidly with the face (its flap)
+  std::vector<int> moved_faces;  // turned rigidly with the face (its flap, or the layers carried)
   bool used_solver = false;
   SolveReport solve;
 };
 
 /// Turns the face about its axis. When the creases collinear with the axis cut the sheet in
 /// two, the face's whole side (every layer connected to it there) turns rigidly, which is
-/// exact. Otherwise the face turns alone and `solver` moves the rest (with the face and
-/// the face across the axis held, and `held` vertices); without a solver that fails.
-/// On failure `paper` is untouched.
+/// exact; with `carry_stack`, so do the layers stacked on that side in the turn's way, each
+/// with its own connected part. Otherwise the face turns alone (with the layers in its way)
+/// and `solver` moves the rest of the model, every layer (with the turned faces and the
+/// face across the axis held, and `held` vertices); without a solver that fails. The layer
+/// order (face_orders) follows: faces folded flat onto others lie on the side they came
+/// from, and entries of faces no longer stacked are dropped. On failure `paper` is untouched.
 Expected<RotateResult> rotate(Paper& paper, const RotateRequest& request, ShapeSolver* solver = nullptr,
                               const std::vector<int>& held = {});
 
