@@ -1,6 +1,7 @@
 #include "virtual_origami/solvers/solver_factory.h"
 
 #include "virtual_origami/solvers/newton_solver.h"
+#include "virtual_origami/solvers/rigid_kinematics_solver.h"
 #include "virtual_origami/solvers/seed_spring_solver.h"
 #include "virtual_origami/solvers/shape_matching_solver.h"
 
@@ -14,12 +15,14 @@ std::unique_ptr<ShapeSolver> makeSolver(const std::string& name)
     return std::make_unique<ShapeMatchingSolver>();
   if (name == "newton")
     return std::make_unique<NewtonSolver>();
+  if (name == "rigid_kinematics")
+    return std::make_unique<RigidKinematicsSolver>();
   return nullptr;
 }
 
 std::vector<std::string> solverNames()
 {
-  return { "seed_spring", "shape_matching", "newton" };
+  return { "seed_spring", "shape_matching", "newton", "rigid_kinematics" };
 }
 
 }  // namespace virtual_origami::core

@@ -218,7 +218,7 @@ TEST_P(ExactSolver, AFaceDraggedFlatMakesTheLayersCoincide)
   expectValid(paper);
 }
 
-INSTANTIATE_TEST_SUITE_P(Solvers, ExactSolver, ::testing::Values("shape_matching", "newton"),
+INSTANTIATE_TEST_SUITE_P(Solvers, ExactSolver, ::testing::Values("shape_matching", "newton", "rigid_kinematics"),
                          [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
 
 TEST(SolverFactory, MakesEverySolverByName)
