@@ -21,7 +21,7 @@ PACKAGES=(
   libgeometry-msgs-dev ros-geometry-msgs python3-geometry-msgs
   libvisualization-msgs-dev ros-visualization-msgs
   # ROS layer (nodes, tf, bags, interactive markers, rviz)
-  libroscpp-dev libtf2-ros-dev libtf2-geometry-msgs-dev librosbag-dev
+  libroscpp-dev libtf2-ros-dev libtf2-geometry-msgs-dev librosbag-dev python3-rosbag
   libinteractive-markers-dev librviz-dev rviz
   # live-tunable solver parameters
   libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure

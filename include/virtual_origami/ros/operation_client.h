@@ -1,0 +1,30 @@
+// Applies recorded operations (virtual_origami/Operation) through a paper_model's services.
+#pragma once
+
+#include <string>
+
+#include <ros/node_handle.h>
+#include <virtual_origami/Operation.h>
+
+#include "virtual_origami/core/result.h"
+
+namespace virtual_origami
+{
+class OperationClient
+{
+public:
+  /// `ns`: the namespace of the paper_model's services, e.g. "/origami".
+  explicit OperationClient(const std::string& ns);
+  /// Waits until the services are offered; false after `seconds`.
+  bool waitForServices(double seconds);
+  /// Calls the service the operation came from with its parameters. A rotation is shown
+  /// turning first through `animation_steps` previews spread over `animation_seconds`.
+  core::Status apply(const Operation& operation, int animation_steps = 0, double animation_seconds = 0.0);
+  /// Loads a paper (as a FOLD file) so that a replay starts where the recording started.
+  core::Status load(const std::string& path);
+
+private:
+  ros::NodeHandle nh_;
+};
+
+}  // namespace virtual_origami

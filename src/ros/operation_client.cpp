@@ -1,0 +1,89 @@
+#include "virtual_origami/ros/operation_client.h"
+
+#include <ros/service.h>
+#include <std_srvs/Trigger.h>
+#include <virtual_origami/Crease.h>
+#include <virtual_origami/Load.h>
+#include <virtual_origami/PinVertex.h>
+#include <virtual_origami/Rotate.h>
+
+namespace virtual_origami
+{
+namespace
+{
+template <class Service>
+core::Status call(ros::NodeHandle& nh, const std::string& name, Service& srv)
+{
+  if (!ros::service::call(nh.resolveName(name), srv))
+    return core::failure("the service " + nh.resolveName(name) + " did not answer");
+  if (!srv.response.success)
+    return core::failure(name + " refused: " + srv.response.message);
+  return core::success();
+}
+}  // namespace
+
+OperationClient::OperationClient(const std::string& ns) : nh_(ns) {}
+
+bool OperationClient::waitForServices(double seconds)
+{
+  for (const char* name : { "crease", "rotate", "squash", "undo", "redo", "reset", "pin", "load" })
+    if (!ros::service::waitForService(nh_.resolveName(name), ros::Duration(seconds)))
+      return false;
+  return true;
+}
+
+core::Status OperationClient::load(const std::string& path)
+{
+  Load srv;
+  srv.request.path = path;
+  return call(nh_, "load", srv);
+}
+
+core::Status OperationClient::apply(const Operation& op, int animation_steps, double animation_seconds)
+{
+  if (op.type == "crease")
+  {
+    Crease srv;
+    srv.request.start = op.start;
+    srv.request.end = op.end;
+    srv.request.has_eye = op.has_eye;
+    srv.request.eye = op.eye;
+    srv.request.snap = op.snap;
+    return call(nh_, "crease", srv);
+  }
+  if (op.type == "rotate")
+  {
+    Rotate srv;
+    srv.request.face = op.face;
+    srv.request.axis_edge = op.axis_edge;
+    srv.request.click = op.click;
+    for (int i = 1; i < animation_steps; ++i)
+    {
+      srv.request.angle = op.angle * i / animation_steps;
+      srv.request.commit = false;
+      ros::service::call(nh_.resolveName("rotate"), srv);  // a preview that fails only shows less
+      ros::WallDuration(animation_seconds / animation_steps).sleep();
+    }
+    srv.request.angle = op.angle;
+    srv.request.commit = true;
+    return call(nh_, "rotate", srv);
+  }
+  if (op.type == "pin")
+  {
+    PinVertex srv;
+    srv.request.vertex = op.vertex;
+    srv.request.frame_id = op.frame_id;
+    srv.request.release = op.release;
+    return call(nh_, "pin", srv);
+  }
+  if (op.type == "load")
+    return load(op.path);
+  if (op.type == "squash" || op.type == "undo" || op.type == "redo" || op.type == "reset")
+  {
+    std_srvs::Trigger srv;
+    return call(nh_, op.type, srv);
+  }
+  return core::failure("unknown operation type \"" + op.type + "\"");
+}
+
+}  // namespace virtual_origami
