@@ -1,0 +1,43 @@
+// Fold-sequence files: folding written down as steps (JSON), to author without the mouse.
+//
+//   {"title": "…", "size": 1.0, "solver": "newton",
+//    "steps": [{"crease": {"start": [x, y], "end": [x, y]}, "note": "…"},
+//              {"rotate": {"click": [x, y, z], "angle_deg": 20, "repeat": 6}},
+//              {"squash": {}}, {"undo": {}}, {"redo": {}}]}
+//
+// Points are in the `paper` frame, 2D or 3D; a crease may add "eye" and "snap"; a rotation
+// may name "face" and "axis_edge" instead of clicking, and "repeat" turns the same face about
+// the same axis again (one history step each), so a solver follows a large fold in stages.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "virtual_origami/core/result.h"
+#include "virtual_origami/core/session.h"
+
+namespace virtual_origami::core
+{
+struct FoldStep
+{
+  Operation operation;
+  int repeat = 1;
+  std::string note;
+};
+
+struct FoldSequence
+{
+  std::string title;
+  double size = 1.0;
+  std::string solver = "newton";  // for folds that move faces not carried rigidly
+  std::vector<FoldStep> steps;
+};
+
+/// Fails with a message naming the step and field at fault.
+Expected<FoldSequence> parseFoldSequence(const std::string& text);
+
+/// The state after every operation (front: the unfolded sheet; a repeated rotation gives one
+/// state per turn), or the first step that failed.
+Expected<std::vector<Paper>> foldSequence(const FoldSequence& sequence, Session& session);
+
+}  // namespace virtual_origami::core

@@ -1,0 +1,117 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "test_models.h"
+#include "virtual_origami/core/fold_sequence.h"
+#include "virtual_origami/core/metrics.h"
+
+using namespace virtual_origami::core;
+
+namespace
+{
+std::string readFile(const std::string& path)
+{
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void expectRefused(const std::string& text, const std::string& words)
+{
+  const Expected<FoldSequence> s = parseFoldSequence(text);
+  EXPECT_FALSE(s.ok());
+  EXPECT_NE(s.message().find(words), std::string::npos) << s.message();
+}
+}  // namespace
+
+TEST(FoldSequence, EveryShippedSequenceFolds)
+{
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(VO_SOURCE_DIR) + "/sequences"))
+  {
+    if (entry.path().extension() != ".json")
+      continue;
+    ++files;
+    SCOPED_TRACE(entry.path().string());
+    const Expected<FoldSequence> sequence = parseFoldSequence(readFile(entry.path().string()));
+    ASSERT_TRUE(sequence.ok()) << sequence.message();
+    EXPECT_FALSE(sequence->title.empty());
+    Session session;
+    const Expected<std::vector<Paper>> states = foldSequence(*sequence, session);
+    ASSERT_TRUE(states.ok()) << states.message();
+    size_t operations = 0;
+    for (const FoldStep& step : sequence->steps)
+      operations += static_cast<size_t>(step.repeat);
+    EXPECT_EQ(states->size(), operations + 1);
+    for (const Paper& state : *states)  // solver-moved states keep faces within its tolerance
+    {
+      const ValidityReport report = checkValidity(state, { 1e-7, 1e-9, 1e-12 });
+      EXPECT_TRUE(report.ok()) << report.summary();
+    }
+    EXPECT_LT(edgeStrain(states->back()).max, 1e-7);
+  }
+  EXPECT_GE(files, 2);
+}
+
+TEST(FoldSequence, TheTriangleEndsWithItsLastFoldAtNinetyDegrees)
+{
+  const Expected<FoldSequence> sequence = parseFoldSequence(readFile(std::string(VO_SOURCE_DIR) + "/sequences/triangle.json"));
+  ASSERT_TRUE(sequence.ok()) << sequence.message();
+  Session session;
+  const auto states = foldSequence(*sequence, session);
+  ASSERT_TRUE(states.ok()) << states.message();
+  const Paper& paper = states->back();
+  EXPECT_EQ(paper.faces.size(), 4u);
+  int right_angles = 0, flat = 0;
+  for (const Edge& e : paper.edges)
+    if (e.isCrease())
+    {
+      right_angles += std::abs(std::abs(e.fold_angle) - M_PI / 2) < 1e-9 ? 1 : 0;
+      flat += std::abs(std::abs(e.fold_angle) - M_PI) < 1e-9 ? 1 : 0;
+    }
+  EXPECT_EQ(right_angles, 2);  // the fold through both layers, opened
+  EXPECT_EQ(flat, 2);          // the diagonal, still folded flat
+}
+
+TEST(FoldSequence, RepeatTurnsTheSameFaceAboutTheSameAxis)
+{
+  const std::string text = R"({"title": "t", "steps": [
+    {"crease": {"start": [0.5, -0.1], "end": [0.5, 1.1]}},
+    {"rotate": {"click": [0.8, 0.5], "angle_deg": 30, "repeat": 3}}]})";
+  const Expected<FoldSequence> sequence = parseFoldSequence(text);
+  ASSERT_TRUE(sequence.ok()) << sequence.message();
+  Session session;
+  const auto states = foldSequence(*sequence, session);
+  ASSERT_TRUE(states.ok()) << states.message();
+  ASSERT_EQ(states->size(), 5u);
+  const Operation& last = session.log().back();
+  EXPECT_NEAR(states->back().edges[last.rotate.axis_edge].fold_angle, M_PI / 2, 1e-12);
+}
+
+TEST(FoldSequence, BadFilesAreRefusedWithTheStepAndField)
+{
+  expectRefused("{", "not valid JSON");
+  expectRefused("{}", "steps");
+  expectRefused(R"({"steps": [{"fly": {}}]})", "steps[0] names no operation");
+  expectRefused(R"({"steps": [{"crease": {"start": [0], "end": [1, 1]}}]})", "steps[0].crease.start");
+  expectRefused(R"({"steps": [{"crease": {"start": [0, "a"], "end": [1, 1]}}]})", "steps[0].crease.start[1]");
+  expectRefused(R"({"steps": [{"rotate": {"click": [0, 0]}}]})", "angle_deg");
+  expectRefused(R"({"size": -1, "steps": []})", "size");
+  expectRefused(R"({"steps": [{"rotate": {"click": [0, 0], "angle_deg": 1, "repeat": 0}}]})", "repeat");
+}
+
+TEST(FoldSequence, AStepThatFailsIsNamed)
+{
+  const Expected<FoldSequence> sequence = parseFoldSequence(
+      R"({"steps": [{"crease": {"start": [0, 0], "end": [1, 1]}}, {"crease": {"start": [5, 5], "end": [6, 6]}, "note": "off the paper"}]})");
+  ASSERT_TRUE(sequence.ok());
+  Session session;
+  const auto states = foldSequence(*sequence, session);
+  EXPECT_FALSE(states.ok());
+  EXPECT_NE(states.message().find("step 2 (off the paper)"), std::string::npos) << states.message();
+  EXPECT_NE(states.message().find("misses"), std::string::npos) << states.message();
+}
