@@ -1,0 +1,57 @@
+// Markers of the mouse interaction. Pure functions: the paper or a drag in, messages out.
+// The paper itself is an interactive marker the mouse presses and drags; everything shown
+// while dragging (the drawn line, snapping guides, axis, ring) is a plain marker on a topic
+// of its own, since re-sending an interactive marker during a drag breaks the drag.
+#pragma once
+
+#include <string>
+
+#include <ros/time.h>
+#include <visualization_msgs/InteractiveMarker.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include "virtual_origami/core/drag.h"
+#include "virtual_origami/core/paper.h"
+
+namespace virtual_origami
+{
+struct InteractionStyle
+{
+  std::string frame_id = "paper";
+  std::string marker_name = "paper";
+  double margin = 0.1;        // of the sheet's scale: a press just off the sheet still starts a line
+  double line_width = 0.006;  // in metres
+  double point_size = 0.025;
+  double text_size = 0.04;
+  float pick_alpha = 0.0f;  // the pickable copy of the sheet; paper_model's markers show the sheet
+  /// The pickable copy floats this far above the sheet (+z): rviz picks the nearest surface,
+  /// and the sheet's own markers (layers drawn apart) must not hide it from the mouse.
+  double pick_lift = 0.005;
+};
+
+/// The sheet as rviz's Interact tool sees it: its folded faces and a margin around them as a
+/// TRIANGLE_LIST in one MOVE_PLANE control (drag plane normal along z of `frame_id`), lifted
+/// by `pick_lift`: subtract it from the mouse points rviz reports.
+visualization_msgs::InteractiveMarker paperInteractiveMarker(const core::Paper& paper, const std::string& description,
+                                                             const InteractionStyle& style);
+
+// The drag's markers are drawn `pick_lift` above where they are, over the sheet's own markers.
+
+/// The line being drawn from its snapped start to its snapped end, and the guides of Fig. 6:
+/// the snapped points, an edge's division points, the angle's division directions.
+visualization_msgs::MarkerArray creaseDragMarkers(const core::CreaseDrag& drag, const InteractionStyle& style,
+                                                  const ros::Time& stamp);
+
+/// The automatic axis highlighted, the ring about it through the press point (Fig. 10), the
+/// spoke to where the pressed point is turned, and the angle in degrees.
+visualization_msgs::MarkerArray rotationDragMarkers(const core::RotationRing& ring, double angle,
+                                                    const InteractionStyle& style, const ros::Time& stamp);
+
+/// A short text for the user at `at` (why a drag was refused, what the menu did).
+visualization_msgs::MarkerArray messageMarker(const std::string& text, const core::Vec3& at,
+                                              const InteractionStyle& style, const ros::Time& stamp);
+
+/// Removes every marker of the interaction (a DELETEALL).
+visualization_msgs::MarkerArray clearedMarkers(const InteractionStyle& style, const ros::Time& stamp);
+
+}  // namespace virtual_origami

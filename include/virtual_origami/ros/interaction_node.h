@@ -1,0 +1,119 @@
+// The interaction node (SPEC §5): an interactive_markers server over the paper. Mouse
+// presses and drags in rviz become crease and rotate requests to paper_model, with the
+// snapping guides, axis and ring drawn while dragging; a right-click menu switches modes and
+// asks for squash, undo, redo, reset and pins. The services are the only way it changes the
+// paper: rotate previews with commit false while dragging, one committed call on release.
+#pragma once
+
+#include <deque>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <interactive_markers/interactive_marker_server.h>
+#include <interactive_markers/menu_handler.h>
+#include <ros/ros.h>
+#include <virtual_origami/PaperState.h>
+#include <visualization_msgs/InteractiveMarkerFeedback.h>
+
+#include "virtual_origami/core/drag.h"
+#include "virtual_origami/ros/interaction_markers.h"
+
+namespace virtual_origami
+{
+class InteractionNode
+{
+public:
+  InteractionNode(ros::NodeHandle nh, ros::NodeHandle private_nh);
+
+  enum class Mode
+  {
+    Crease,
+    Rotate,
+  };
+  enum class Action
+  {
+    None,
+    CreaseMode,
+    RotateMode,
+    Squash,
+    Undo,
+    Redo,
+    Reset,
+    Pin,
+    Release,
+  };
+
+private:
+  using Feedback = visualization_msgs::InteractiveMarkerFeedback;
+  struct Event
+  {
+    Feedback::ConstPtr feedback;
+    Action action = Action::None;  // a menu entry
+  };
+
+  // The server's thread: only queue (a pose replaces the pose queued before it).
+  void received(const Feedback::ConstPtr& feedback, Action action);
+
+  // The node's thread.
+  void handleEvents(const ros::TimerEvent&);
+  void stateReceived(const PaperState::ConstPtr& state);
+  /// A point rviz reports on the (lifted) sheet marker, brought down onto the sheet.
+  core::Vec3 onSheet(const geometry_msgs::Point& mouse_point) const;
+  void press(const Feedback& feedback);
+  void move(const Feedback& feedback);
+  void release();
+  void updateDrag();
+  void menu(Action action, const Feedback& feedback);
+  void setMode(Mode mode);
+  void showPaper();
+  void tell(const std::string& text, const core::Vec3& at);
+  void publishStatus(const ros::TimerEvent& = {});
+  bool previewRotation(double angle);
+
+  ros::NodeHandle nh_;
+  InteractionStyle style_;
+  core::SnapSettings snap_;
+  bool snap_radius_set_ = false;
+  core::Vec3 view_direction_{ 0, 0, -1 };
+  double min_crease_length_ = 0.01;
+  double layer_gap_ = 0.002;  // as paper_model draws coincident layers apart
+  double pick_lift_ = 0.004;
+
+  interactive_markers::InteractiveMarkerServer server_;
+  interactive_markers::MenuHandler menu_;
+  interactive_markers::MenuHandler::EntryHandle crease_entry_ = 0, rotate_entry_ = 0;
+  ros::Subscriber state_sub_;
+  ros::Publisher markers_pub_, status_pub_;
+  ros::ServiceClient crease_, rotate_, squash_, undo_, redo_, reset_, pin_;
+  ros::Timer timer_, status_timer_;
+
+  std::mutex mutex_;  // guards the queue and the counters the server's thread writes
+  std::deque<Event> events_;
+  uint64_t received_ = 0, coalesced_ = 0;
+
+  Mode mode_ = Mode::Crease;
+  std::optional<core::Paper> paper_;
+  uint64_t revision_ = 0;
+  std::vector<int> pinned_;
+  bool paper_changed_ = false;  // a new state came during a drag: show it after the release
+
+  // The drag in progress.
+  bool dragging_ = false;
+  bool moved_ = false;
+  core::Vec3 press_ = core::Vec3::Zero(), pointer_ = core::Vec3::Zero();
+  core::Vec3 pose_at_press_ = core::Vec3::Zero();
+  ros::Time pointer_stamp_;
+  std::optional<core::RotationRing> ring_;
+  double angle_ = 0.0, previewed_angle_ = 0.0;
+  bool previewed_ = false;
+
+  uint64_t applied_ = 0;
+  ros::Time applied_stamp_;
+  double apply_seconds_ = 0.0;
+  std::string message_;
+};
+
+}  // namespace virtual_origami

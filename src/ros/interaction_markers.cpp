@@ -1,0 +1,205 @@
+#include "virtual_origami/ros/interaction_markers.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include <visualization_msgs/InteractiveMarkerControl.h>
+
+#include "virtual_origami/ros/conversions.h"
+#include "virtual_origami/ros/markers.h"
+
+namespace virtual_origami
+{
+namespace
+{
+using visualization_msgs::Marker;
+
+Marker baseMarker(const InteractionStyle& style, const ros::Time& stamp, const std::string& ns, int type)
+{
+  Marker m;
+  m.header.frame_id = style.frame_id;
+  m.header.stamp = stamp;
+  m.ns = ns;
+  m.type = type;
+  m.action = Marker::ADD;
+  m.pose.orientation.w = 1.0;
+  m.pose.position.z = style.pick_lift;  // over the sheet's markers, never hidden in them
+  m.scale.x = m.scale.y = m.scale.z = style.line_width;
+  m.color = rgba(0, 0, 0);
+  m.frame_locked = true;
+  return m;
+}
+
+Marker points(const InteractionStyle& style, const ros::Time& stamp, const std::string& ns,
+              const std::vector<core::Vec3>& at, const std_msgs::ColorRGBA& color, double size)
+{
+  Marker m = baseMarker(style, stamp, ns, Marker::SPHERE_LIST);
+  m.scale.x = m.scale.y = m.scale.z = size;
+  m.color = color;
+  for (const core::Vec3& p : at)
+    m.points.push_back(toPoint(p));
+  return m;
+}
+
+/// A dashed segment as a LINE_LIST: guides read as guides, not as creases.
+void addDashed(Marker& m, const core::Vec3& a, const core::Vec3& b, double dash)
+{
+  const double length = (b - a).norm();
+  const int n = std::max(1, static_cast<int>(length / dash));
+  for (int i = 0; i < n; i += 2)
+  {
+    m.points.push_back(toPoint(a + (b - a) * (static_cast<double>(i) / n)));
+    m.points.push_back(toPoint(a + (b - a) * (static_cast<double>(i + 1) / n)));
+  }
+}
+
+void addSnapGuides(visualization_msgs::MarkerArray& array, const core::Snap& snap, const std::string& which,
+                   const InteractionStyle& style, const ros::Time& stamp)
+{
+  if (snap.kind == core::SnapKind::None)
+    return;
+  const auto colour = snap.kind == core::SnapKind::Vertex          ? rgba(0.85f, 0.1f, 0.1f)
+                      : snap.kind == core::SnapKind::EdgeDivision ? rgba(0.1f, 0.6f, 0.2f)
+                                                                    : rgba(0.55f, 0.2f, 0.75f);
+  array.markers.push_back(points(style, stamp, which + "_snap", { snap.point }, colour, 1.6 * style.point_size));
+  if (!snap.guide_points.empty())
+    array.markers.push_back(
+        points(style, stamp, which + "_guide_points", snap.guide_points, rgba(0.1f, 0.6f, 0.2f, 0.7f), style.point_size));
+  if (!snap.guide_lines.empty())
+  {
+    Marker lines = baseMarker(style, stamp, which + "_guide_lines", Marker::LINE_LIST);
+    lines.scale.x = 0.5 * style.line_width;
+    lines.color = rgba(0.55f, 0.2f, 0.75f, 0.8f);
+    for (const core::Segment3& s : snap.guide_lines)
+      addDashed(lines, s.a, s.b, 0.02);
+    array.markers.push_back(lines);
+  }
+}
+}  // namespace
+
+visualization_msgs::InteractiveMarker paperInteractiveMarker(const core::Paper& paper, const std::string& description,
+                                                             const InteractionStyle& style)
+{
+  visualization_msgs::InteractiveMarker im;
+  im.header.frame_id = style.frame_id;  // stamp zero: rviz follows the frame as it moves
+  im.name = style.marker_name;
+  im.description = description;
+  im.pose.orientation.w = 1.0;
+  im.scale = static_cast<float>(paper.scale());
+
+  Marker mesh;
+  mesh.type = Marker::TRIANGLE_LIST;
+  mesh.pose.orientation.w = 1.0;
+  mesh.scale.x = mesh.scale.y = mesh.scale.z = 1.0;
+  mesh.color = rgba(1.0f, 1.0f, 1.0f, style.pick_alpha);
+  const core::Vec3 lift(0, 0, style.pick_lift);
+  core::Vec3 lo = core::Vec3::Constant(INFINITY), hi = -lo;
+  for (const core::Face& face : paper.faces)
+    for (size_t i = 1; i + 1 < face.vertices.size(); ++i)  // a fan: faces are convex
+      for (int v : { face.vertices[0], face.vertices[i], face.vertices[i + 1] })
+        mesh.points.push_back(toPoint(paper.vertices[v].folded + lift));
+  for (const core::Vertex& v : paper.vertices)
+  {
+    lo = lo.cwiseMin(v.folded);
+    hi = hi.cwiseMax(v.folded);
+  }
+  if (!paper.vertices.empty())
+  {
+    // The margin lies on the table below the sheet: a line may start or end just off it.
+    const double m = style.margin * paper.scale();
+    const double z = lo.z() + style.pick_lift - 1e-4 * paper.scale();
+    const core::Vec3 a(lo.x() - m, lo.y() - m, z), b(hi.x() + m, lo.y() - m, z), c(hi.x() + m, hi.y() + m, z),
+        d(lo.x() - m, hi.y() + m, z);
+    for (const core::Vec3* p : { &a, &b, &c, &a, &c, &d })
+      mesh.points.push_back(toPoint(*p));
+  }
+
+  visualization_msgs::InteractiveMarkerControl control;
+  control.name = "drag";
+  control.interaction_mode = visualization_msgs::InteractiveMarkerControl::MOVE_PLANE;
+  // The control's x axis is the plane's normal: turned onto z, the mouse drags in the sheet's plane.
+  control.orientation.w = std::sqrt(0.5);
+  control.orientation.y = -std::sqrt(0.5);
+  control.always_visible = true;
+  control.markers.push_back(mesh);
+  im.controls.push_back(control);
+  return im;
+}
+
+visualization_msgs::MarkerArray creaseDragMarkers(const core::CreaseDrag& drag, const InteractionStyle& style,
+                                                  const ros::Time& stamp)
+{
+  visualization_msgs::MarkerArray array = clearedMarkers(style, stamp);
+  Marker line = baseMarker(style, stamp, "line", Marker::LINE_LIST);
+  line.color = rgba(0.9f, 0.45f, 0.0f);
+  line.points = { toPoint(drag.start.point), toPoint(drag.end.point) };
+  array.markers.push_back(line);
+  addSnapGuides(array, drag.start, "start", style, stamp);
+  addSnapGuides(array, drag.end, "end", style, stamp);
+  return array;
+}
+
+visualization_msgs::MarkerArray rotationDragMarkers(const core::RotationRing& ring, double angle,
+                                                    const InteractionStyle& style, const ros::Time& stamp)
+{
+  visualization_msgs::MarkerArray array = clearedMarkers(style, stamp);
+  Marker axis = baseMarker(style, stamp, "axis", Marker::LINE_LIST);
+  axis.scale.x = 2.5 * style.line_width;
+  axis.color = rgba(1.0f, 0.75f, 0.0f);
+  axis.points = { toPoint(ring.axis_a), toPoint(ring.axis_b) };
+  array.markers.push_back(axis);
+
+  Marker circle = baseMarker(style, stamp, "ring", Marker::LINE_STRIP);
+  circle.color = rgba(0.2f, 0.4f, 0.9f, 0.8f);
+  const int segments = 72;
+  for (int i = 0; i <= segments; ++i)
+  {
+    const double a = 2 * M_PI * i / segments;
+    circle.points.push_back(toPoint(ring.centre + ring.radius * (std::cos(a) * ring.u + std::sin(a) * ring.w)));
+  }
+  array.markers.push_back(circle);
+
+  Marker spokes = baseMarker(style, stamp, "spokes", Marker::LINE_LIST);
+  spokes.color = rgba(0.2f, 0.4f, 0.9f);
+  const core::Vec3 now = core::ringPoint(ring, angle);
+  spokes.points = { toPoint(ring.centre), toPoint(ring.press), toPoint(ring.centre), toPoint(now) };
+  array.markers.push_back(spokes);
+  array.markers.push_back(
+      points(style, stamp, "pointer", { ring.press, now }, rgba(0.2f, 0.4f, 0.9f), 1.4 * style.point_size));
+
+  Marker text = baseMarker(style, stamp, "angle", Marker::TEXT_VIEW_FACING);
+  text.scale.z = style.text_size;
+  text.color = rgba(0.1f, 0.1f, 0.3f);
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%+.0f°", angle * 180.0 / M_PI);
+  text.text = buffer;
+  text.pose.position = toPoint(now + 1.5 * style.text_size * ring.w);
+  array.markers.push_back(text);
+  return array;
+}
+
+visualization_msgs::MarkerArray messageMarker(const std::string& text, const core::Vec3& at,
+                                              const InteractionStyle& style, const ros::Time& stamp)
+{
+  visualization_msgs::MarkerArray array;
+  Marker m = baseMarker(style, stamp, "message", Marker::TEXT_VIEW_FACING);
+  m.scale.z = style.text_size;
+  m.color = rgba(0.6f, 0.1f, 0.1f);
+  m.text = text;
+  m.pose.position = toPoint(at);
+  m.lifetime = ros::Duration(4.0);
+  array.markers.push_back(m);
+  return array;
+}
+
+visualization_msgs::MarkerArray clearedMarkers(const InteractionStyle& style, const ros::Time& stamp)
+{
+  visualization_msgs::MarkerArray array;
+  Marker all = baseMarker(style, stamp, "", Marker::DELETEALL);
+  all.action = Marker::DELETEALL;
+  array.markers.push_back(all);
+  return array;
+}
+
+}  // namespace virtual_origami

@@ -1,0 +1,387 @@
+#include "virtual_origami/ros/interaction_node.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <std_srvs/Trigger.h>
+#include <virtual_origami/Crease.h>
+#include <virtual_origami/InteractionStatus.h>
+#include <virtual_origami/PinVertex.h>
+#include <virtual_origami/Rotate.h>
+
+#include "virtual_origami/core/layers.h"
+#include "virtual_origami/ros/conversions.h"
+
+namespace virtual_origami
+{
+namespace
+{
+using interactive_markers::MenuHandler;
+
+/// Calls a service; false (and the reason in `message`) when it cannot be reached.
+template <class Service>
+bool call(ros::ServiceClient& client, Service& srv, std::string& message)
+{
+  if (client.call(srv))
+    return true;
+  message = client.getService() + " did not answer; is paper_model running?";
+  return false;
+}
+}  // namespace
+
+InteractionNode::InteractionNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
+  : nh_(nh)
+  // Its own thread takes the feedback as it comes, so a busy service call never makes rviz's
+  // events wait in a queue that could drop a release.
+  , server_(private_nh.param<std::string>("server_ns", "interaction"), "", true)
+{
+  style_.frame_id = private_nh.param<std::string>("paper_frame", style_.frame_id);
+  style_.margin = private_nh.param("margin", style_.margin);
+  layer_gap_ = private_nh.param("layer_gap", layer_gap_);
+  style_.pick_alpha = static_cast<float>(private_nh.param("pick_alpha", static_cast<double>(style_.pick_alpha)));
+  snap_radius_set_ = private_nh.getParam("snap_radius", snap_.radius);
+  private_nh.param("edge_divisions", snap_.edge_divisions, snap_.edge_divisions);
+  private_nh.param("angle_divisions", snap_.angle_divisions, snap_.angle_divisions);
+  min_crease_length_ = private_nh.param("min_crease_length", min_crease_length_);
+  std::vector<double> view;
+  if (private_nh.getParam("view_direction", view) && view.size() == 3)
+    view_direction_ = core::Vec3(view[0], view[1], view[2]);
+  mode_ = private_nh.param<std::string>("mode", "crease") == "rotate" ? Mode::Rotate : Mode::Crease;
+
+  crease_ = nh_.serviceClient<Crease>("crease");
+  rotate_ = nh_.serviceClient<Rotate>("rotate");
+  squash_ = nh_.serviceClient<std_srvs::Trigger>("squash");
+  undo_ = nh_.serviceClient<std_srvs::Trigger>("undo");
+  redo_ = nh_.serviceClient<std_srvs::Trigger>("redo");
+  reset_ = nh_.serviceClient<std_srvs::Trigger>("reset");
+  pin_ = nh_.serviceClient<PinVertex>("pin");
+
+  const auto entry = [this](const std::string& title, Action action) {
+    return menu_.insert(title, [this, action](const Feedback::ConstPtr& f) { received(f, action); });
+  };
+  crease_entry_ = entry("Crease mode", Action::CreaseMode);
+  rotate_entry_ = entry("Rotate mode", Action::RotateMode);
+  entry("Squash", Action::Squash);
+  entry("Undo", Action::Undo);
+  entry("Redo", Action::Redo);
+  entry("Reset", Action::Reset);
+  entry("Pin the nearest vertex", Action::Pin);
+  entry("Release the nearest pin", Action::Release);
+
+  markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("interaction_markers", 10);
+  status_pub_ = nh_.advertise<InteractionStatus>("interaction_status", 10);
+  state_sub_ = nh_.subscribe("state", 1, &InteractionNode::stateReceived, this);
+  timer_ = nh_.createTimer(ros::Duration(1.0 / private_nh.param("rate", 30.0)), &InteractionNode::handleEvents, this);
+  status_timer_ = nh_.createTimer(ros::Duration(1.0), &InteractionNode::publishStatus, this);
+}
+
+void InteractionNode::received(const Feedback::ConstPtr& feedback, Action action)
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  ++received_;
+  const bool pose = action == Action::None && feedback->event_type == Feedback::POSE_UPDATE;
+  if (pose && !events_.empty() && events_.back().action == Action::None &&
+      events_.back().feedback->event_type == Feedback::POSE_UPDATE)
+  {
+    events_.back().feedback = feedback;  // only the latest pose matters
+    ++coalesced_;
+    return;
+  }
+  events_.push_back({ feedback, action });
+}
+
+void InteractionNode::handleEvents(const ros::TimerEvent&)
+{
+  std::deque<Event> events;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    events.swap(events_);
+  }
+  if (events.empty())
+    return;
+  for (const Event& e : events)
+  {
+    if (e.action != Action::None)
+      menu(e.action, *e.feedback);
+    else if (e.feedback->event_type == Feedback::MOUSE_DOWN)
+      press(*e.feedback);
+    else if (e.feedback->event_type == Feedback::POSE_UPDATE)
+      move(*e.feedback);
+    else if (e.feedback->event_type == Feedback::MOUSE_UP)
+    {
+      move(*e.feedback);
+      release();
+    }
+  }
+  if (dragging_ && moved_)
+    updateDrag();
+  publishStatus();
+}
+
+void InteractionNode::stateReceived(const PaperState::ConstPtr& state)
+{
+  core::Expected<core::Paper> paper = fromMessage(*state);
+  if (!paper)
+  {
+    ROS_ERROR("interaction: unusable state: %s", paper.message().c_str());
+    return;
+  }
+  paper_ = std::move(*paper);
+  revision_ = state->revision;
+  pinned_.clear();
+  for (const Pin& pin : state->pins)
+    pinned_.push_back(pin.vertex);
+  if (!snap_radius_set_)
+    snap_.radius = core::SnapSettings{}.radius * paper_->scale();
+  const std::vector<int> levels = core::stackLevels(*paper_);
+  const int top = levels.empty() ? 0 : *std::max_element(levels.begin(), levels.end());
+  pick_lift_ = (top + 1) * layer_gap_ + 0.002 * paper_->scale();
+  if (dragging_)
+    paper_changed_ = true;  // re-sending the marker now would end the drag in rviz
+  else
+    showPaper();
+}
+
+void InteractionNode::showPaper()
+{
+  if (!paper_)
+    return;
+  const std::string description = mode_ == Mode::Crease ? "crease: drag a line" : "rotate: drag a face";
+  style_.pick_lift = pick_lift_;
+  server_.insert(paperInteractiveMarker(*paper_, description, style_),
+                 [this](const Feedback::ConstPtr& f) { received(f, Action::None); });
+  menu_.setCheckState(crease_entry_, mode_ == Mode::Crease ? MenuHandler::CHECKED : MenuHandler::UNCHECKED);
+  menu_.setCheckState(rotate_entry_, mode_ == Mode::Rotate ? MenuHandler::CHECKED : MenuHandler::UNCHECKED);
+  menu_.apply(server_, style_.marker_name);
+  server_.applyChanges();
+  paper_changed_ = false;
+}
+
+core::Vec3 InteractionNode::onSheet(const geometry_msgs::Point& mouse_point) const
+{
+  return toVec3(mouse_point) - core::Vec3(0, 0, style_.pick_lift);
+}
+
+void InteractionNode::press(const Feedback& feedback)
+{
+  dragging_ = false;
+  if (!paper_ || !feedback.mouse_point_valid)
+    return;
+  if (!feedback.header.frame_id.empty() && feedback.header.frame_id != style_.frame_id)
+    ROS_WARN_ONCE("interaction: feedback in frame %s, expected %s", feedback.header.frame_id.c_str(),
+                  style_.frame_id.c_str());
+  dragging_ = true;
+  moved_ = false;
+  press_ = pointer_ = core::onSurface(*paper_, onSheet(feedback.mouse_point), view_direction_);
+  pose_at_press_ = toVec3(feedback.pose.position);
+  pointer_stamp_ = feedback.header.stamp;
+  angle_ = previewed_angle_ = 0.0;
+  previewed_ = false;
+  ring_.reset();
+  if (mode_ == Mode::Rotate)
+  {
+    core::Expected<core::RotationRing> ring = core::rotationRing(*paper_, press_, view_direction_);
+    if (!ring)
+    {
+      tell(ring.message(), press_);
+      return;  // the drag goes on in rviz, but turns nothing
+    }
+    ring_ = *ring;
+  }
+  updateDrag();
+}
+
+void InteractionNode::move(const Feedback& feedback)
+{
+  if (!dragging_)
+    return;
+  // The drag plane carries the marker along: the pointer is the press moved as far as it.
+  pointer_ = press_ + (toVec3(feedback.pose.position) - pose_at_press_);
+  pointer_stamp_ = feedback.header.stamp;
+  moved_ = true;
+}
+
+void InteractionNode::updateDrag()
+{
+  const ros::WallTime start = ros::WallTime::now();
+  moved_ = false;
+  if (mode_ == Mode::Crease)
+    markers_pub_.publish(creaseDragMarkers(core::creaseDrag(*paper_, press_, pointer_, snap_), style_, ros::Time::now()));
+  else if (ring_)
+  {
+    angle_ = core::ringAngle(*ring_, pointer_, view_direction_, angle_);
+    if (!previewed_ || std::abs(angle_ - previewed_angle_) > 1e-4)
+      previewRotation(angle_);
+    markers_pub_.publish(rotationDragMarkers(*ring_, angle_, style_, ros::Time::now()));
+  }
+  ++applied_;
+  applied_stamp_ = pointer_stamp_;
+  apply_seconds_ = (ros::WallTime::now() - start).toSec();
+}
+
+bool InteractionNode::previewRotation(double angle)
+{
+  Rotate srv;
+  srv.request.face = ring_->face;
+  srv.request.axis_edge = ring_->axis_edge;
+  srv.request.click = toPoint(ring_->press);
+  srv.request.angle = angle;
+  srv.request.commit = false;
+  std::string message;
+  if (!call(rotate_, srv, message) || !srv.response.success)
+  {
+    ROS_DEBUG("interaction: preview at %.3f rad refused: %s", angle, srv.response.message.c_str());
+    return false;
+  }
+  previewed_ = true;
+  previewed_angle_ = angle;
+  return true;
+}
+
+void InteractionNode::release()
+{
+  if (!dragging_)
+    return;
+  if (moved_)
+    updateDrag();
+  dragging_ = false;
+  markers_pub_.publish(clearedMarkers(style_, ros::Time::now()));
+  std::string message;
+  if (mode_ == Mode::Crease)
+  {
+    const core::CreaseDrag drag = core::creaseDrag(*paper_, press_, pointer_, snap_);
+    if (drag.length() >= min_crease_length_ * paper_->scale())
+    {
+      Crease srv;
+      srv.request.start = toPoint(drag.start.point);
+      srv.request.end = toPoint(drag.end.point);
+      srv.request.snap = false;  // snapped here already: what was drawn is what is creased
+      if (call(crease_, srv, message))
+        message = srv.response.message;
+    }
+  }
+  else if (ring_)
+  {
+    // The angle last shown is the one committed; a press without a turn commits nothing.
+    const double angle = previewed_ ? previewed_angle_ : 0.0;
+    Rotate srv;
+    srv.request.face = ring_->face;
+    srv.request.axis_edge = ring_->axis_edge;
+    srv.request.click = toPoint(ring_->press);
+    srv.request.angle = angle;
+    srv.request.commit = std::abs(angle) > 1e-3;
+    if (call(rotate_, srv, message))
+      message = srv.request.commit ? srv.response.message : "";
+  }
+  if (!message.empty())
+    tell(message, pointer_);
+  // rviz keeps the marker where the drag left it: put it back under the sheet.
+  geometry_msgs::Pose identity;
+  identity.orientation.w = 1.0;
+  server_.setPose(style_.marker_name, identity);
+  if (paper_changed_)
+    showPaper();
+  else
+    server_.applyChanges();
+}
+
+void InteractionNode::menu(Action action, const Feedback& feedback)
+{
+  const core::Vec3 at = feedback.mouse_point_valid ? onSheet(feedback.mouse_point) : core::Vec3::Zero();
+  std_srvs::Trigger trigger;
+  std::string message;
+  const auto triggered = [&](ros::ServiceClient& client) {
+    if (call(client, trigger, message))
+      message = trigger.response.message;
+  };
+  switch (action)
+  {
+    case Action::CreaseMode:
+    case Action::RotateMode:
+      setMode(action == Action::CreaseMode ? Mode::Crease : Mode::Rotate);
+      message = mode_ == Mode::Crease ? "crease mode" : "rotate mode";
+      break;
+    case Action::Squash:
+      triggered(squash_);
+      break;
+    case Action::Undo:
+      triggered(undo_);
+      break;
+    case Action::Redo:
+      triggered(redo_);
+      break;
+    case Action::Reset:
+      triggered(reset_);
+      break;
+    case Action::Pin:
+    case Action::Release:
+    {
+      if (!paper_ || !feedback.mouse_point_valid)
+        break;
+      // The vertex nearest the right-click: any vertex to pin, a pinned one to release.
+      int nearest = -1;
+      double best = 0.1 * paper_->scale();
+      for (size_t v = 0; v < paper_->vertices.size(); ++v)
+      {
+        const bool candidate = action == Action::Pin || std::count(pinned_.begin(), pinned_.end(), v) > 0;
+        const double d = (paper_->vertices[v].folded - at).norm();
+        if (candidate && d < best)
+        {
+          best = d;
+          nearest = static_cast<int>(v);
+        }
+      }
+      if (nearest < 0)
+      {
+        message = action == Action::Pin ? "no vertex near the click" : "no pin near the click";
+        break;
+      }
+      PinVertex pin;
+      pin.request.vertex = nearest;
+      pin.request.release = action == Action::Release;
+      if (call(pin_, pin, message))
+        message = pin.response.message;
+      break;
+    }
+    case Action::None:
+      break;
+  }
+  if (!message.empty())
+    tell(message, at);
+}
+
+void InteractionNode::setMode(Mode mode)
+{
+  mode_ = mode;
+  dragging_ = false;
+  showPaper();
+}
+
+void InteractionNode::tell(const std::string& text, const core::Vec3& at)
+{
+  ROS_INFO("interaction: %s", text.c_str());
+  message_ = text;
+  markers_pub_.publish(messageMarker(text, at + core::Vec3(0, 0, 0.05), style_, ros::Time::now()));
+}
+
+void InteractionNode::publishStatus(const ros::TimerEvent&)
+{
+  InteractionStatus status;
+  status.header.stamp = ros::Time::now();
+  status.mode = mode_ == Mode::Crease ? "crease" : "rotate";
+  status.revision = revision_;
+  status.dragging = dragging_;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    status.feedback_received = received_;
+    status.feedback_coalesced = coalesced_;
+    status.pending = static_cast<uint32_t>(events_.size());
+  }
+  status.updates_applied = applied_;
+  status.applied_stamp = applied_stamp_;
+  status.apply_seconds = apply_seconds_;
+  status.message = message_;
+  status_pub_.publish(status);
+}
+
+}  // namespace virtual_origami

@@ -1,0 +1,52 @@
+#include "virtual_origami/ros/mouse_feedback.h"
+
+#include "virtual_origami/ros/conversions.h"
+
+namespace virtual_origami
+{
+namespace
+{
+using visualization_msgs::InteractiveMarkerFeedback;
+
+InteractiveMarkerFeedback event(const MouseGesture& g, uint8_t type, const core::Vec3& pointer, bool with_point,
+                                const ros::Time& stamp)
+{
+  InteractiveMarkerFeedback f;
+  f.header.frame_id = g.frame_id;
+  f.header.stamp = stamp;
+  f.client_id = g.client_id;
+  f.marker_name = g.marker_name;
+  f.control_name = "drag";
+  f.event_type = type;
+  f.pose.position = toPoint(pointer - g.press);  // the marker sits at the origin until dragged
+  f.pose.orientation.w = 1.0;
+  f.mouse_point = toPoint(pointer + core::Vec3(0, 0, g.lift));
+  f.mouse_point_valid = with_point;
+  return f;
+}
+}  // namespace
+
+InteractiveMarkerFeedback MouseGesture::down(const ros::Time& stamp) const
+{
+  return event(*this, InteractiveMarkerFeedback::MOUSE_DOWN, press, true, stamp);
+}
+
+InteractiveMarkerFeedback MouseGesture::moveTo(const core::Vec3& at, const ros::Time& stamp) const
+{
+  return event(*this, InteractiveMarkerFeedback::POSE_UPDATE, at, false, stamp);
+}
+
+InteractiveMarkerFeedback MouseGesture::upAt(const core::Vec3& at, const ros::Time& stamp) const
+{
+  return event(*this, InteractiveMarkerFeedback::MOUSE_UP, at, true, stamp);
+}
+
+InteractiveMarkerFeedback MouseGesture::menu(uint32_t entry, const core::Vec3& at, const ros::Time& stamp) const
+{
+  InteractiveMarkerFeedback f = event(*this, InteractiveMarkerFeedback::MENU_SELECT, at, true, stamp);
+  f.pose.position = toPoint(core::Vec3::Zero());
+  f.menu_entry_id = entry;
+  return f;
+}
+
+}  // namespace virtual_origami

@@ -1,0 +1,324 @@
+// rostest: the interaction node driven the way rviz drives it (InteractiveMarkerFeedback on
+// the server's feedback topic), checked on the paper's `state`.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <set>
+
+#include <virtual_origami/InteractionStatus.h>
+#include <visualization_msgs/InteractiveMarkerInit.h>
+#include <visualization_msgs/InteractiveMarkerControl.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include "ros_test_client.h"
+#include "virtual_origami/ros/mouse_feedback.h"
+
+using namespace virtual_origami;
+using virtual_origami::test::PaperClient;
+using virtual_origami::test::waitFor;
+using visualization_msgs::InteractiveMarkerFeedback;
+
+namespace
+{
+core::Vec3 p3(double x, double y, double z = 0.0) { return { x, y, z }; }
+
+/// The crease-pattern position of a vertex of a state.
+core::Vec3 creasePattern(const PaperState& s, int v)
+{
+  return p3(s.vertices_crease_pattern[v].x, s.vertices_crease_pattern[v].y);
+}
+core::Vec3 folded(const PaperState& s, int v)
+{
+  return p3(s.vertices_folded[v].x, s.vertices_folded[v].y, s.vertices_folded[v].z);
+}
+int vertexAt(const PaperState& s, double x, double y)
+{
+  for (size_t v = 0; v < s.vertices_crease_pattern.size(); ++v)
+    if ((creasePattern(s, static_cast<int>(v)) - p3(x, y)).norm() < 1e-12)
+      return static_cast<int>(v);
+  return -1;
+}
+int creaseBetween(const PaperState& s, int a, int b)
+{
+  for (size_t e = 0; e < s.edges.size(); ++e)
+    if ((s.edges[e].v0 == a && s.edges[e].v1 == b) || (s.edges[e].v0 == b && s.edges[e].v1 == a))
+      return static_cast<int>(e);
+  return -1;
+}
+
+class Interaction : public ::testing::Test
+{
+protected:
+  void SetUp() override
+  {
+    feedback_pub_ = client_.nh().advertise<InteractiveMarkerFeedback>("interaction/feedback", 1000);
+    status_sub_ = client_.nh().subscribe<InteractionStatus>(
+        "interaction_status", 100, [this](const InteractionStatus::ConstPtr& s) {
+          status_ = *s;
+          ++statuses_;
+          max_pending_ = std::max<uint32_t>(max_pending_, s->pending);
+        });
+    guides_sub_ = client_.nh().subscribe<visualization_msgs::MarkerArray>(
+        "interaction_markers", 100, [this](const visualization_msgs::MarkerArray::ConstPtr& array) {
+          for (const auto& m : array->markers)
+            if (m.action == visualization_msgs::Marker::DELETEALL)
+              shown_.clear();
+            else if (m.action == visualization_msgs::Marker::ADD)
+              shown_.insert(m.ns);
+        });
+    init_sub_ = client_.nh().subscribe<visualization_msgs::InteractiveMarkerInit>(
+        "interaction/update_full", 10,
+        [this](const visualization_msgs::InteractiveMarkerInit::ConstPtr& init) { init_ = *init; });
+    paper_markers_sub_ = client_.nh().subscribe<visualization_msgs::MarkerArray>(
+        "markers", 100, [this](const visualization_msgs::MarkerArray::ConstPtr&) { ++paper_markers_; });
+    ASSERT_TRUE(client_.trigger("reset").response.success);
+    base_ = client_.state().revision;
+    ASSERT_TRUE(waitFor([&] { return feedback_pub_.getNumSubscribers() > 0; }, 30));
+    ASSERT_TRUE(waitFor([&] { return loadMenu(); }, 30)) << "no interactive marker `paper` with a menu";
+    ASSERT_TRUE(waitFor([&] { return statuses_ > 0 && status_.revision == base_; }, 10));
+  }
+
+  /// The sheet's marker and its menu entries by title, from the server's full update.
+  bool loadMenu()
+  {
+    for (const auto& m : init_.markers)
+      if (m.name == "paper")
+      {
+        marker_ = m;
+        if (!m.controls.empty() && !m.controls[0].markers.empty() && !m.controls[0].markers[0].points.empty())
+          gesture_.lift = m.controls[0].markers[0].points[0].z;  // the sheet lies flat in these tests
+        for (const auto& entry : m.menu_entries)
+          menu_[entry.title] = entry.id;
+        return !menu_.empty();
+      }
+    return false;
+  }
+
+  /// Markers of the drag on show (the message to the user aside).
+  size_t guidesShown() { return shown_.size() - shown_.count("message"); }
+
+  void send(const InteractiveMarkerFeedback& f)
+  {
+    feedback_pub_.publish(f);
+    ros::spinOnce();
+  }
+
+  /// The node handled everything sent so far.
+  void settle()
+  {
+    const int seen = statuses_;
+    ASSERT_TRUE(waitFor([&] { return statuses_ > seen + 1 && status_.pending == 0 && !status_.dragging; }, 10));
+  }
+
+  /// Press at `from`, move through `steps` points to `to`, release there.
+  void drag(const core::Vec3& from, const core::Vec3& to, int steps = 10,
+            const std::function<void()>& before_release = {})
+  {
+    gesture_.press = from;
+    send(gesture_.down(ros::Time::now()));
+    for (int i = 1; i <= steps; ++i)
+    {
+      ros::WallDuration(0.02).sleep();
+      send(gesture_.moveTo(from + (to - from) * (static_cast<double>(i) / steps), ros::Time::now()));
+    }
+    if (before_release)
+      before_release();
+    send(gesture_.upAt(to, ros::Time::now()));
+    settle();
+  }
+
+  /// The menu entry with that title (rviz shows check marks as a prefix).
+  void menu(const std::string& title, const core::Vec3& at = p3(0.5, 0.5))
+  {
+    int id = -1;
+    for (const auto& [t, i] : menu_)
+      if (t.find(title) != std::string::npos)
+        id = i;
+    ASSERT_GE(id, 0) << "no menu entry " << title;
+    send(gesture_.menu(id, at, ros::Time::now()));
+    settle();
+  }
+
+  void creaseDiagonal()
+  {
+    ASSERT_TRUE(client_.crease(0, 0, 1, 1).response.success);
+    ++base_;
+    client_.stateAt(base_);
+    ASSERT_TRUE(waitFor([&] { return status_.revision == base_; }, 10));  // the node shows it
+  }
+
+  /// Nothing was committed: the revision stays.
+  void expectUnchanged()
+  {
+    ros::WallDuration(0.5).sleep();
+    ros::spinOnce();
+    EXPECT_EQ(client_.state().revision, base_);
+  }
+
+  PaperClient client_;
+  ros::Publisher feedback_pub_;
+  ros::Subscriber status_sub_, guides_sub_, paper_markers_sub_, init_sub_;
+  visualization_msgs::InteractiveMarkerInit init_;
+  InteractionStatus status_;
+  int statuses_ = 0;
+  uint32_t max_pending_ = 0;
+  std::set<std::string> shown_;
+  int paper_markers_ = 0;
+  visualization_msgs::InteractiveMarker marker_;
+  std::map<std::string, int> menu_;
+  MouseGesture gesture_;
+  uint64_t base_ = 0;
+};
+}  // namespace
+
+TEST_F(Interaction, TheSheetIsADragPlaneWithAMenu)
+{
+  ASSERT_EQ(marker_.controls.size(), 1u);
+  const auto& control = marker_.controls[0];
+  EXPECT_EQ(control.interaction_mode, visualization_msgs::InteractiveMarkerControl::MOVE_PLANE);
+  ASSERT_EQ(control.markers.size(), 1u);
+  EXPECT_EQ(control.markers[0].type, visualization_msgs::Marker::TRIANGLE_LIST);
+  EXPECT_EQ(marker_.header.frame_id, "paper");
+  for (const char* title : { "Crease mode", "Rotate mode", "Squash", "Undo", "Redo", "Reset", "Pin" })
+  {
+    bool found = false;
+    for (const auto& entry : menu_)
+      found |= entry.first.find(title) != std::string::npos;
+    EXPECT_TRUE(found) << title;
+  }
+}
+
+TEST_F(Interaction, DraggingAlongTheDiagonalCreasesCornerToCorner)
+{
+  menu("Crease mode");
+  // Near, not on, the corners: snapping lands on them. Guides show while dragging.
+  drag(p3(0.012, 0.018), p3(0.986, 0.991), 10, [&] {
+    EXPECT_TRUE(waitFor([&] { return shown_.count("line") && shown_.count("end_snap"); }, 5));
+    EXPECT_TRUE(shown_.count("start_snap"));
+    EXPECT_EQ(client_.state().revision, base_);  // nothing committed while dragging
+  });
+  const PaperState& state = client_.stateAt(base_ + 1);
+  EXPECT_EQ(guidesShown(), 0u);  // the guides are gone after the release
+  const int a = vertexAt(state, 0, 0), b = vertexAt(state, 1, 1);
+  ASSERT_GE(a, 0);
+  ASSERT_GE(b, 0);
+  const int diagonal = creaseBetween(state, a, b);
+  ASSERT_GE(diagonal, 0) << "no edge joins the corners";
+  EXPECT_EQ(state.edges[diagonal].face_left >= 0 && state.edges[diagonal].face_right >= 0, true);
+  EXPECT_EQ(state.faces.size(), 2u);
+  EXPECT_EQ(state.vertices_crease_pattern.size(), 4u);  // no new vertex: exactly corner to corner
+}
+
+TEST_F(Interaction, AnEdgeDivisionGuideShowsWhileDragging)
+{
+  menu("Crease mode");
+  drag(p3(0.49, 0.01), p3(0.51, 0.99), 8, [&] {
+    EXPECT_TRUE(waitFor([&] { return shown_.count("end_guide_points") > 0; }, 5));
+  });
+  const PaperState& state = client_.stateAt(base_ + 1);
+  EXPECT_GE(vertexAt(state, 0.5, 0), 0);
+  EXPECT_GE(vertexAt(state, 0.5, 1), 0);
+}
+
+TEST_F(Interaction, DraggingAHalfTurnsItAboutTheCrease)
+{
+  creaseDiagonal();
+  menu("Rotate mode");
+  const PaperState before = client_.state();
+  const int moving = vertexAt(before, 1, 0), staying = vertexAt(before, 0, 1);
+  const int previews_before = paper_markers_;
+  // From the lower-right half onto the diagonal: from above, a quarter turn.
+  drag(p3(0.8, 0.3), p3(0.55, 0.55), 10, [&] {
+    EXPECT_TRUE(waitFor([&] { return shown_.count("axis") && shown_.count("ring"); }, 5));
+    EXPECT_TRUE(waitFor([&] { return paper_markers_ > previews_before; }, 5));  // previews drawn
+    EXPECT_EQ(client_.state().revision, base_);                                 // not committed
+  });
+  const PaperState& after = client_.stateAt(base_ + 1);
+  const int axis = creaseBetween(after, vertexAt(after, 0, 0), vertexAt(after, 1, 1));
+  ASSERT_GE(axis, 0);
+  EXPECT_NEAR(after.edges[axis].fold_angle, M_PI / 2, 1e-6);
+  EXPECT_EQ(after.edges[axis].assignment, "V");  // towards the eye above: a valley
+  EXPECT_GT(folded(after, moving).z(), 0.6);
+  EXPECT_TRUE(folded(after, staying).isApprox(folded(before, staying)));
+  EXPECT_EQ(guidesShown(), 0u);
+}
+
+TEST_F(Interaction, MenuUndoRestoresThePreviousState)
+{
+  creaseDiagonal();
+  menu("Rotate mode");
+  const PaperState before = client_.state();
+  drag(p3(0.2, 0.7), p3(0.8, 0.2), 12);  // across the diagonal: a half turn, folded flat
+  const PaperState turned = client_.stateAt(base_ + 1);
+  EXPECT_NE(turned.vertices_folded, before.vertices_folded);
+  menu("Undo");
+  const PaperState& undone = client_.stateAt(base_ + 2);
+  EXPECT_EQ(undone.vertices_folded, before.vertices_folded);
+  EXPECT_EQ(undone.edges, before.edges);
+  menu("Redo");
+  EXPECT_EQ(client_.stateAt(base_ + 3).vertices_folded, turned.vertices_folded);
+}
+
+TEST_F(Interaction, PressesThatChangeNothingCommitNothing)
+{
+  menu("Crease mode");
+  drag(p3(0.3, 0.3), p3(0.3, 0.3), 1);  // a click
+  expectUnchanged();
+  menu("Rotate mode");
+  drag(p3(0.3, 0.6), p3(0.5, 0.5), 4);  // an uncreased sheet has no axis
+  expectUnchanged();
+  EXPECT_FALSE(status_.message.empty());
+  creaseDiagonal();
+  drag(p3(0.8, 0.3), p3(0.9, 0.4), 4);  // along the axis: no turn
+  expectUnchanged();
+  drag(p3(1.05, 0.5), p3(0.5, 0.5), 4);  // on the margin, off the sheet
+  expectUnchanged();
+}
+
+TEST_F(Interaction, MenuPinsAndReleasesTheNearestVertex)
+{
+  menu("Pin the nearest vertex", p3(0.97, 0.98));
+  ASSERT_TRUE(waitFor([&] { return client_.state().pins.size() == 1; }));
+  const PaperState& pinned = client_.state();
+  EXPECT_EQ(creasePattern(pinned, pinned.pins[0].vertex), p3(1, 1));
+  menu("Release the nearest pin", p3(0.95, 0.96));
+  EXPECT_TRUE(waitFor([&] { return client_.state().pins.empty(); }));
+}
+
+TEST_F(Interaction, AFloodOfPosesIsCoalescedAndTheLatestApplied)
+{
+  creaseDiagonal();
+  menu("Rotate mode");
+  max_pending_ = 0;
+  gesture_.press = p3(0.8, 0.3);
+  send(gesture_.down(ros::Time::now()));
+  ASSERT_TRUE(waitFor([&] { return status_.dragging; }, 5));
+  // 1000 poses as fast as they go, ending over the axis.
+  const int n = 1000;
+  ros::Time last;
+  for (int i = 1; i <= n; ++i)
+  {
+    last = ros::Time::now();
+    const double t = static_cast<double>(i) / n;
+    send(gesture_.moveTo(p3(0.8 - 0.25 * t, 0.3 + 0.25 * t), last));
+  }
+  ASSERT_TRUE(waitFor([&] { return status_.applied_stamp == last; }, 10)) << "the latest pose was not applied";
+  EXPECT_GT(status_.feedback_coalesced, 0u);
+  EXPECT_LT(status_.updates_applied, static_cast<uint64_t>(n));
+  EXPECT_LE(max_pending_, 2u);  // one press and one pose at most: poses replace each other
+  EXPECT_EQ(client_.state().revision, base_);
+  send(gesture_.upAt(p3(0.55, 0.55), ros::Time::now()));
+  settle();
+  const PaperState& after = client_.stateAt(base_ + 1);
+  const int axis = creaseBetween(after, vertexAt(after, 0, 0), vertexAt(after, 1, 1));
+  EXPECT_NEAR(after.edges[axis].fold_angle, M_PI / 2, 1e-6);
+}
+
+int main(int argc, char** argv)
+{
+  ::testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "interaction_rostest");
+  ros::NodeHandle nh;
+  return RUN_ALL_TESTS();
+}
