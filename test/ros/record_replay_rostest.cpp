@@ -2,7 +2,6 @@
 // the recording survives kill -9 of the recorder.
 #include <gtest/gtest.h>
 
-#include <csignal>
 #include <cstdio>
 #include <filesystem>
 
@@ -12,24 +11,9 @@
 
 using namespace virtual_origami;
 using virtual_origami::test::PaperClient;
+using virtual_origami::test::crash;
 using virtual_origami::test::waitFor;
 
-namespace
-{
-int pidOf(const std::string& node)
-{
-  const std::string command = "pgrep -f '__name:=" + node + "( |$)' | head -n 1";
-  FILE* pipe = ::popen(command.c_str(), "r");
-  int pid = -1;
-  if (pipe)
-  {
-    if (std::fscanf(pipe, "%d", &pid) != 1)
-      pid = -1;
-    ::pclose(pipe);
-  }
-  return pid;
-}
-}  // namespace
 
 TEST(RecordReplay, AReplayEndsInTheRecordedState)
 {
@@ -57,9 +41,7 @@ TEST(RecordReplay, AReplayEndsInTheRecordedState)
 
   // Killed as a crash would: what it wrote stays readable, every operation in it.
   ros::WallDuration(1.0).sleep();
-  const int recorder = pidOf("recorder");
-  ASSERT_GT(recorder, 0);
-  ASSERT_EQ(::kill(recorder, SIGKILL), 0);
+  crash("recorder", false);
   const core::Expected<Recording> recording = readRecording(bag);
   ASSERT_TRUE(recording.ok()) << recording.message();
   ASSERT_EQ(recording->operations.size(), 10u);

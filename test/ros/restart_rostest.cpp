@@ -1,43 +1,17 @@
 // rostest: kill -9 the solver or the model mid-sequence; roslaunch respawns them.
 #include <gtest/gtest.h>
 
-#include <csignal>
-#include <cstdio>
 #include <string>
 
 #include "ros_test_client.h"
 
 using namespace virtual_origami;
 using virtual_origami::test::PaperClient;
+using virtual_origami::test::crash;
 using virtual_origami::test::waitFor;
 
 namespace
 {
-/// The pid of the process roslaunch started for a node, or -1.
-int pidOf(const std::string& node)
-{
-  const std::string command = "pgrep -f '__name:=" + node + "( |$)' | head -n 1";
-  FILE* pipe = ::popen(command.c_str(), "r");
-  int pid = -1;
-  if (pipe)
-  {
-    if (std::fscanf(pipe, "%d", &pid) != 1)
-      pid = -1;
-    ::pclose(pipe);
-  }
-  return pid;
-}
-
-/// SIGKILL, as a crash would; returns once the process is gone and another has taken its place.
-void crash(const std::string& node)
-{
-  const int pid = pidOf(node);
-  ASSERT_GT(pid, 0) << node << " is not running";
-  ASSERT_EQ(::kill(pid, SIGKILL), 0);
-  ASSERT_TRUE(waitFor([&] { const int now = pidOf(node); return now > 0 && now != pid; }, 30.0))
-      << node << " was not restarted";
-}
-
 /// A degree-4 vertex at the centre: a full crease x = 0.5 and one half crease on each side.
 /// Turning a face about a half crease moves every other face through the solver.
 void makeDegreeFourVertex(PaperClient& client)

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <csignal>
+#include <cstdio>
 #include <functional>
 #include <string>
 
@@ -26,6 +28,32 @@ inline bool waitFor(const std::function<bool()>& done, double seconds = 10.0)
     ros::WallDuration(0.01).sleep();
   }
   return done();
+}
+
+/// The pid of the process roslaunch started for a node, or -1.
+inline int pidOf(const std::string& node)
+{
+  const std::string command = "pgrep -f '__name:=" + node + "( |$)' | head -n 1";
+  FILE* pipe = ::popen(command.c_str(), "r");
+  int pid = -1;
+  if (pipe)
+  {
+    if (std::fscanf(pipe, "%d", &pid) != 1)
+      pid = -1;
+    ::pclose(pipe);
+  }
+  return pid;
+}
+
+/// SIGKILL, as a crash would; with `respawned`, returns once another process has taken its place.
+inline void crash(const std::string& node, bool respawned = true)
+{
+  const int pid = pidOf(node);
+  ASSERT_GT(pid, 0) << node << " is not running";
+  ASSERT_EQ(::kill(pid, SIGKILL), 0);
+  if (respawned)
+    ASSERT_TRUE(waitFor([&] { const int now = pidOf(node); return now > 0 && now != pid; }, 30.0))
+        << node << " was not restarted";
 }
 
 class PaperClient

@@ -35,6 +35,15 @@ void expectSameHistory(const History& a, const History& b)
   }
 }
 
+std::vector<std::string> readLines(const std::string& path)
+{
+  std::ifstream in(path);
+  std::vector<std::string> lines;
+  for (std::string l; std::getline(in, l);)
+    lines.push_back(l);
+  return lines;
+}
+
 /// A short fold with undo and redo in it, recorded as it goes.
 Session foldRecorded(SessionJournal& journal, const std::string& path)
 {
@@ -100,11 +109,7 @@ TEST(SessionJournal, ATornLastLineLosesOnlyThatEvent)
   const std::string path = tempPath("torn");
   SessionJournal journal;
   foldRecorded(journal, path);
-  std::ifstream in(path);
-  std::vector<std::string> lines;
-  for (std::string l; std::getline(in, l);)
-    lines.push_back(l);
-  in.close();
+  const std::vector<std::string> lines = readLines(path);
   {
     std::ofstream out(path, std::ios::trunc);
     for (size_t i = 0; i + 1 < lines.size(); ++i)
@@ -122,11 +127,7 @@ TEST(SessionJournal, DamageIsReportedWithItsLine)
   const std::string path = tempPath("damaged");
   SessionJournal journal;
   foldRecorded(journal, path);
-  std::ifstream in(path);
-  std::vector<std::string> lines;
-  for (std::string l; std::getline(in, l);)
-    lines.push_back(l);
-  in.close();
+  const std::vector<std::string> lines = readLines(path);
   {
     std::ofstream out(path, std::ios::trunc);
     for (size_t i = 0; i < lines.size(); ++i)
