@@ -92,7 +92,7 @@ visualization_msgs::InteractiveMarker paperInteractiveMarker(const core::Paper& 
   mesh.type = Marker::TRIANGLE_LIST;
   mesh.pose.orientation.w = 1.0;
   mesh.scale.x = mesh.scale.y = mesh.scale.z = 1.0;
-  mesh.color = rgba(1.0f, 1.0f, 1.0f, style.pick_alpha);
+  mesh.color = rgba(0.0f, 0.0f, 0.0f, style.pick_alpha);
   const core::Vec3 lift(0, 0, style.pick_lift);
   core::Vec3 lo = core::Vec3::Constant(INFINITY), hi = -lo;
   for (const core::Face& face : paper.faces)

@@ -256,8 +256,8 @@ void InteractionNode::release()
       srv.request.start = toPoint(drag.start.point);
       srv.request.end = toPoint(drag.end.point);
       srv.request.snap = false;  // snapped here already: what was drawn is what is creased
-      if (call(crease_, srv, message))
-        message = srv.response.message;
+      if (call(crease_, srv, message) && !srv.response.success)
+        message = srv.response.message;  // a refusal says why; a crease shows itself
     }
   }
   else if (ring_)
@@ -270,8 +270,8 @@ void InteractionNode::release()
     srv.request.click = toPoint(ring_->press);
     srv.request.angle = angle;
     srv.request.commit = std::abs(angle) > 1e-3;
-    if (call(rotate_, srv, message))
-      message = srv.request.commit ? srv.response.message : "";
+    if (call(rotate_, srv, message) && !srv.response.success)
+      message = srv.response.message;
   }
   if (!message.empty())
     tell(message, pointer_);

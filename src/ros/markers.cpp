@@ -96,6 +96,11 @@ visualization_msgs::MarkerArray paperMarkers(const core::Paper& paper, const Mar
     for (int f : e.faces)
       if (f >= 0 && lift[f].norm() > offset.norm())
         offset = lift[f];
+    // Just over the upper surface (front or back), where a view from above sees it.
+    core::Vec3 up = e.faces[0] >= 0 ? paper.faceNormal(e.faces[0]) : core::Vec3::UnitZ();
+    if (up.z() < 0)
+      up = -up;
+    offset += up * (2 * style.side_offset);
     for (int v : e.vertices)
       m.points.push_back(toPoint(paper.vertices[v].folded + offset));
   }

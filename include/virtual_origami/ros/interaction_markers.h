@@ -23,7 +23,9 @@ struct InteractionStyle
   double line_width = 0.006;  // in metres
   double point_size = 0.025;
   double text_size = 0.04;
-  float pick_alpha = 0.0f;  // the pickable copy of the sheet; paper_model's markers show the sheet
+  /// The pickable copy of the sheet, all but invisible (paper_model's markers show the sheet):
+  /// rviz gives a marker of alpha 0 a default colour of its own, half opaque.
+  float pick_alpha = 0.01f;
   /// The pickable copy floats this far above the sheet (+z): rviz picks the nearest surface,
   /// and the sheet's own markers (layers drawn apart) must not hide it from the mouse.
   double pick_lift = 0.005;
