@@ -225,14 +225,15 @@ def run(out):
 
     def shot(name):
         path = os.path.join(out, name)
-        subprocess.run(['import', '-window', 'root', path], check=True)
+        crop = '%dx%d+%d+%d' % (window[2], window[3], window[0], window[1]) if window else '1024x768+0+0'
+        subprocess.run(['import', '-window', 'root', '-crop', crop, '+repage', path], check=True)
         shots.append(path)
 
+    window = []
     check = Checker()
     wait_for(lambda: check.state is not None, 60, 'no state from paper_model')
     base = check.revision()
     wait_for(lambda: check.status is not None and check.status.revision == base, 30, 'the interaction node is not up')
-    window = []
 
     def find_window():
         r = subprocess.run(['xdotool', 'search', '--name', 'RViz'], capture_output=True, text=True)
@@ -277,7 +278,7 @@ def run(out):
     # 2. Rotate: the menu's rotate mode, then a drag from the lower-right half across the crease.
     mouse.menu((0.7, 0.6), 2, shot=lambda: shot('03_menu.png'))
     wait_for(lambda: check.status.mode == 'rotate', 10, 'the menu did not switch to rotate mode')
-    press, release = (0.8, 0.3), (0.42, 0.68)
+    press, release = (0.8, 0.3), (0.5, 0.6)
     mouse.drag(press, release, during=lambda: shot('04_rotate_drag.png'))
     turned = check.wait_revision(base + 2, 'rotate')
     shot('05_turned.png')
