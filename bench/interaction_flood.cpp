@@ -67,23 +67,26 @@ int main(int argc, char** argv)
   visualization_msgs::InteractiveMarkerInit init;
   virtual_origami::PaperState state;
 
-  auto status_sub = nh.subscribe<InteractionStatus>("interaction_status", 1000, [&](const InteractionStatus::ConstPtr& s) {
-    std::lock_guard<std::mutex> lock(mutex);
-    status = *s;
-    have_status = true;
-    if (!flood_start.isZero() && s->dragging && !s->applied_stamp.isZero() && s->applied_stamp >= flood_start)
-      samples.push_back({ (ros::Time::now() - flood_start).toSec(), (ros::Time::now() - s->applied_stamp).toSec() * 1e3,
-                          s->apply_seconds * 1e3, s->pending });
-  });
+  auto status_sub =
+      nh.subscribe<InteractionStatus>("interaction_status", 1000, [&](const InteractionStatus::ConstPtr& s) {
+        std::lock_guard<std::mutex> lock(mutex);
+        status = *s;
+        have_status = true;
+        if (!flood_start.isZero() && s->dragging && !s->applied_stamp.isZero() && s->applied_stamp >= flood_start)
+          samples.push_back({ (ros::Time::now() - flood_start).toSec(),
+                              (ros::Time::now() - s->applied_stamp).toSec() * 1e3, s->apply_seconds * 1e3,
+                              s->pending });
+      });
   auto init_sub = nh.subscribe<visualization_msgs::InteractiveMarkerInit>(
       "interaction/update_full", 10, [&](const visualization_msgs::InteractiveMarkerInit::ConstPtr& m) {
         std::lock_guard<std::mutex> lock(mutex);
         init = *m;
       });
-  auto state_sub = nh.subscribe<virtual_origami::PaperState>("state", 10, [&](const virtual_origami::PaperState::ConstPtr& s) {
-    std::lock_guard<std::mutex> lock(mutex);
-    state = *s;
-  });
+  auto state_sub =
+      nh.subscribe<virtual_origami::PaperState>("state", 10, [&](const virtual_origami::PaperState::ConstPtr& s) {
+        std::lock_guard<std::mutex> lock(mutex);
+        state = *s;
+      });
   auto markers_sub = nh.subscribe<visualization_msgs::MarkerArray>(
       "markers", 1000, [&](const visualization_msgs::MarkerArray::ConstPtr&) { ++previews; });
   ros::Publisher feedback = nh.advertise<visualization_msgs::InteractiveMarkerFeedback>("interaction/feedback", 1000);
@@ -212,7 +215,8 @@ int main(int argc, char** argv)
   const uint64_t received = end.feedback_received - received_before;
   const uint64_t coalesced = end.feedback_coalesced - coalesced_before;
   const uint64_t applied = end.updates_applied - applied_before;
-  std::printf("interaction_flood: %d pose updates sent in %.2f s (%.0f/s)\n", sent, flood_seconds, sent / flood_seconds);
+  std::printf("interaction_flood: %d pose updates sent in %.2f s (%.0f/s)\n", sent, flood_seconds,
+              sent / flood_seconds);
   std::printf("  received by the node   %lu (%lu coalesced away, %lu applied: %.1f updates/s)\n",
               static_cast<unsigned long>(received), static_cast<unsigned long>(coalesced),
               static_cast<unsigned long>(applied), applied / flood_seconds);

@@ -59,13 +59,13 @@ void addSnapGuides(visualization_msgs::MarkerArray& array, const core::Snap& sna
 {
   if (snap.kind == core::SnapKind::None)
     return;
-  const auto colour = snap.kind == core::SnapKind::Vertex          ? rgba(0.85f, 0.1f, 0.1f)
-                      : snap.kind == core::SnapKind::EdgeDivision ? rgba(0.1f, 0.6f, 0.2f)
-                                                                    : rgba(0.55f, 0.2f, 0.75f);
+  const auto colour = snap.kind == core::SnapKind::Vertex       ? rgba(0.85f, 0.1f, 0.1f) :
+                      snap.kind == core::SnapKind::EdgeDivision ? rgba(0.1f, 0.6f, 0.2f) :
+                                                                  rgba(0.55f, 0.2f, 0.75f);
   array.markers.push_back(points(style, stamp, which + "_snap", { snap.point }, colour, 1.6 * style.point_size));
   if (!snap.guide_points.empty())
-    array.markers.push_back(
-        points(style, stamp, which + "_guide_points", snap.guide_points, rgba(0.1f, 0.6f, 0.2f, 0.7f), style.point_size));
+    array.markers.push_back(points(style, stamp, which + "_guide_points", snap.guide_points,
+                                   rgba(0.1f, 0.6f, 0.2f, 0.7f), style.point_size));
   if (!snap.guide_lines.empty())
   {
     Marker lines = baseMarker(style, stamp, which + "_guide_lines", Marker::LINE_LIST);

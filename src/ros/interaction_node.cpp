@@ -206,7 +206,8 @@ void InteractionNode::updateDrag()
   const ros::WallTime start = ros::WallTime::now();
   moved_ = false;
   if (mode_ == Mode::Crease)
-    markers_pub_.publish(creaseDragMarkers(core::creaseDrag(*paper_, press_, pointer_, snap_), style_, ros::Time::now()));
+    markers_pub_.publish(
+        creaseDragMarkers(core::creaseDrag(*paper_, press_, pointer_, snap_), style_, ros::Time::now()));
   else if (ring_)
   {
     angle_ = core::ringAngle(*ring_, pointer_, view_direction_, angle_);
@@ -314,8 +315,7 @@ void InteractionNode::menu(Action action, const Feedback& feedback)
       triggered(reset_);
       break;
     case Action::Pin:
-    case Action::Release:
-    {
+    case Action::Release: {
       if (!paper_ || !feedback.mouse_point_valid)
         break;
       // The vertex nearest the right-click: any vertex to pin, a pinned one to release.

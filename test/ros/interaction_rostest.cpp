@@ -21,7 +21,10 @@ using visualization_msgs::InteractiveMarkerFeedback;
 
 namespace
 {
-core::Vec3 p3(double x, double y, double z = 0.0) { return { x, y, z }; }
+core::Vec3 p3(double x, double y, double z = 0.0)
+{
+  return { x, y, z };
+}
 
 /// The crease-pattern position of a vertex of a state.
 core::Vec3 creasePattern(const PaperState& s, int v)
@@ -96,7 +99,10 @@ protected:
   }
 
   /// Markers of the drag on show (the message to the user aside).
-  size_t guidesShown() { return shown_.size() - shown_.count("message"); }
+  size_t guidesShown()
+  {
+    return shown_.size() - shown_.count("message");
+  }
 
   void send(const InteractiveMarkerFeedback& f)
   {
@@ -213,9 +219,8 @@ TEST_F(Interaction, DraggingAlongTheDiagonalCreasesCornerToCorner)
 TEST_F(Interaction, AnEdgeDivisionGuideShowsWhileDragging)
 {
   menu("Crease mode");
-  drag(p3(0.49, 0.01), p3(0.51, 0.99), 8, [&] {
-    EXPECT_TRUE(waitFor([&] { return shown_.count("end_guide_points") > 0; }, 5));
-  });
+  drag(p3(0.49, 0.01), p3(0.51, 0.99), 8,
+       [&] { EXPECT_TRUE(waitFor([&] { return shown_.count("end_guide_points") > 0; }, 5)); });
   const PaperState& state = client_.stateAt(base_ + 1);
   EXPECT_GE(vertexAt(state, 0.5, 0), 0);
   EXPECT_GE(vertexAt(state, 0.5, 1), 0);

@@ -103,7 +103,7 @@ TEST(RotationRing, PressOnAHalfPicksTheDiagonalAsAxis)
   EXPECT_NEAR(ring->radius, 0.25 * std::sqrt(2.0), 1e-12);
   EXPECT_NEAR(ring->press_angle, 0.0, 1e-12);
   EXPECT_TRUE(ring->w.isApprox(Vec3(0, 0, 1)));  // towards the eye
-  EXPECT_EQ(ring->moving_faces.size(), 1u);     // the half turns rigidly
+  EXPECT_EQ(ring->moving_faces.size(), 1u);      // the half turns rigidly
   EXPECT_NEAR(ring->min_angle, -M_PI, 1e-12);
   EXPECT_NEAR(ring->max_angle, M_PI, 1e-12);
 }
@@ -185,7 +185,7 @@ TEST(RotationRing, RefusesWithAMessage)
   EXPECT_FALSE(no_crease.ok());
   EXPECT_FALSE(no_crease.message().empty());
   const Paper paper = diagonalSquare();
-  EXPECT_FALSE(rotationRing(paper, p3(1.5, 0.4), kFromAbove).ok());   // off the sheet
-  EXPECT_FALSE(rotationRing(paper, p3(0.5, 0.5), kFromAbove).ok());   // on the axis
+  EXPECT_FALSE(rotationRing(paper, p3(1.5, 0.4), kFromAbove).ok());    // off the sheet
+  EXPECT_FALSE(rotationRing(paper, p3(0.5, 0.5), kFromAbove).ok());    // on the axis
   EXPECT_FALSE(rotationRing(paper, p3(0.8, 0.3), Vec3::Zero()).ok());  // no view
 }

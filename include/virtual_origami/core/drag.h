@@ -27,7 +27,10 @@ struct CreaseDrag
   Snap start, end;
   /// The crease exactly as drawn: the snapped ends, no further snapping.
   CreaseRequest request() const;
-  double length() const { return (end.point - start.point).norm(); }
+  double length() const
+  {
+    return (end.point - start.point).norm();
+  }
 };
 
 CreaseDrag creaseDrag(const Paper& paper, const Vec3& press, const Vec3& pointer, const SnapSettings& settings);
