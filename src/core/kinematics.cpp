@@ -1,7 +1,6 @@
 #include "virtual_origami/core/kinematics.h"
 
 #include <cmath>
-#include <deque>
 #include <sstream>
 
 #include <Eigen/SVD>
@@ -75,27 +74,10 @@ Expected<std::vector<Vec3>> foldedPositionsFromAngles(const Paper& paper, const 
   if (root_face < 0 || root_face >= static_cast<int>(paper.faces.size()))
     return Expected<std::vector<Vec3>>::failure("root face " + std::to_string(root_face) + " does not exist");
   std::vector<Eigen::Isometry3d> pose(paper.faces.size());
-  std::vector<char> placed(paper.faces.size(), 0);
-  std::deque<int> queue{ root_face };
   pose[root_face] = root_pose;
-  placed[root_face] = 1;
-  while (!queue.empty())
-  {
-    const int f = queue.front();
-    queue.pop_front();
-    for (int e : paper.faces[f].edges)
-    {
-      const Edge& edge = paper.edges[e];
-      if (!edge.isCrease())
-        continue;
-      const int g = edge.otherFace(f);
-      if (placed[g])
-        continue;
-      pose[g] = pose[f] * hingeTransform(paper, e, f, fold_angles[e]);
-      placed[g] = 1;
-      queue.push_back(g);
-    }
-  }
+  const std::vector<char> placed = walkFaces(paper, root_face, [&](int f, int e, int g) {
+    pose[g] = pose[f] * hingeTransform(paper, e, f, fold_angles[e]);
+  });
   // Creases off the spanning tree must agree with the poses their faces got.
   for (size_t e = 0; e < paper.edges.size(); ++e)
   {

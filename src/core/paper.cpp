@@ -1,6 +1,7 @@
 #include "virtual_origami/core/paper.h"
 
 #include <cmath>
+#include <deque>
 #include <map>
 
 #include <Eigen/Geometry>
@@ -197,6 +198,31 @@ Status linkTopology(Paper& paper)
     if (paper.edges[e].faces[0] < 0 && paper.edges[e].faces[1] < 0)
       return failure("edge " + std::to_string(e) + " belongs to no face");
   return success();
+}
+
+std::vector<char> walkFaces(const Paper& paper, int start, const std::function<void(int, int, int)>& step,
+                            const std::function<bool(int)>& crossable)
+{
+  std::vector<char> reached(paper.faces.size(), 0);
+  std::deque<int> queue{ start };
+  reached[start] = 1;
+  while (!queue.empty())
+  {
+    const int f = queue.front();
+    queue.pop_front();
+    for (int e : paper.faces[f].edges)
+    {
+      const Edge& edge = paper.edges[e];
+      if (!edge.isCrease() || reached[edge.otherFace(f)] || (crossable && !crossable(e)))
+        continue;
+      const int g = edge.otherFace(f);
+      reached[g] = 1;
+      if (step)
+        step(f, e, g);
+      queue.push_back(g);
+    }
+  }
+  return reached;
 }
 
 double measureFoldAngle(const Paper& paper, int edge)

@@ -1,7 +1,6 @@
 #include "virtual_origami/core/rotate.h"
 
 #include <cmath>
-#include <deque>
 #include <sstream>
 
 #include "virtual_origami/core/axis.h"
@@ -31,28 +30,11 @@ Axis axisOf(const Paper& paper, int edge)
 /// Faces reachable from `face` without crossing a crease that lies on the axis line.
 std::vector<char> sideOf(const Paper& paper, int face, const Axis& axis, double tolerance)
 {
-  std::vector<char> reached(paper.faces.size(), 0);
-  std::deque<int> queue{ face };
-  reached[face] = 1;
-  while (!queue.empty())
-  {
-    const int f = queue.front();
-    queue.pop_front();
-    for (int e : paper.faces[f].edges)
-    {
-      const Edge& edge = paper.edges[e];
-      if (!edge.isCrease())
-        continue;
-      const bool hinge = axis.distance(paper.vertices[edge.vertices[0]].folded) <= tolerance &&
-                         axis.distance(paper.vertices[edge.vertices[1]].folded) <= tolerance;
-      const int g = edge.otherFace(f);
-      if (hinge || reached[g])
-        continue;
-      reached[g] = 1;
-      queue.push_back(g);
-    }
-  }
-  return reached;
+  return walkFaces(paper, face, {}, [&](int e) {
+    const Edge& edge = paper.edges[e];
+    return axis.distance(paper.vertices[edge.vertices[0]].folded) > tolerance ||
+           axis.distance(paper.vertices[edge.vertices[1]].folded) > tolerance;
+  });
 }
 
 std::vector<char> verticesOf(const Paper& paper, const std::vector<char>& faces)

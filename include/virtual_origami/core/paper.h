@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -101,6 +102,12 @@ struct Paper
 /// Derives Face::edges and Edge::faces from the face cycles; fails on an edge used by
 /// more than two faces, twice in one direction, or missing from `edges`.
 Status linkTopology(Paper& paper);
+
+/// Breadth-first walk over the faces from `start` across creases (those `crossable` allows,
+/// all when it is empty). `step(from, edge, to)` runs once for every face reached after
+/// `start`, in walk order. Returns a flag per face: reached or not.
+std::vector<char> walkFaces(const Paper& paper, int start, const std::function<void(int, int, int)>& step = {},
+                            const std::function<bool(int)>& crossable = {});
 
 /// Recomputes every crease's fold angle from the folded positions, taking the branch
 /// nearest the previous value (so ±180° stays on the side it was folded to). A crease
