@@ -6,7 +6,7 @@ BUILD_TYPE ?= Release
 JOBS       ?= 2
 CMAKE_ARGS ?=
 
-.PHONY: all deps configure build test run clean
+.PHONY: all deps configure build test run bench clean
 
 all: build
 
@@ -24,6 +24,11 @@ test: build
 
 run: build
 	bash scripts/run.sh output
+
+# Solver benchmark (never part of test): writes docs/bench/solvers.csv, seed_accuracy.csv,
+# seed_stability.csv; see docs/SOLVERS.md.
+bench: build
+	$(BUILD_DIR)/devel/lib/virtual_origami/solver_bench docs/bench
 
 clean:
 	rm -rf $(BUILD_DIR) output

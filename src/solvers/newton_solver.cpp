@@ -1,6 +1,7 @@
 #include "virtual_origami/solvers/newton_solver.h"
 
 #include <algorithm>
+#include <memory>
 #include <cmath>
 #include <sstream>
 
@@ -32,28 +33,49 @@ Eigen::Vector3d faceMean(const RigidFace& face, const Positions& x)
   return mean / static_cast<double>(face.vertices.size());
 }
 
-/// The reduced Gauss–Newton matrix over the free vertices (3 rows each), with its sparsity
-/// pattern and symbolic factorisation set up once per solve and refilled every step.
+/// The reduced Gauss–Newton matrix over the free vertices (3 rows each). Its pattern is
+/// ordered once, block by block (approximate minimum degree on the vertex graph, so the 3 × 3
+/// blocks stay together), and stored as the upper triangle in that order: every step only
+/// refills values in place and factors them numerically.
 class ReducedSystem
 {
 public:
   ReducedSystem(const std::vector<RigidFace>& faces, const std::vector<int>& free_index, int free_count)
     : faces_(faces), free_index_(free_index), size_(3 * free_count)
   {
-    std::vector<Eigen::Triplet<double>> triplets;
+    // Which free vertices share a face.
+    std::vector<std::vector<int>> neighbours(free_count);
     for (const RigidFace& face : faces)
       for (int v : face.vertices)
         for (int w : face.vertices)
           if (free_index[v] >= 0 && free_index[w] >= 0)
-            for (int a = 0; a < 3; ++a)
-              for (int b = 0; b < 3; ++b)
-                triplets.emplace_back(3 * free_index[v] + a, 3 * free_index[w] + b, 0.0);
-    for (int i = 0; i < size_; ++i)
-      triplets.emplace_back(i, i, 0.0);
+            neighbours[free_index[v]].push_back(free_index[w]);
+    std::vector<Eigen::Triplet<double>> block_pattern;
+    for (int i = 0; i < free_count; ++i)
+    {
+      std::sort(neighbours[i].begin(), neighbours[i].end());
+      neighbours[i].erase(std::unique(neighbours[i].begin(), neighbours[i].end()), neighbours[i].end());
+      for (int j : neighbours[i])
+        block_pattern.emplace_back(i, j, 1.0);
+    }
+    SparseMatrix blocks(free_count, free_count);
+    blocks.setFromTriplets(block_pattern.begin(), block_pattern.end());
+    Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> inverse;
+    Eigen::AMDOrdering<int>()(blocks, inverse);
+    const Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> order = inverse.inverse();
+    block_order_ = order.indices();  // new position of each free vertex
+
+    std::vector<Eigen::Triplet<double>> triplets;
+    for (int i = 0; i < free_count; ++i)
+      for (int j : neighbours[i])
+        for (int a = 0; a < 3; ++a)
+          for (int b = 0; b < 3; ++b)
+            if (row(i, a) <= row(j, b))
+              triplets.emplace_back(row(i, a), row(j, b), 0.0);
     matrix_.resize(size_, size_);
     matrix_.setFromTriplets(triplets.begin(), triplets.end());
     matrix_.makeCompressed();
-    // Where each face's 3 × 3 blocks land among the stored values.
+    // Where each face's 3 × 3 blocks land among the stored values (-1: below the diagonal).
     slots_.resize(faces.size());
     for (size_t f = 0; f < faces.size(); ++f)
       for (int v : faces[f].vertices)
@@ -61,7 +83,7 @@ public:
           if (free_index[v] >= 0 && free_index[w] >= 0)
             for (int b = 0; b < 3; ++b)
               for (int a = 0; a < 3; ++a)
-                slots_[f].push_back(slot(3 * free_index[v] + a, 3 * free_index[w] + b));
+                slots_[f].push_back(slot(row(free_index[v], a), row(free_index[w], b)));
     for (int i = 0; i < size_; ++i)
       diagonal_.push_back(slot(i, i));
     solver_.analyzePattern(matrix_);
@@ -100,8 +122,9 @@ public:
           Eigen::Matrix3d block = left * skew(q[l]);
           block.diagonal().array() += (k == l ? 1.0 : 0.0) - inv_n;
           for (int b = 0; b < 3; ++b)
-            for (int a = 0; a < 3; ++a)
-              values[slots_[f][s++]] += block(a, b);
+            for (int a = 0; a < 3; ++a, ++s)
+              if (slots_[f][s] >= 0)
+                values[slots_[f][s]] += block(a, b);
         }
       }
     }
@@ -111,26 +134,40 @@ public:
     return solver_.info() == Eigen::Success;
   }
 
+  /// Solves in the free vertices' own order (3 per vertex).
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const
   {
-    return solver_.solve(rhs);
+    Eigen::VectorXd ordered(size_);
+    for (int i = 0; i < size_ / 3; ++i)
+      ordered.segment<3>(3 * block_order_[i]) = rhs.segment<3>(3 * i);
+    const Eigen::VectorXd solution = solver_.solve(ordered);
+    Eigen::VectorXd result(size_);
+    for (int i = 0; i < size_ / 3; ++i)
+      result.segment<3>(3 * i) = solution.segment<3>(3 * block_order_[i]);
+    return result;
   }
 
 private:
-  int slot(int row, int col) const
+  int row(int free_vertex, int axis) const { return 3 * block_order_[free_vertex] + axis; }
+
+  int slot(int r, int c) const
   {
+    if (r > c)
+      return -1;
     const int* rows = matrix_.innerIndexPtr();
-    const int begin = matrix_.outerIndexPtr()[col], end = matrix_.outerIndexPtr()[col + 1];
-    return static_cast<int>(std::lower_bound(rows + begin, rows + end, row) - rows);
+    const int begin = matrix_.outerIndexPtr()[c], end = matrix_.outerIndexPtr()[c + 1];
+    return static_cast<int>(std::lower_bound(rows + begin, rows + end, r) - rows);
   }
 
   const std::vector<RigidFace>& faces_;
   const std::vector<int>& free_index_;
   int size_;
+  Eigen::VectorXi block_order_;
   SparseMatrix matrix_;
   std::vector<std::vector<int>> slots_;
   std::vector<int> diagonal_;
-  Eigen::SimplicialLDLT<SparseMatrix> solver_;
+  // Already ordered: the natural ordering takes the upper triangle as it is, without a copy.
+  Eigen::SimplicialLDLT<SparseMatrix, Eigen::Upper, Eigen::NaturalOrdering<int>> solver_;
 };
 
 /// Gradient of the rigid-face energy over the free vertices (3 per vertex): with the
@@ -163,26 +200,73 @@ void moveFree(Positions& x, const Positions& from, const Eigen::VectorXd& step, 
 }
 }  // namespace
 
+/// What a solve sets up from the model's faces and held vertices alone: kept while they stay
+/// the same (the steps of one drag), so the sparse pattern is analysed once.
+struct NewtonSolver::Setup
+{
+  std::vector<std::vector<int>> face_vertices;
+  std::vector<Vec2> crease_pattern;
+  std::vector<char> fixed;
+  std::vector<RigidFace> faces;
+  std::vector<Spring> springs;
+  std::vector<int> free_index;
+  int free_count = 0;
+  std::unique_ptr<ReducedSystem> system;
+
+  Setup(const Paper& paper, const std::vector<char>& held)
+    : crease_pattern(creasePattern(paper)), fixed(held), faces(rigidFaces(paper)), springs(faceSprings(paper))
+  {
+    for (const Face& face : paper.faces)
+      face_vertices.push_back(face.vertices);
+    free_index = freeIndices(fixed, paper.vertices.size(), &free_count);
+    system = std::make_unique<ReducedSystem>(faces, free_index, free_count);
+  }
+
+  bool matches(const Paper& paper, const std::vector<char>& held) const
+  {
+    if (held != fixed || paper.faces.size() != face_vertices.size() || creasePattern(paper) != crease_pattern)
+      return false;
+    for (size_t f = 0; f < paper.faces.size(); ++f)
+      if (paper.faces[f].vertices != face_vertices[f])
+        return false;
+    return true;
+  }
+
+  static std::vector<Vec2> creasePattern(const Paper& paper)
+  {
+    std::vector<Vec2> c;
+    c.reserve(paper.vertices.size());
+    for (const Vertex& v : paper.vertices)
+      c.push_back(v.crease_pattern);
+    return c;
+  }
+};
+
 NewtonSolver::NewtonSolver(NewtonOptions options) : options_(options)
 {
   limits_.max_iterations = 200;
 }
 
+NewtonSolver::~NewtonSolver() = default;
+
 SolveReport NewtonSolver::solve(Paper& paper, const std::vector<char>& fixed)
 {
   SolveBudget budget(limits_);
   SolveReport report;
-  const std::vector<RigidFace> faces = rigidFaces(paper);
-  const std::vector<Spring> springs = faceSprings(paper);
-  int free_count = 0;
-  const std::vector<int> free_index = freeIndices(fixed, paper.vertices.size(), &free_count);
+  if (!setup_ || !setup_->matches(paper, fixed))
+    setup_ = std::make_unique<Setup>(paper, fixed);
+  const std::vector<RigidFace>& faces = setup_->faces;
+  const std::vector<Spring>& springs = setup_->springs;
+  const std::vector<int>& free_index = setup_->free_index;
+  const int free_count = setup_->free_count;
+  ReducedSystem& system = *setup_->system;
   const Positions start = foldedPositions(paper);
   Positions x = start, trial = start;
   const double residual_tolerance = limits_.tolerance * paper.scale();
 
-  ReducedSystem system(faces, free_index, free_count);
   RigidFit fit = fitRigidFaces(faces, x);
   std::string stuck;
+  bool factored = false;
   bool diverged = !std::isfinite(fit.energy);
   while (!diverged)
   {
@@ -197,12 +281,19 @@ SolveReport NewtonSolver::solve(Paper& paper, const std::vector<char>& fixed)
     ++report.iterations;
     const Eigen::VectorXd g = gradient(faces, fit, x, free_index, free_count);
     double mu = std::max(options_.min_damping, options_.damping * g.norm() / paper.scale());
+    const double energy_before = fit.energy;
     bool accepted = false;
-    // A rejected step raises the damping, turning Gauss–Newton towards gradient descent.
-    for (int attempt = 0; attempt < 4 && !accepted; ++attempt, mu *= 100)
+    // First with the factorisation kept from an earlier step (if any), then fresh ones with
+    // rising damping, which turns Gauss–Newton towards gradient descent.
+    for (int attempt = factored ? -1 : 0; attempt < 4 && !accepted; ++attempt)
     {
-      if (!system.factor(fit.rotations, mu))
-        continue;
+      if (attempt >= 0)
+      {
+        factored = system.factor(fit.rotations, mu);
+        mu *= 100;
+        if (!factored)
+          continue;
+      }
       const Eigen::VectorXd step = system.solve(-g);
       const double slope = g.dot(step);
       if (!std::isfinite(slope) || slope >= 0)
@@ -226,6 +317,9 @@ SolveReport NewtonSolver::solve(Paper& paper, const std::vector<char>& fixed)
       stuck = "no step lowers the rigid-face energy any further";
       break;
     }
+    // A kept factorisation pays while it cuts the energy fast; when progress slows, refresh.
+    if (!options_.reuse_factorization || fit.energy > options_.refactor_ratio * energy_before)
+      factored = false;
     diverged = !std::isfinite(fit.energy);
   }
   report.seconds = budget.seconds();

@@ -253,10 +253,16 @@ SolveReport RigidKinematicsSolver::solve(Paper& paper, const std::vector<char>& 
   for (size_t e = 0; e < paper.edges.size(); ++e)
     angles[e] = paper.edges[e].fold_angle;
   Eigen::Isometry3d root_pose = facePose(paper, tree.root);
-  const double tolerance = limits_.tolerance * paper.scale();
+  // Faces are exact; strain comes only from where two faces (or a face and a hold) disagree
+  // about a vertex, at most twice that gap over the shortest vertex pair.
+  double shortest = INFINITY;
+  for (const Spring& s : springs)
+    shortest = std::min(shortest, s.rest);
+  const double tolerance = 0.5 * limits_.tolerance * shortest;
 
   // Already exact where it stands: leave it untouched.
-  if (report.max_strain <= limits_.tolerance && fitRigidFaces(rigidFaces(paper), start).max_residual <= tolerance)
+  if (report.max_strain <= limits_.tolerance &&
+      fitRigidFaces(rigidFaces(paper), start).max_residual <= limits_.tolerance * paper.scale())
   {
     report.converged = true;
     return report;

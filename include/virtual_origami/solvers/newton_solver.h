@@ -5,6 +5,7 @@
 // over the free vertices only and converges quadratically.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -14,11 +15,17 @@ namespace virtual_origami::core
 {
 struct NewtonOptions
 {
-  /// Levenberg–Marquardt damping μ = damping · |gradient| (floored at min_damping): it fades
-  /// as the solution nears, keeping quadratic convergence, and picks the smallest move along
-  /// the free directions of a mechanism (a fold with degrees of freedom left).
-  double damping = 1.0;
-  double min_damping = 1e-12;
+  /// Levenberg–Marquardt damping μ = damping · |gradient| / scale, at least min_damping (the
+  /// matrix's entries are of order 1): it fades as the solution nears, keeping the quadratic
+  /// convergence, while the floor keeps steps along the free directions of a mechanism (a
+  /// fold with degrees of freedom left) from blowing up rounding errors.
+  double damping = 1e-4;
+  double min_damping = 1e-8;
+  /// Keep a factorisation for the next steps while each cuts the energy below
+  /// refactor_ratio of what it was (a chord step: one back-substitution instead of a
+  /// factorisation); refactor when progress slows.
+  bool reuse_factorization = true;
+  double refactor_ratio = 0.1;
   int max_line_search = 40;
   double armijo = 1e-4;
 };
@@ -27,6 +34,7 @@ class NewtonSolver : public ShapeSolver
 {
 public:
   explicit NewtonSolver(NewtonOptions options = {});
+  ~NewtonSolver() override;
   std::string name() const override
   {
     return "newton";
@@ -34,7 +42,10 @@ public:
   SolveReport solve(Paper& paper, const std::vector<char>& fixed) override;
 
 private:
+  struct Setup;  // sparse pattern and symbolic factorisation, kept while faces and held vertices stay
+
   NewtonOptions options_;
+  std::unique_ptr<Setup> setup_;
 };
 
 }  // namespace virtual_origami::core
