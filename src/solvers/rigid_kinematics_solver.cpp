@@ -1,7 +1,6 @@
 #include "virtual_origami/solvers/rigid_kinematics_solver.h"
 
 #include <cmath>
-#include <deque>
 #include <sstream>
 
 #include <Eigen/Dense>
@@ -32,31 +31,16 @@ FaceTree faceTree(const Paper& paper, int root)
 {
   FaceTree tree;
   tree.root = root;
-  const size_t n = paper.faces.size();
-  tree.parent.assign(n, -1);
-  tree.parent_edge.assign(n, -1);
+  tree.parent.assign(paper.faces.size(), -1);
+  tree.parent_edge.assign(paper.faces.size(), -1);
   tree.angle_index.assign(paper.edges.size(), -1);
-  std::vector<char> seen(n, 0);
-  std::deque<int> queue{ root };
-  seen[root] = 1;
-  while (!queue.empty())
-  {
-    const int f = queue.front();
-    queue.pop_front();
-    tree.order.push_back(f);
-    for (int e : paper.faces[f].edges)
-    {
-      const Edge& edge = paper.edges[e];
-      if (!edge.isCrease() || seen[edge.otherFace(f)])
-        continue;
-      const int g = edge.otherFace(f);
-      seen[g] = 1;
-      tree.parent[g] = f;
-      tree.parent_edge[g] = e;
-      tree.angle_index[e] = tree.unknowns++;
-      queue.push_back(g);
-    }
-  }
+  tree.order.push_back(root);
+  walkFaces(paper, root, [&](int from, int edge, int to) {
+    tree.order.push_back(to);
+    tree.parent[to] = from;
+    tree.parent_edge[to] = edge;
+    tree.angle_index[edge] = tree.unknowns++;
+  });
   return tree;
 }
 
