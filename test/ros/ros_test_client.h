@@ -5,9 +5,11 @@
 
 #include <csignal>
 #include <cstdio>
+#include <fstream>
 #include <functional>
 #include <string>
 
+#include <ros/master.h>
 #include <ros/ros.h>
 #include <std_srvs/Trigger.h>
 #include <virtual_origami/Crease.h>
@@ -30,19 +32,24 @@ inline bool waitFor(const std::function<bool()>& done, double seconds = 10.0)
   return done();
 }
 
-/// The pid of the process roslaunch started for a node, or -1.
+/// The pid of the process roslaunch started for a node under this test's master, or -1.
+/// Processes of other ROS systems on the machine (another test run) are left alone.
 inline int pidOf(const std::string& node)
 {
-  const std::string command = "pgrep -f '__name:=" + node + "( |$)' | head -n 1";
+  const std::string command = "pgrep -f '__name:=" + node + "( |$)'";
+  const std::string ours = "ROS_MASTER_URI=" + ros::master::getURI();
   FILE* pipe = ::popen(command.c_str(), "r");
-  int pid = -1;
-  if (pipe)
+  int found = -1;
+  for (int pid; pipe && found < 0 && std::fscanf(pipe, "%d", &pid) == 1;)
   {
-    if (std::fscanf(pipe, "%d", &pid) != 1)
-      pid = -1;
-    ::pclose(pipe);
+    std::ifstream environ("/proc/" + std::to_string(pid) + "/environ");
+    for (std::string entry; std::getline(environ, entry, '\0');)
+      if (entry == ours)
+        found = pid;
   }
-  return pid;
+  if (pipe)
+    ::pclose(pipe);
+  return found;
 }
 
 /// SIGKILL, as a crash would; with `respawned`, returns once another process has taken its place.
