@@ -6,7 +6,7 @@ BUILD_TYPE ?= Release
 JOBS       ?= 2
 CMAKE_ARGS ?=
 
-.PHONY: all deps configure build test run bench clean
+.PHONY: all deps configure build test run bench clean fuzz
 
 all: build
 
@@ -29,6 +29,12 @@ run: build
 # seed_stability.csv; see docs/SOLVERS.md.
 bench: build
 	$(BUILD_DIR)/devel/lib/virtual_origami/solver_bench docs/bench
+
+# libFuzzer targets of test/fuzz/ with ASan + UBSan (clang-14, into build-fuzz/), each for
+# FUZZ_SECONDS, one after the other; crashes land in test/fuzz/crashes/ (docs/RELIABILITY.md).
+FUZZ_SECONDS ?= 60
+fuzz: deps
+	FUZZ_SECONDS=$(FUZZ_SECONDS) JOBS=$(JOBS) bash scripts/fuzz.sh
 
 clean:
 	rm -rf $(BUILD_DIR) output

@@ -13,6 +13,11 @@ namespace virtual_origami::core
 {
 namespace
 {
+/// Sharpest corner a cut may leave in a piece of a face, in radians.
+constexpr double kMinCutAngle = 1e-5;
+/// Smallest area of a piece of a face a cut may leave, relative to the sheet's area.
+constexpr double kMinPieceArea = 1e-9;
+
 /// The part of a plane a crease cuts with: a strip (no eye) or a wedge from the eye.
 struct CutRegion
 {
@@ -110,6 +115,7 @@ public:
     scale_ = paper.scale();
     plane_tol_ = 1e-9 * scale_;
     region_tol_ = 1e-7 * scale_;
+    snap_tol_ = 1e-6 * scale_;
   }
 
   Expected<CreaseResult> run()
@@ -133,6 +139,11 @@ public:
       if (xs.size() > 2 || !inside)
       {
         partial = true;
+        continue;
+      }
+      if (sliver(static_cast<int>(f), xs[0], xs[1]))
+      {
+        along_edge = true;  // a cut a hair off a side would leave a sliver: it runs along it
         continue;
       }
       cuts.push_back({ static_cast<int>(f), { xs[0], xs[1] } });
@@ -176,6 +187,20 @@ private:
       distance_[v] = region_.signedDistance(paper_.vertices[v].folded);
       side_[v] = distance_[v] > plane_tol_ ? 1 : distance_[v] < -plane_tol_ ? -1 : 0;
     }
+    // A crossing a hair from an edge's end is that end: a new vertex there would make an edge
+    // too short for any solver's strain measure, or a corner piece with no area (fuzzing).
+    for (const Edge& edge : paper_.edges)
+    {
+      const int a = edge.vertices[0], b = edge.vertices[1];
+      if (side_[a] * side_[b] >= 0)
+        continue;
+      const double t = distance_[a] / (distance_[a] - distance_[b]);
+      const double length = (paper_.vertices[b].crease_pattern - paper_.vertices[a].crease_pattern).norm();
+      if (t * length < snap_tol_)
+        side_[a] = 0;
+      else if ((1 - t) * length < snap_tol_)
+        side_[b] = 0;
+    }
   }
 
   /// Where the plane meets the face boundary, in cycle order, without repeats.
@@ -201,6 +226,95 @@ private:
       }
     }
     return xs;
+  }
+
+  Vec2 creasePatternPoint(const Crossing& c) const
+  {
+    if (c.vertex >= 0)
+      return paper_.vertices[c.vertex].crease_pattern;
+    const Edge& edge = paper_.edges[c.edge];
+    const Vec2& a = paper_.vertices[edge.vertices[0]].crease_pattern;
+    return a + c.t * (paper_.vertices[edge.vertices[1]].crease_pattern - a);
+  }
+
+  /// Area of the piece of the face from crossing `from` counter-clockwise round to `to`,
+  /// closed by the chord: a triangle fan from `from`.
+  double pieceArea(int face, const Crossing& from, const Vec2& p_from, const Crossing& to, const Vec2& p_to) const
+  {
+    const Face& f = paper_.faces[face];
+    const size_t n = f.vertices.size();
+    // The first boundary vertex after `from`, going counter-clockwise.
+    size_t i = 0;
+    if (from.vertex >= 0)
+    {
+      while (f.vertices[i] != from.vertex)
+        ++i;
+      i = (i + 1) % n;
+    }
+    else
+    {
+      while (f.edges[i] != from.edge)
+        ++i;
+      i = (i + 1) % n;
+    }
+    std::vector<Vec2> polygon{ p_from };
+    for (size_t k = 0; k < n; ++k, i = (i + 1) % n)
+    {
+      const int v = f.vertices[i];
+      if (v == to.vertex)
+        break;
+      polygon.push_back(paper_.vertices[v].crease_pattern);
+      if (to.vertex < 0 && f.edges[i] == to.edge)
+        break;
+    }
+    polygon.push_back(p_to);
+    double twice = 0.0;
+    for (size_t k = 1; k + 1 < polygon.size(); ++k)
+    {
+      const Vec2 u = polygon[k] - polygon[0], w = polygon[k + 1] - polygon[0];
+      twice += u.x() * w.y() - u.y() * w.x();
+    }
+    return 0.5 * std::abs(twice);
+  }
+
+  /// True when cutting the face from `a` to `b` would leave a piece with almost no area or a
+  /// corner sharper than kMinCutAngle (a line a hair off a side or a corner): such slivers
+  /// break the solvers' strain measure and FOLD readers (ours refuses corners under 1e-6 rad
+  /// and faces under 1e-12 of the squared diagonal). Found by fuzzing.
+  bool sliver(int face, const Crossing& a, const Crossing& b) const
+  {
+    const Vec2 pa = creasePatternPoint(a), pb = creasePatternPoint(b);
+    if (std::min(pieceArea(face, a, pa, b, pb), pieceArea(face, b, pb, a, pa)) < kMinPieceArea * scale_ * scale_)
+      return true;
+    const auto angle = [](const Vec2& u, const Vec2& v) {
+      return std::atan2(std::abs(u.x() * v.y() - u.y() * v.x()), u.dot(v));
+    };
+    const std::vector<int>& vs = paper_.faces[face].vertices;
+    const size_t n = vs.size();
+    for (const auto& [end, chord] : { std::pair(a, Vec2(pb - pa)), std::pair(b, Vec2(pa - pb)) })
+    {
+      std::array<Vec2, 2> sides;  // along the face's boundary, both ways from the cut's end
+      if (end.vertex >= 0)
+      {
+        size_t i = 0;
+        while (vs[i] != end.vertex)
+          ++i;
+        const Vec2& here = paper_.vertices[end.vertex].crease_pattern;
+        sides = { paper_.vertices[vs[(i + n - 1) % n]].crease_pattern - here,
+                  paper_.vertices[vs[(i + 1) % n]].crease_pattern - here };
+      }
+      else
+      {
+        const Edge& edge = paper_.edges[end.edge];
+        const Vec2 along = paper_.vertices[edge.vertices[1]].crease_pattern -
+                           paper_.vertices[edge.vertices[0]].crease_pattern;
+        sides = { along, Vec2(-along) };
+      }
+      for (const Vec2& side : sides)
+        if (angle(chord, side) < kMinCutAngle)
+          return true;
+    }
+    return false;
   }
 
   /// True when every crossing is a vertex and they run along one side of the face.
@@ -304,7 +418,7 @@ private:
 
   Paper& paper_;
   const CutRegion& region_;
-  double scale_ = 1.0, plane_tol_ = 0.0, region_tol_ = 0.0;
+  double scale_ = 1.0, plane_tol_ = 0.0, region_tol_ = 0.0, snap_tol_ = 0.0;
   std::vector<int> side_;
   std::vector<double> distance_;
   std::map<int, int> split_vertex_;

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstring>
 #include <deque>
+#include <filesystem>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -38,6 +39,8 @@ constexpr double kDevelopableTolerance = 1e-4;
 constexpr double kCoplanarTolerance = 1e-6;
 /// Smallest allowed turn at a face corner, as a sine: a little slack for rounded files.
 constexpr double kConvexityTolerance = 1e-6;
+/// Larger files are refused unread: no paper this tool folds needs one.
+constexpr size_t kMaxFoldFileBytes = size_t{ 64 } << 20;
 /// A measured fold angle this close to ±180° takes its sign from the assignment.
 constexpr double kFlatFoldTolerance = 1e-4;
 
@@ -1098,14 +1101,24 @@ Expected<FoldDocument> parseFold(const std::string& text)
 
 Expected<FoldDocument> readFoldFile(const std::string& path)
 {
+  // A device, FIFO or directory would block or never end (load of /dev/zero filled memory).
+  std::error_code error;
+  if (std::filesystem::exists(path, error) && !std::filesystem::is_regular_file(path, error))
+    return Expected<FoldDocument>::failure("cannot load " + path + ": not a regular file");
   std::FILE* file = std::fopen(path.c_str(), "rb");
   if (!file)
     return Expected<FoldDocument>::failure("cannot open " + path + ": " + errnoText());
   std::string text;
   char buffer[1 << 16];
   size_t got = 0;
-  while ((got = std::fread(buffer, 1, sizeof buffer, file)) > 0)
+  while ((got = std::fread(buffer, 1, sizeof buffer, file)) > 0 && text.size() <= kMaxFoldFileBytes)
     text.append(buffer, got);
+  if (text.size() > kMaxFoldFileBytes)
+  {
+    std::fclose(file);
+    return Expected<FoldDocument>::failure("cannot load " + path + ": larger than " +
+                                           std::to_string(kMaxFoldFileBytes >> 20) + " MiB");
+  }
   const bool read_error = std::ferror(file) != 0;
   const std::string reason = read_error ? errnoText() : "";
   std::fclose(file);

@@ -124,8 +124,10 @@ Status Session::redo()
 
 Status Session::reset(double size)
 {
-  if (!std::isfinite(size) || size <= 0)
-    return failure("the sheet size must be a positive finite number");
+  // Tolerances are relative to the sheet's scale and its area is size²: keep both far from
+  // overflow and underflow (a size of 1e308 made an infinite area, found by fuzzing).
+  if (!(size >= kMinSheetSize && size <= kMaxSheetSize))
+    return failure("the sheet size must be a number between 1e-6 and 1e6 m");
   Operation op;
   op.kind = Operation::Kind::Reset;
   op.size = size;
@@ -135,6 +137,9 @@ Status Session::reset(double size)
 
 Status Session::load(Paper paper, const std::string& path)
 {
+  const double side = std::sqrt(paper.sheet_area);
+  if (!(side >= kMinSheetSize && side <= kMaxSheetSize))
+    return failure("the model in " + path + " is not a sheet between 1e-6 and 1e6 m across");
   const ValidityReport report = checkValidity(paper, { 1e-4, 1e-6, 1e-12 });
   if (!report.ok())
     return failure("the model in " + path + " is not valid: " + report.problems.front());

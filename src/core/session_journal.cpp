@@ -1,6 +1,7 @@
 #include "virtual_origami/core/session_journal.h"
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <sstream>
 
@@ -213,10 +214,14 @@ Status SessionJournal::start(const std::string& path, const Session& session)
 {
   out_.close();
   out_.clear();
-  out_.open(path, std::ios::out | std::ios::trunc);
+  // The new journal is written beside the old one and renamed over it: a crash while the
+  // header is written (it holds the whole history) must not leave a truncated journal and
+  // lose the session. paper_model starts one on every (re)start. Found by killing it -9.
+  const std::string temporary = path + ".tmp";
+  out_.open(temporary, std::ios::out | std::ios::trunc);
   if (!out_)
-    return failure("cannot write the journal " + path + ": " + std::strerror(errno));
-  path_ = path;
+    return failure("cannot write the journal " + temporary + ": " + std::strerror(errno));
+  path_ = temporary;
   // The header holds the whole history so far; events follow it.
   const History& h = session.history();
   json undo = json::array(), redo = json::array(), log = json::array();
@@ -227,14 +232,27 @@ Status SessionJournal::start(const std::string& path, const Session& session)
   for (const Operation& op : h.log)
     log.push_back(operationToJson(op));
   recorded_ = h.log.size();
-  return writeLine(json{ { "journal", "virtual_origami session" },
-                         { "version", 1 },
-                         { "paper", paperToJson(h.paper) },
-                         { "revision", h.revision },
-                         { "undo", undo },
-                         { "redo", redo },
-                         { "log", log } }
-                       .dump());
+  const Status written = writeLine(json{ { "journal", "virtual_origami session" },
+                                         { "version", 1 },
+                                         { "paper", paperToJson(h.paper) },
+                                         { "revision", h.revision },
+                                         { "undo", undo },
+                                         { "redo", redo },
+                                         { "log", log } }
+                                       .dump());
+  out_.close();
+  if (!written || !out_ || std::rename(temporary.c_str(), path.c_str()) != 0)
+  {
+    const std::string reason = written ? std::strerror(errno) : written.message();
+    std::remove(temporary.c_str());
+    return failure("cannot write the journal " + path + ": " + reason);
+  }
+  path_ = path;
+  out_.clear();
+  out_.open(path, std::ios::out | std::ios::app);
+  if (!out_)
+    return failure("cannot append to the journal " + path + ": " + std::strerror(errno));
+  return success();
 }
 
 Status SessionJournal::record(const Session& session)

@@ -89,11 +89,12 @@ core::Expected<core::Paper> fromMessage(const PaperState& state)
     paper.faces.push_back({ std::vector<int>(f.vertices.begin(), f.vertices.end()), {} });
   for (const FaceOrder& o : state.face_orders)
     paper.face_orders.push_back({ o.face, o.other, o.above });
-  for (size_t f = 0; f < paper.faces.size(); ++f)
-    paper.sheet_area += paper.faceArea(static_cast<int>(f));
+  // Link first: it checks every index, and the areas read the vertices faces name.
   const core::Status linked = core::linkTopology(paper);
   if (!linked)
     return Failure::failure(linked.message());
+  for (size_t f = 0; f < paper.faces.size(); ++f)
+    paper.sheet_area += paper.faceArea(static_cast<int>(f));
   return paper;
 }
 

@@ -39,6 +39,10 @@ struct Operation
 
 const char* kindName(Operation::Kind kind);
 
+/// Sheet sizes reset() accepts, in metres.
+constexpr double kMinSheetSize = 1e-6;
+constexpr double kMaxSheetSize = 1e6;
+
 /// Everything a session remembers: the current paper, the states undo and redo go back
 /// and forth through, and the log of operations.
 struct History
