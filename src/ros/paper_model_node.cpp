@@ -59,6 +59,9 @@ PaperModelNode::PaperModelNode(ros::NodeHandle nh, ros::NodeHandle private_nh) :
   style_.frame_id = private_nh.param<std::string>("paper_frame", "paper");
   style_.layer_gap = private_nh.param("layer_gap", style_.layer_gap);
   size_ = private_nh.param("size", 1.0);
+  // First: it replaces the session, and with it the solver and snap settings set below (a
+  // resumed model had no solver, so every fold that needs one was refused: found by chaos).
+  restoreOrStart(private_nh);
   core::SnapSettings& snap = session_.snapSettings();
   snap.radius = private_nh.param("snap_radius", snap.radius * size_);
   private_nh.param("edge_divisions", snap.edge_divisions, snap.edge_divisions);
@@ -69,7 +72,6 @@ PaperModelNode::PaperModelNode(ros::NodeHandle nh, ros::NodeHandle private_nh) :
   state_pub_ = nh_.advertise<PaperState>("state", 1, true);
   markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
   operations_pub_ = nh_.advertise<Operation>("operations", 100);
-  restoreOrStart(private_nh);
 
   const core::Vec3 origin(private_nh.param("paper_x", 0.0), private_nh.param("paper_y", 0.0),
                           private_nh.param("paper_z", 0.0));
