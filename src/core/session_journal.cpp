@@ -3,7 +3,10 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <sstream>
+#include <stdexcept>
+#include <type_traits>
 
 #include <nlohmann/json.hpp>
 
@@ -13,6 +16,33 @@ using nlohmann::json;
 
 namespace
 {
+/// A number that must be an integer of the given type. nlohmann's get<int>() converts any number,
+/// and a float beyond the integer's range makes that undefined behaviour (found by fuzzing).
+struct NotAnInteger : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
+};
+
+template <class Integer>
+Integer integer(const json& value)
+{
+  using Limits = std::numeric_limits<Integer>;
+  if (value.is_number_unsigned())
+  {
+    const uint64_t u = value.get<uint64_t>();
+    if (u <= static_cast<uint64_t>(Limits::max()))
+      return static_cast<Integer>(u);
+  }
+  else if (value.is_number_integer())
+  {
+    const int64_t i = value.get<int64_t>();
+    if (std::is_unsigned_v<Integer> ? i >= 0
+                                    : i >= static_cast<int64_t>(Limits::min()) && i <= static_cast<int64_t>(Limits::max()))
+      return static_cast<Integer>(i);
+  }
+  throw NotAnInteger(value.dump() + " is not an integer in range");
+}
+
 json paperToJson(const Paper& paper)
 {
   json j;
@@ -57,7 +87,7 @@ Expected<Paper> paperFromJson(const json& j)
     for (const json& e : j.at("edges"))
     {
       Edge edge;
-      edge.vertices = { e.at(0).get<int>(), e.at(1).get<int>() };
+      edge.vertices = { integer<int>(e.at(0)), integer<int>(e.at(1)) };
       const auto assignment = assignmentFromLetter(e.at(2).get<std::string>());
       if (!assignment)
         return Expected<Paper>::failure("unknown assignment " + e.at(2).dump());
@@ -66,16 +96,21 @@ Expected<Paper> paperFromJson(const json& j)
       paper.edges.push_back(edge);
     }
     for (const json& f : j.at("faces"))
-      paper.faces.push_back({ f.get<std::vector<int>>(), {} });
+    {
+      Face face;
+      for (const json& v : f)
+        face.vertices.push_back(integer<int>(v));
+      paper.faces.push_back(face);
+    }
     for (const json& o : j.at("face_orders"))
-      paper.face_orders.push_back({ o.at(0).get<int>(), o.at(1).get<int>(), o.at(2).get<int>() });
+      paper.face_orders.push_back({ integer<int>(o.at(0)), integer<int>(o.at(1)), integer<int>(o.at(2)) });
     paper.sheet_area = j.at("sheet_area").get<double>();
     const Status linked = linkTopology(paper);
     if (!linked)
       return Expected<Paper>::failure(linked.message());
     return paper;
   }
-  catch (const json::exception& e)
+  catch (const std::exception& e)  // json::exception, NotAnInteger
   {
     return Expected<Paper>::failure(std::string("malformed paper: ") + e.what());
   }
@@ -130,7 +165,7 @@ Expected<Operation> operationFromJson(const json& j)
       }
     if (!known)
       return Expected<Operation>::failure("unknown operation kind \"" + kind + "\"");
-    op.revision = j.at("revision").get<uint64_t>();
+    op.revision = integer<uint64_t>(j.at("revision"));
     if (op.kind == Operation::Kind::Crease)
     {
       op.crease.start = point(j.at("start"));
@@ -141,8 +176,8 @@ Expected<Operation> operationFromJson(const json& j)
     }
     else if (op.kind == Operation::Kind::Rotate)
     {
-      op.rotate.face = j.at("face").get<int>();
-      op.rotate.axis_edge = j.at("axis_edge").get<int>();
+      op.rotate.face = integer<int>(j.at("face"));
+      op.rotate.axis_edge = integer<int>(j.at("axis_edge"));
       op.rotate.click = point(j.at("click"));
       op.rotate.angle = j.at("angle").get<double>();
     }
@@ -152,7 +187,7 @@ Expected<Operation> operationFromJson(const json& j)
       op.path = j.at("path").get<std::string>();
     return op;
   }
-  catch (const json::exception& e)
+  catch (const std::exception& e)  // json::exception, NotAnInteger
   {
     return Expected<Operation>::failure(std::string("malformed operation: ") + e.what());
   }
@@ -180,7 +215,7 @@ Status readHeader(const json& j, History& history)
     if (!paper)
       return failure(paper.message());
     history.paper = std::move(*paper);
-    history.revision = j.at("revision").get<uint64_t>();
+    history.revision = integer<uint64_t>(j.at("revision"));
     for (const json& op : j.at("log"))
     {
       const Expected<Operation> parsed = operationFromJson(op);
@@ -191,7 +226,7 @@ Status readHeader(const json& j, History& history)
     const Status undo = readPapers(j.at("undo"), history.undo);
     return undo ? readPapers(j.at("redo"), history.redo) : undo;
   }
-  catch (const json::exception& e)
+  catch (const std::exception& e)  // json::exception, NotAnInteger
   {
     return failure(std::string("malformed header: ") + e.what());
   }

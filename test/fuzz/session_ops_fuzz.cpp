@@ -225,7 +225,19 @@ private:
   void expectValid(const Paper& paper, const std::string& what) const
   {
     const ValidityReport report = checkValidity(paper, tolerance_);
-    check(report.ok(), what + ": " + report.summary());
+    if (report.ok())
+      return;
+    // The worst length error, to full precision: the report rounds to six digits.
+    double worst = 0.0;
+    for (const Face& f : paper.faces)
+      for (int a : f.vertices)
+        for (int b : f.vertices)
+          if (a < static_cast<int>(paper.vertices.size()) && b < static_cast<int>(paper.vertices.size()))
+            worst = std::max(worst, std::abs((paper.vertices[a].folded - paper.vertices[b].folded).norm() -
+                                             (paper.vertices[a].crease_pattern - paper.vertices[b].crease_pattern).norm()));
+    std::ostringstream detail;
+    detail << " (worst length error " << worst << ", tolerance " << tolerance_.length * paper.scale() << ")";
+    check(false, what + detail.str() + ": " + report.summary());
   }
 
   void expectUnchanged(const Before& b, const std::string& message) const
@@ -294,6 +306,11 @@ private:
                << describe(r.click) << " angle " << r.angle << (r.carry_stack ? "" : " alone");
         const auto result = session_.rotate(r, commit);
         outcome(result.ok(), result.message());
+        if (result && result->used_solver)
+          trace_ << " [solver: " << result->solve.iterations << " iterations, max strain " << result->solve.max_strain
+                 << "]";
+        else if (result)
+          trace_ << " [rigid, " << result->moved_faces.size() << " faces]";
         if (!result)
           expectUnchanged(before, result.message());
         else if (commit)

@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <climits>
+#include <cstdio>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -187,6 +188,7 @@ TEST_F(Faults, CreaseFieldsNonFiniteOrHuge)
       done += refusedOrValid(c.response, before, context);
       ++cases;
     }
+  std::printf("faults: crease, %d cases of bad values, %d went through (huge but finite) and were valid\n", cases, done);
   RecordProperty("crease_cases", cases);
   RecordProperty("crease_done", done);
   expectAlive();
@@ -455,6 +457,8 @@ TEST_F(Faults, ConcurrentClients)
   ASSERT_EQ(ops.size(), committed.size());
   for (size_t i = 0; i < ops.size(); ++i)
     EXPECT_EQ(ops[i], start + 1 + i);
+  std::printf("faults: %d clients x %d calls at once, %zu changes committed, each its own revision\n", kClients, kCalls,
+              committed.size());
   RecordProperty("concurrent_calls", kClients * kCalls);
   RecordProperty("concurrent_commits", static_cast<int>(committed.size()));
   revision_ = end;
