@@ -1,0 +1,100 @@
+// Shapes of curved paper: the mesh's nodes settle where the stretch, shear and bend forces
+// and the layer contact balance around the pinned nodes. Two methods: the seed's (damped
+// dynamics integrated by RK4, seed 002 §4.1), and a static Newton method (the exact Hessian,
+// shifted by Levenberg–Marquardt damping until it is positive definite, and a line search)
+// that reaches the same balance in tens of steps instead of thousands.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/SparseCholesky>
+
+#include "virtual_origami/curved/contact.h"
+#include "virtual_origami/curved/curved_forces.h"
+
+namespace virtual_origami::core
+{
+/// A node held at a position (a corner pulled by the hand, a fixed corner).
+struct CurvedPin
+{
+  int node = -1;
+  Vec3 position = Vec3::Zero();
+};
+
+enum class CurvedMethod
+{
+  Newton,  // static equilibrium directly
+  Rk4,     // the seed: damped motion until it comes to rest
+};
+
+struct CurvedSolveOptions
+{
+  CurvedMethod method = CurvedMethod::Newton;
+  /// Balanced when no free node feels more than tolerance × stretch × spacing: the force of
+  /// one edge strained by `tolerance`.
+  double tolerance = 1e-8;
+  int max_iterations = 500;  // Newton iterations
+  int max_steps = 200000;    // RK4 steps
+  double max_seconds = 0.0;  // wall-time budget; 0: none
+  /// Newton: Levenberg–Marquardt damping μ = damping·|∇E| / spacing; a step moves no node
+  /// farther than max_step × the contact range, so contact sees every approach.
+  double damping = 1e-2;
+  double max_step = 0.4;
+  /// RK4: the step (0: half the stability limit of the stiffest mode) and the
+  /// mass-proportional damping rate (0: twice the first bending mode's frequency).
+  double time_step = 0.0;
+  double viscosity = 0.0;
+};
+
+struct CurvedReport
+{
+  bool converged = false;
+  bool diverged = false;  // non-finite or exploding: the positions were rolled back
+  int iterations = 0;     // Newton iterations or RK4 steps
+  double max_force = 0.0;  // largest force on a free node, / (stretch × spacing)
+  CurvedEnergy energy;
+  double contact_energy = 0.0;
+  int contacts = 0;      // watched node–triangle pairs at the end
+  double time_step = 0.0;  // RK4
+  double seconds = 0.0;
+  std::string message;
+};
+
+class CurvedSolver
+{
+public:
+  /// `mesh` and `paper` must outlive the solver.
+  CurvedSolver(const CurvedMesh& mesh, const Paper& paper, const CurvedMaterial& material = {},
+               const ContactOptions& contact = {}, const CurvedSolveOptions& options = {});
+
+  /// Moves the free nodes of `x` (one column per mesh node) to balance, with the pinned nodes
+  /// set to their positions first. Contact sides persist from one solve to the next, so a
+  /// drag solved in small steps keeps every layer on its side; a pin must not jump through a
+  /// layer between two solves (move it less than a mesh spacing at a time near other layers).
+  /// On divergence `x` is left as it was given (pins applied) and the report says so.
+  CurvedReport solve(Positions& x, const std::vector<CurvedPin>& pins);
+
+  const CurvedTerms& terms() const { return terms_; }
+  const LayerContact& contact() const { return contact_; }
+  CurvedSolveOptions& options() { return options_; }
+
+  /// Largest force on a free node over (stretch × spacing), contact included.
+  double maxForce(const Positions& x, const std::vector<CurvedPin>& pins);
+
+private:
+  CurvedReport newton(Positions& x, const std::vector<int>& free_index, int free_count);
+  CurvedReport rk4(Positions& x, const std::vector<int>& free_index, int free_count);
+  double energy(const Positions& x, const Assembly& out, CurvedEnergy* parts = nullptr, double* contact = nullptr) const;
+
+  const CurvedMesh& mesh_;
+  CurvedMaterial material_;
+  CurvedTerms terms_;
+  LayerContact contact_;
+  CurvedSolveOptions options_;
+  // Newton's factorisation and the pattern it was analysed for, kept across solves.
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> factorization_;
+  Eigen::SparseMatrix<double> pattern_;
+};
+
+}  // namespace virtual_origami::core

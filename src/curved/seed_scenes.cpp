@@ -1,0 +1,94 @@
+#include "virtual_origami/curved/seed_scenes.h"
+
+#include <cmath>
+
+#include "virtual_origami/core/crease.h"
+#include "virtual_origami/core/geometry.h"
+#include "virtual_origami/core/rotate.h"
+
+namespace virtual_origami::core
+{
+Vec3 SeedScene::pullAt(double s) const
+{
+  return rotateAbout(paper.vertices[pulled].folded, axis_point, axis, s * M_PI) + s * lift * Vec3::UnitZ();
+}
+
+Expected<SeedScene> seedScene(int number, double size, double gap)
+{
+  using Failure = Expected<SeedScene>;
+  if (number < 1 || number > 3)
+    return Failure::failure("seed 002 has scenes 1, 2 and 3, not " + std::to_string(number));
+  SeedScene scene;
+  scene.paper = Paper::square(size);
+  scene.lift = gap * size;
+  const int a = 0, b = 1, c = 2, d = 3;  // Paper::square's corners, counter-clockwise from the origin
+  const auto corner = [&](int v) { return scene.paper.vertices[v].folded; };
+  if (number == 2)
+  {
+    CreaseRequest request;  // the diagonal bd
+    request.start = corner(b);
+    request.end = corner(d);
+    const Expected<CreaseResult> creased = crease(scene.paper, request);
+    if (!creased.ok())
+      return Failure::failure("scene 2: " + creased.message());
+  }
+  if (number == 3)
+  {
+    CreaseRequest request;  // de, e the midpoint of ab
+    request.start = corner(d);
+    request.end = 0.5 * (corner(a) + corner(b));
+    const Expected<CreaseResult> creased = crease(scene.paper, request);
+    if (!creased.ok() || creased->new_edges.size() != 1)
+      return Failure::failure("scene 3: " + (creased.ok() ? std::string("de is not one crease") : creased.message()));
+    RotateRequest fold;  // the triangle ade over onto the front
+    fold.face = faceAt(scene.paper, Vec3(0.1 * size, 0.3 * size, 0.0), 1e-9 * size);
+    fold.axis_edge = creased->new_edges[0];
+    fold.angle = M_PI;
+    const Expected<RotateResult> folded = rotate(scene.paper, fold);
+    if (!folded.ok())
+      return Failure::failure("scene 3: " + folded.message());
+  }
+  scene.name = "seed002_scene" + std::to_string(number);
+  scene.pulled = number == 3 ? b : a;
+  scene.fixed = c;
+  const Vec3 p = corner(scene.pulled), q = corner(scene.fixed);
+  scene.axis_point = 0.5 * (p + q);
+  // In the sheet's plane, perpendicular to pulled→fixed, oriented so a positive turn lifts
+  // the pulled corner off the front (+z).
+  scene.axis = Vec3::UnitZ().cross(q - p).normalized();
+  return scene;
+}
+
+bool SeedSceneRun::passed() const
+{
+  for (const SeedSceneStep& step : steps)
+    if (!step.report.converged || step.report.diverged || step.metrics.penetrations > 0)
+      return false;
+  return !steps.empty();
+}
+
+Expected<SeedSceneRun> runSeedScene(const SeedScene& scene, const SeedSceneOptions& options)
+{
+  Expected<CurvedMesh> mesh = bubbleMesh(scene.paper, options.mesh);
+  if (!mesh.ok())
+    return Expected<SeedSceneRun>::failure(scene.name + ": " + mesh.message());
+  SeedSceneRun run;
+  run.mesh = std::move(*mesh);
+  run.positions = placeNodes(run.mesh, scene.paper);
+  CurvedSolver solver(run.mesh, scene.paper, options.material, options.contact, options.solve);
+  const int fixed = run.mesh.vertex_nodes[scene.fixed], pulled = run.mesh.vertex_nodes[scene.pulled];
+  const Vec3 hold = run.positions.col(fixed);
+  for (int k = 1; k <= options.steps; ++k)
+  {
+    SeedSceneStep step;
+    step.fraction = static_cast<double>(k) / options.steps;
+    step.report = solver.solve(run.positions, { { fixed, hold }, { pulled, scene.pullAt(step.fraction) } });
+    step.metrics = measureCurved(run.mesh, scene.paper, run.positions);
+    run.steps.push_back(step);
+    if (step.report.diverged)
+      break;
+  }
+  return run;
+}
+
+}  // namespace virtual_origami::core
