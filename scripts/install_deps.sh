@@ -31,6 +31,8 @@ PACKAGES=(
   xvfb xdotool imagemagick
   # fuzzing (make fuzz): clang with libFuzzer and the sanitizer runtimes
   clang-14 libclang-rt-14-dev
+  # benchmark charts (make bench)
+  python3-matplotlib
 )
 
 missing=()

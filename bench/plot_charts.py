@@ -1,0 +1,228 @@
+#!/usr/bin/python3
+"""Charts and tables of docs/BENCHMARKS.md from the CSVs of one `make bench` run.
+
+    /usr/bin/python3 bench/plot_charts.py [docs/bench] [docs/images/bench] [docs/BENCHMARKS.md]
+
+Draws PNGs and rewrites the text between <!-- bench:NAME --> and <!-- /bench:NAME --> markers of
+BENCHMARKS.md, so every figure in the document comes from the files.
+"""
+import csv
+import math
+import os
+import re
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+BENCH = sys.argv[1] if len(sys.argv) > 1 else "docs/bench"
+IMAGES = sys.argv[2] if len(sys.argv) > 2 else "docs/images/bench"
+DOC = sys.argv[3] if len(sys.argv) > 3 else "docs/BENCHMARKS.md"
+COLORS = {"newton": "C0", "shape_matching": "C1", "seed_spring": "C3", "rigid_kinematics": "C2"}
+
+
+def rows(name):
+    path = os.path.join(BENCH, name)
+    if not os.path.exists(path):
+        return None
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def num(x):
+    try:
+        return float(x)
+    except (TypeError, ValueError):
+        return math.nan
+
+
+def fmt(x, digits=3):
+    if x is None or (isinstance(x, float) and not math.isfinite(x)):
+        return "–"
+    return f"{x:.{digits}g}"
+
+
+def pareto(points):
+    """Points (time, error) not beaten in both by another point, sorted by time."""
+    front, best = [], math.inf
+    for t, e in sorted(points):
+        if e < best:
+            front.append((t, e))
+            best = e
+    return front
+
+
+def save(fig, name):
+    os.makedirs(IMAGES, exist_ok=True)
+    fig.tight_layout()
+    fig.savefig(os.path.join(IMAGES, name), dpi=110)
+    plt.close(fig)
+
+
+def chart_error_time(tables):
+    data = rows("error_time.csv")
+    if not data:
+        return
+    floor = 1e-16  # strain/position of exact zero drawn at the axis floor
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
+    all_points = {"max_strain": [], "position_error": []}
+    for ax, key, label in ((axes[0], "max_strain", "max edge strain"),
+                           (axes[1], "position_error", "max vertex distance to rigid_kinematics")):
+        for solver in COLORS:
+            pts = [(num(r["seconds"]), max(num(r[key]), floor)) for r in data
+                   if r["solver"] == solver and r["diverged"] == "0"]
+            if not pts:
+                continue
+            all_points[key] += [(t, e, solver) for t, e in pts]
+            ax.loglog([p[0] for p in pts], [p[1] for p in pts], "o-", ms=3, color=COLORS[solver], label=solver,
+                      alpha=0.8)
+        front = pareto([(t, e) for t, e, _ in all_points[key]])
+        ax.step([p[0] for p in front], [p[1] for p in front], "k--", where="post", lw=1, label="Pareto front")
+        ax.set_xlabel("wall time per solve [s]")
+        ax.set_ylabel(label)
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.suptitle("miura_12x10 fold step: error against time over iteration budgets")
+    save(fig, "error_time.png")
+
+    # Table: time each solver needs to reach strain 1e-3, 1e-6, 1e-9.
+    lines = ["| solver | time to strain < 1e-3 | < 1e-6 | < 1e-9 | best strain reached |",
+             "|---|---|---|---|---|"]
+    times = {}
+    for solver in COLORS:
+        sr = [r for r in data if r["solver"] == solver and r["diverged"] == "0"]
+        if not sr:
+            continue
+        cells = []
+        for target in (1e-3, 1e-6, 1e-9):
+            hits = [num(r["seconds"]) for r in sr if num(r["max_strain"]) < target]
+            times[(solver, target)] = min(hits) if hits else math.nan
+            cells.append(fmt(min(hits) * 1e3) + " ms" if hits else "not reached")
+        lines.append(f"| {solver} | " + " | ".join(cells) + f" | {fmt(min(num(r['max_strain']) for r in sr))} |")
+    front = pareto([(t, e) for t, e, _ in all_points["max_strain"]])
+    owners = []
+    for t, e in front:
+        for pt, pe, s in all_points["max_strain"]:
+            if pt == t and max(pe, floor) == e:
+                owners.append(s)
+                break
+    ratio = times.get(("seed_spring", 1e-6), math.nan) / times.get(("newton", 1e-6), math.nan)
+    lines.append("")
+    lines.append(f"Solvers on the strain Pareto front, fastest first: {', '.join(dict.fromkeys(owners))}. "
+                 f"To strain < 1e-6 newton is {fmt(ratio)}× faster than the seed's spring scheme "
+                 f"(at its largest stable d).")
+    tables["error_time"] = "\n".join(lines)
+
+
+def chart_stability(tables):
+    data = rows("stability_map.csv")
+    if not data:
+        return
+    seed = [r for r in data if r["solver"] == "seed_spring"]
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    styles = {"converged": ("o", "C2"), "stalled": ("s", "C1"), "diverged": ("x", "C3")}
+    for state, (marker, color) in styles.items():
+        pts = [r for r in seed if (state == "converged" and r["converged"] == "1") or
+               (state == "diverged" and r["diverged"] == "1") or
+               (state == "stalled" and r["converged"] == "0" and r["diverged"] == "0")]
+        ax.scatter([num(r["dt"]) for r in pts], [num(r["stiffness"]) for r in pts], marker=marker, c=color, s=18,
+                   label=f"seed_spring {state}")
+    d = num(seed[0]["d"])
+    dts = [0.5 + 0.01 * k for k in range(241)]
+    ax.plot(dts, [2 / (d * t * t) for t in dts], "k-", lw=1, label="bound d·λ·Δt² = 2")
+    lam = sorted({num(r["stiffness"]) for r in seed})
+    ax.set_ylim(min(lam) - 1, max(lam) + 1)
+    ax.set_xlabel("step Δt (d = %g)" % d)
+    ax.set_ylabel("spring stiffness λ_max (= face vertex count)")
+    ax.legend(fontsize=8, loc="upper right")
+    ax.set_title("Stability map of the seed's explicit spring scheme")
+    save(fig, "stability_map.png")
+
+    bad = [r for r in seed if r["converged"] == "1" and num(r["bound"]) >= 2]
+    unexpected = [r for r in seed if r["diverged"] == "1" and num(r["bound"]) < 2]
+    implicit = {}
+    for r in data:
+        if r["solver"] != "seed_spring":
+            implicit.setdefault(r["solver"], []).append(r)
+    lines = [f"{len(seed)} (Δt, λ) cells of the seed scheme: "
+             f"{sum(r['converged'] == '1' for r in seed)} converged, {sum(r['diverged'] == '1' for r in seed)} "
+             f"diverged, {sum(r['converged'] == '0' and r['diverged'] == '0' for r in seed)} stalled "
+             f"(at the bound, neither). Converged beyond the bound d·λ·Δt² < 2: {len(bad)}; diverged inside "
+             f"it: {len(unexpected)}."]
+    for name, rs in implicit.items():
+        lines.append(f"{name} (no step size) on the same {len(rs)} faces (λ {fmt(min(num(r['stiffness']) for r in rs))}"
+                     f"–{fmt(max(num(r['stiffness']) for r in rs))}): {sum(r['converged'] == '1' for r in rs)} "
+                     f"converged, {sum(r['diverged'] == '1' for r in rs)} diverged, at most "
+                     f"{max(int(r['iterations']) for r in rs)} iterations.")
+    tables["stability"] = "\n\n".join(lines)
+
+
+def chart_scaling(tables):
+    data = rows("scaling.csv")
+    floor = rows("machine_floor.csv")
+    if not data:
+        return
+    bandwidth = num(floor[0]["value"]) if floor else math.nan
+    v = [num(r["vertices"]) for r in data]
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    ax.loglog(v, [num(r["explicit_step_seconds"]) for r in data], "o-", c="C3", label="seed_spring: one step")
+    ax.loglog(v, [num(r["explicit_floor_seconds"]) for r in data], "--", c="C3",
+              label="floor: bytes per step / triad bandwidth")
+    nv = [(num(r["vertices"]), num(r["newton_iteration_seconds"])) for r in data
+          if math.isfinite(num(r["newton_iteration_seconds"]))]
+    ax.loglog([p[0] for p in nv], [p[1] for p in nv], "o-", c="C0", label="newton: one iteration")
+    ax.loglog(v, [num(r["ldlt_seconds"]) for r in data], "--", c="C0", label="floor: one SimplicialLDLT")
+    ax.set_xlabel("vertices (grid sheet of square faces)")
+    ax.set_ylabel("seconds")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    ax.set_title("Time per step against vertex count (triad %.1f GB/s)" % (bandwidth / 1e9))
+    save(fig, "scaling.png")
+
+    lines = [f"Triad bandwidth: {fmt(bandwidth / 1e9)} GB/s.", "",
+             "| vertices | explicit step | its floor | ratio | newton iteration | one LDLT | ratio |",
+             "|---|---|---|---|---|---|---|"]
+    for r in data:
+        e, f, n, l = (num(r[k]) for k in ("explicit_step_seconds", "explicit_floor_seconds",
+                                           "newton_iteration_seconds", "ldlt_seconds"))
+        lines.append(f"| {int(num(r['vertices']))} | {fmt(e * 1e3)} ms | {fmt(f * 1e3)} ms | {fmt(e / f)}× | "
+                     f"{fmt(n * 1e3)} ms | {fmt(l * 1e3)} ms | {fmt(n / l)}× |")
+    tables["scaling"] = "\n".join(lines)
+
+
+def chart_seed_accuracy(tables):
+    data = rows("solvers.csv")
+    if not data:
+        return
+    lines = ["| scene | solver | converged | iterations | time | max strain | speed-up vs seed |", "|---|---|---|---|---|---|---|"]
+    for r in data:
+        lines.append(f"| {r['scene']} | {r['solver']} | {r['converged']} | {r['iterations']} | "
+                     f"{fmt(num(r['seconds']) * 1e3)} ms | {fmt(num(r['max_strain']))} | "
+                     f"{fmt(num(r['speedup_vs_seed']))} |")
+    tables["solvers"] = "\n".join(lines)
+
+
+def write_tables(tables):
+    if not os.path.exists(DOC):
+        return
+    text = open(DOC).read()
+    for name, body in tables.items():
+        pattern = re.compile(r"(<!-- bench:%s -->\n).*?(<!-- /bench:%s -->)" % (name, name), re.S)
+        text = pattern.sub(lambda m: m.group(1) + body + "\n" + m.group(2), text)
+    open(DOC, "w").write(text)
+
+
+def main():
+    tables = {}
+    chart_error_time(tables)
+    chart_stability(tables)
+    chart_scaling(tables)
+    chart_seed_accuracy(tables)
+    write_tables(tables)
+    print("charts in %s, tables %s into %s" % (IMAGES, ", ".join(tables), DOC))
+
+
+if __name__ == "__main__":
+    main()
