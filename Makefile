@@ -27,11 +27,12 @@ run: build
 
 # Benchmarks (never part of test), see docs/BENCHMARKS.md: solver_bench (solvers.csv,
 # seed_accuracy.csv, seed_stability.csv; docs/SOLVERS.md), sweep_bench (error_time.csv,
-# stability_map.csv, scaling.csv, machine_floor.csv), then the charts into docs/images/bench/
+# stability_map.csv, scaling.csv, machine_floor.csv), curved_bench (curved_solvers.csv), then the charts into docs/images/bench/
 # and the tables of docs/BENCHMARKS.md (Debian's python3 with python3-matplotlib).
 bench: build
 	$(BUILD_DIR)/devel/lib/virtual_origami/solver_bench docs/bench
 	$(BUILD_DIR)/devel/lib/virtual_origami/sweep_bench docs/bench
+	$(BUILD_DIR)/devel/lib/virtual_origami/curved_bench docs/bench/curved_solvers.csv
 	/usr/bin/python3 bench/plot_charts.py docs/bench docs/images/bench docs/BENCHMARKS.md
 
 # libFuzzer targets of test/fuzz/ with ASan + UBSan (clang-14, into build-fuzz/), each for

@@ -204,6 +204,42 @@ def chart_seed_accuracy(tables):
     tables["solvers"] = "\n".join(lines)
 
 
+def chart_curved(tables):
+    data = rows("curved_solvers.csv")
+    if not data:
+        return
+    steps = [r for r in data if r["case"] == "pull_step"]
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for method, color in (("newton", "C0"), ("rk4", "C3")):
+        pts = [r for r in steps if r["method"] == method]
+        ax.scatter([num(r["seconds"]) for r in pts], [max(num(r["max_force"]), 1e-16) for r in pts], c=color,
+                   label=method)
+        for r in pts:
+            ax.annotate(f"s{r['scene']}/{r['nodes']}", (num(r["seconds"]), max(num(r["max_force"]), 1e-16)),
+                        fontsize=6)
+    front = pareto([(num(r["seconds"]), max(num(r["max_force"]), 1e-16)) for r in steps])
+    ax.step([p[0] for p in front], [p[1] for p in front], "k--", where="post", lw=1, label="Pareto front")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("wall time per solve [s]")
+    ax.set_ylabel("max residual force at the end")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    ax.set_title("Curved paper: seed RK4 against implicit Newton (scene/nodes)")
+    save(fig, "curved_error_time.png")
+    lines = ["| scene | nodes | newton time | newton residual | rk4 time | rk4 residual | rk4 time / newton |",
+             "|---|---|---|---|---|---|---|"]
+    for r in steps:
+        if r["method"] != "newton":
+            continue
+        rk = [q for q in steps if q["method"] == "rk4" and q["scene"] == r["scene"] and q["nodes"] == r["nodes"]]
+        rk = rk[0] if rk else {}
+        lines.append(f"| {r['scene']} | {r['nodes']} | {fmt(num(r['seconds']) * 1e3)} ms | {fmt(num(r['max_force']))} | "
+                     f"{fmt(num(rk.get('seconds')) * 1e3)} ms{'' if rk.get('converged') == '1' else ' (budget, not converged)'} | "
+                     f"{fmt(num(rk.get('max_force')))} | {fmt(num(r['rk4_time_over_newton']))}× |")
+    tables["curved"] = "\n".join(lines)
+
+
 def write_tables(tables):
     if not os.path.exists(DOC):
         return
@@ -220,6 +256,7 @@ def main():
     chart_stability(tables)
     chart_scaling(tables)
     chart_seed_accuracy(tables)
+    chart_curved(tables)
     write_tables(tables)
     print("charts in %s, tables %s into %s" % (IMAGES, ", ".join(tables), DOC))
 
