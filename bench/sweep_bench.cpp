@@ -260,16 +260,22 @@ void sweepScaling(const std::string& dir)
     const Paper sheet = gridSheet(w, w, fixed);
     const std::vector<Spring> springs = faceSprings(sheet);
     const size_t v = sheet.vertices.size();
-    auto seedTime = [&](int iterations) {
-      SeedSpringSolver solver;
+    // At the largest stable d: at the seed's d = 0.2 a sheet whose vertices join four faces is
+    // past the stability limit and the scheme stops at its divergence check.
+    SeedSpringOptions stable;
+    stable.d = 0.95 * 2.0 / springStiffnessMax(sheet, fixed, 200);
+    auto seedTime = [&](int iterations, int& done) {
+      SeedSpringSolver solver(stable);
       solver.setLimits({ 0.0, iterations, 0.0 });
       Paper paper = sheet;
       const double start = now();
-      solver.solve(paper, fixed);
+      done = solver.solve(paper, fixed).iterations;
       return now() - start;
     };
-    const int few = 20;
-    const double step = std::max(0.0, (seedTime(3 * few) - seedTime(few)) / (2 * few));
+    int few_done = 0, many_done = 0;
+    const double few_time = seedTime(20, few_done);
+    const double many_time = seedTime(60, many_done);
+    const double step = (many_time - few_time) / std::max(1, many_done - few_done);
     // Compulsory traffic of one explicit step: the spring list (two indices, a rest length),
     // positions read, forces written and read back, positions read and written.
     const double bytes = 16.0 * springs.size() + 24.0 * v * 4;
