@@ -108,10 +108,12 @@ def chart_error_time(tables):
             if pt == t and max(pe, floor) == e:
                 owners.append(s)
                 break
-    ratio = times.get(("seed_spring", 1e-6), math.nan) / times.get(("newton", 1e-6), math.nan)
+    # The tightest strain both reach: the seed's scheme often stops short of 1e-6.
+    target = next((t for t in (1e-9, 1e-6, 1e-3) if math.isfinite(times.get(("seed_spring", t), math.nan))), 1e-3)
+    ratio = times.get(("seed_spring", target), math.nan) / times.get(("newton", target), math.nan)
     lines.append("")
     lines.append(f"Solvers on the strain Pareto front, fastest first: {', '.join(dict.fromkeys(owners))}. "
-                 f"To strain < 1e-6 newton is {fmt(ratio)}× faster than the seed's spring scheme "
+                 f"To strain < {target:g} newton is {fmt(ratio)}× faster than the seed's spring scheme "
                  f"(at its largest stable d).")
     tables["error_time"] = "\n".join(lines)
 

@@ -89,7 +89,7 @@ void sweepErrorTime(const std::string& dir)
   };
   const std::vector<Sweep> sweeps = {
     { "newton", { 1, 2, 3, 4, 5, 6, 8 } },
-    { "rigid_kinematics", { 1, 2, 3, 4, 5, 6, 8, 12 } },
+    { "rigid_kinematics", { 1, 2, 4, 8, 12, 16, 22, 30 } },
     { "shape_matching", { 1, 3, 10, 30, 100, 300, 1000, 1500, 3000 } },
     { "seed_spring", { 10, 30, 100, 300, 1000, 3000, 10000, 30000, 100000, 300000 } },
   };
