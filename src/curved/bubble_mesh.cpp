@@ -216,8 +216,10 @@ public:
     free_ = std::move(kept);
 
     // Too sparse: candidates on a lattice three times finer; while one lies farther than
-    // 0.85 diameters from every bubble (close packing leaves at most 1/√3 ≈ 0.58), the
-    // farthest gets a bubble.
+    // 0.65 diameters from every bubble (close packing leaves at most 1/√3 ≈ 0.58), the
+    // farthest gets a bubble. A looser bound misses the gaps the start lattice leaves along
+    // the sides across its rows: 1.5 diameters wide, beyond the force's reach r1, so relaxing
+    // never closes them, yet the largest empty circle in them has a radius of only ~0.75.
     std::vector<Vec2> candidates;
     const std::vector<Vec2>& c = polygon_.corners;
     Vec2 lo = c[0], hi = c[0];
@@ -240,7 +242,7 @@ public:
     while (!candidates.empty())
     {
       const size_t best = static_cast<size_t>(std::max_element(gap.begin(), gap.end()) - gap.begin());
-      if (gap[best] <= 0.85)
+      if (gap[best] <= 0.65)
         break;
       const Vec2 p = candidates[best];
       free_.push_back(p);
