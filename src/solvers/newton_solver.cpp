@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <memory>
 #include <cmath>
-#include <sstream>
 
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
@@ -323,23 +322,7 @@ SolveReport NewtonSolver::solve(Paper& paper, const std::vector<char>& fixed)
     diverged = !std::isfinite(fit.energy);
   }
   report.seconds = budget.seconds();
-  if (diverged)
-  {
-    setFoldedPositions(paper, start);
-    report.diverged = true;
-    report.max_strain = springStrain(springs, start).max;
-    report.message = "newton produced non-finite positions; rolled back";
-    return report;
-  }
-  setFoldedPositions(paper, x);
-  report.max_strain = springStrain(springs, x).max;
-  if (!report.converged)
-  {
-    std::ostringstream msg;
-    msg << (stuck.empty() ? "stopped" : stuck) << " after " << report.iterations << " iterations at max strain "
-        << report.max_strain << " (tolerance " << limits_.tolerance << "), face residual " << fit.max_residual;
-    report.message = msg.str();
-  }
+  finishRigidSolve("newton", paper, springs, start, x, diverged, fit, stuck, limits_.tolerance, report);
   return report;
 }
 

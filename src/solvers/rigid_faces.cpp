@@ -1,6 +1,7 @@
 #include "virtual_origami/solvers/rigid_faces.h"
 
 #include <cmath>
+#include <sstream>
 
 #include <Eigen/Geometry>
 #include <Eigen/SVD>
@@ -77,6 +78,30 @@ RigidFit fitRigidFaces(const std::vector<RigidFace>& faces, const Positions& x)
     }
   }
   return fit;
+}
+
+void finishRigidSolve(const std::string& solver, Paper& paper, const std::vector<Spring>& springs,
+                      const Positions& start, const Positions& x, bool diverged, const RigidFit& fit,
+                      const std::string& stop_reason, double tolerance, SolveReport& report)
+{
+  if (diverged)
+  {
+    setFoldedPositions(paper, start);
+    report.diverged = true;
+    report.max_strain = springStrain(springs, start).max;
+    report.message = solver + " produced non-finite positions; rolled back";
+    return;
+  }
+  setFoldedPositions(paper, x);
+  report.max_strain = springStrain(springs, x).max;
+  if (!report.converged)
+  {
+    std::ostringstream msg;
+    msg << (stop_reason.empty() ? "stopped" : stop_reason) << " after " << report.iterations
+        << " iterations at max strain " << report.max_strain << " (tolerance " << tolerance << "), face residual "
+        << fit.max_residual;
+    report.message = msg.str();
+  }
 }
 
 }  // namespace virtual_origami::core

@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <deque>
-#include <sstream>
 
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
@@ -205,22 +204,7 @@ SolveReport ShapeMatchingSolver::solve(Paper& paper, const std::vector<char>& fi
     diverged = !std::isfinite(fit.energy);
   }
   report.seconds = budget.seconds();
-  if (diverged)
-  {
-    setFoldedPositions(paper, start);
-    report.diverged = true;
-    report.max_strain = springStrain(springs, start).max;
-    report.message = "shape matching produced non-finite positions; rolled back";
-    return report;
-  }
-  setFoldedPositions(paper, x);
-  if (!report.converged)
-  {
-    std::ostringstream msg;
-    msg << "stopped after " << report.iterations << " iterations at max strain " << report.max_strain << " (tolerance "
-        << limits_.tolerance << "), face residual " << fit.max_residual;
-    report.message = msg.str();
-  }
+  finishRigidSolve("shape matching", paper, springs, start, x, diverged, fit, "", limits_.tolerance, report);
   return report;
 }
 

@@ -2,12 +2,15 @@
 // turned and moved to fit its folded vertices best. Shared by the exact solvers.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "virtual_origami/core/paper.h"
+#include "virtual_origami/solvers/face_springs.h"
 #include "virtual_origami/solvers/positions.h"
+#include "virtual_origami/solvers/shape_solver.h"
 
 namespace virtual_origami::core
 {
@@ -34,5 +37,12 @@ struct RigidFit
   std::vector<Eigen::Matrix3d> rotations;
 };
 RigidFit fitRigidFaces(const std::vector<RigidFace>& faces, const Positions& x);
+
+/// How every exact solver ends: a diverged solve leaves the paper at `start` and says it was
+/// rolled back; otherwise the paper takes `x`, the strain is measured there, and an unconverged
+/// report says why it stopped (`stop_reason`, or "stopped") and how far from the tolerance.
+void finishRigidSolve(const std::string& solver, Paper& paper, const std::vector<Spring>& springs,
+                      const Positions& start, const Positions& x, bool diverged, const RigidFit& fit,
+                      const std::string& stop_reason, double tolerance, SolveReport& report);
 
 }  // namespace virtual_origami::core
