@@ -772,7 +772,19 @@ std::vector<std::vector<int>> facesOf(const FrameData& data, const std::optional
     return *data.faces;
   if (!crease_pattern)
     fail("faces_vertices is missing: a folded form needs faces_vertices to be unfolded");
-  return traceFaces(*crease_pattern, *data.edges);  // readFrame made sure there are edges
+  std::vector<std::vector<int>> faces = traceFaces(*crease_pattern, *data.edges);  // readFrame made sure there are edges
+  // A dangling edge or two faces touching at a single vertex traces a face through one vertex
+  // twice: no polygon the model can hold, and the FOLD written from it would not read back.
+  for (size_t f = 0; f < faces.size(); ++f)
+  {
+    std::vector<int> sorted = faces[f];
+    std::sort(sorted.begin(), sorted.end());
+    const auto twice = std::adjacent_find(sorted.begin(), sorted.end());
+    if (twice != sorted.end())
+      fail("edges_vertices: the face traced as " + indexed("faces", f) + " passes vertex " + std::to_string(*twice) +
+           " twice (an edge ending inside a face, or faces touching at one vertex)");
+  }
+  return faces;
 }
 
 /// Vertices (crease pattern when known, folded = the file's coordinates), edges and faces,
