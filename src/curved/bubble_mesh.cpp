@@ -464,6 +464,10 @@ Expected<CurvedMesh> bubbleMesh(const Paper& paper, const BubbleMeshOptions& opt
 
   // The triangulation covers the hull of the nodes: keep the triangles inside the paper, each
   // in the face that holds its centroid (faces are convex, and no triangle crosses an edge).
+  // Bubbles placed along a slanted side are collinear only up to rounding, so the hull grows
+  // slivers of them outside the sheet whose centroids lie within rounding of the side: a
+  // centroid must lie clearly inside, as every true triangle's does (a third of its height).
+  const double margin = 1e-6 * mesh.spacing;
   for (const auto& t : *triangles)
   {
     const Vec2 centroid = (points[t[0]] + points[t[1]] + points[t[2]]) / 3;
@@ -476,7 +480,7 @@ Expected<CurvedMesh> bubbleMesh(const Paper& paper, const BubbleMeshOptions& opt
         const Vec2& a = paper.vertices[vs[i]].crease_pattern;
         const Vec2& b = paper.vertices[vs[(i + 1) % vs.size()]].crease_pattern;
         const Vec2 ab = b - a, ac = centroid - a;
-        inside = ab.x() * ac.y() - ab.y() * ac.x() > 0;
+        inside = ab.x() * ac.y() - ab.y() * ac.x() > margin * ab.norm();
       }
       if (inside)
       {

@@ -188,7 +188,10 @@ MeshQuality meshQuality(const CurvedMesh& mesh, const Paper& paper)
   for (size_t t = 0; t < mesh.triangles.size(); ++t)
   {
     const auto& tri = mesh.triangles[t].nodes;
-    q.area += mesh.restArea(static_cast<int>(t));
+    const double area = mesh.restArea(static_cast<int>(t));
+    q.area += area;
+    double perimeter = 0, edge_product = 1;
+    bool well_shaped = true;
     for (int k = 0; k < 3; ++k)
     {
       const Vec2& o = mesh.nodes[tri[k]].crease_pattern;
@@ -199,7 +202,13 @@ MeshQuality meshQuality(const CurvedMesh& mesh, const Paper& paper)
       q.max_angle = std::max(q.max_angle, angle);
       q.min_edge = std::min(q.min_edge, u.norm() / mesh.spacing);
       q.max_edge = std::max(q.max_edge, u.norm() / mesh.spacing);
+      perimeter += u.norm();
+      edge_product *= u.norm();
+      well_shaped = well_shaped && angle >= M_PI / 4 && angle <= 5 * M_PI / 12;
     }
+    // 2r/R with r = 2A/perimeter and R = abc/(4A).
+    q.mean_radius_ratio += perimeter > 0 && edge_product > 0 ? 16 * area * area / (perimeter * edge_product) : 0.0;
+    q.well_shaped += well_shaped ? 1.0 : 0.0;
     bool in_face = true;
     for (int n : tri)
     {
@@ -207,6 +216,11 @@ MeshQuality meshQuality(const CurvedMesh& mesh, const Paper& paper)
       in_face = in_face && std::find(faces.begin(), faces.end(), mesh.triangles[t].face) != faces.end();
     }
     q.crossing_triangles += in_face ? 0 : 1;
+  }
+  if (!mesh.triangles.empty())
+  {
+    q.mean_radius_ratio /= static_cast<double>(mesh.triangles.size());
+    q.well_shaped /= static_cast<double>(mesh.triangles.size());
   }
   return q;
 }

@@ -72,8 +72,13 @@ Expected<SeedSceneRun> runSeedScene(const SeedScene& scene, const SeedSceneOptio
   Expected<CurvedMesh> mesh = bubbleMesh(scene.paper, options.mesh);
   if (!mesh.ok())
     return Expected<SeedSceneRun>::failure(scene.name + ": " + mesh.message());
+  return runSeedSceneOn(scene, std::move(*mesh), options);
+}
+
+SeedSceneRun runSeedSceneOn(const SeedScene& scene, CurvedMesh mesh, const SeedSceneOptions& options)
+{
   SeedSceneRun run;
-  run.mesh = std::move(*mesh);
+  run.mesh = std::move(mesh);
   run.positions = placeNodes(run.mesh, scene.paper);
   CurvedSolver solver(run.mesh, scene.paper, options.material, options.contact, options.solve);
   const int fixed = run.mesh.vertex_nodes[scene.fixed], pulled = run.mesh.vertex_nodes[scene.pulled];
@@ -81,7 +86,7 @@ Expected<SeedSceneRun> runSeedScene(const SeedScene& scene, const SeedSceneOptio
   for (int k = 1; k <= options.steps; ++k)
   {
     SeedSceneStep step;
-    step.fraction = static_cast<double>(k) / options.steps;
+    step.fraction = options.until * k / options.steps;
     step.report = solver.solve(run.positions, { { fixed, hold }, { pulled, scene.pullAt(step.fraction) } });
     step.metrics = measureCurved(run.mesh, scene.paper, run.positions);
     run.steps.push_back(step);

@@ -83,6 +83,8 @@ struct MeshQuality
   double min_edge = 0.0;    // shortest edge / spacing
   double max_edge = 0.0;    // longest edge / spacing
   double area = 0.0;        // summed rest area of the triangles
+  double mean_radius_ratio = 0.0;  // mean of 2·inradius / circumradius (1 equilateral, 0 flat)
+  double well_shaped = 0.0;        // share of triangles with every angle in 45°–75°
   int crossing_triangles = 0;  // triangles whose corners are not all in their face (must be 0)
 };
 MeshQuality meshQuality(const CurvedMesh& mesh, const Paper& paper);

@@ -39,6 +39,7 @@ struct SeedSceneOptions
 {
   BubbleMeshOptions mesh;  // spacing 0: a tenth of the sheet
   int steps = 20;          // the pull in equal steps, each solved to balance (a drag)
+  double until = 1.0;      // the fraction of the pull the steps end at
   CurvedMaterial material;
   ContactOptions contact;
   CurvedSolveOptions solve;
@@ -63,5 +64,8 @@ struct SeedSceneRun
 /// Meshes the scene's paper and pulls: the fixed corner pinned where it is, the pulled one
 /// along pullAt, step by step. Stops early at a step that diverges. Fails when meshing does.
 Expected<SeedSceneRun> runSeedScene(const SeedScene& scene, const SeedSceneOptions& options = {});
+
+/// The same pull on a mesh of the scene's paper made by any mesher (options.mesh unused).
+SeedSceneRun runSeedSceneOn(const SeedScene& scene, CurvedMesh mesh, const SeedSceneOptions& options = {});
 
 }  // namespace virtual_origami::core
