@@ -1,5 +1,6 @@
 #include "virtual_origami/core/layers.h"
 
+#include <cmath>
 #include <deque>
 
 namespace virtual_origami::core
@@ -40,6 +41,28 @@ std::vector<int> stackLevels(const Paper& paper)
     }
   }
   return level;
+}
+
+int layerCount(const Paper& paper, const Vec3& point, double margin)
+{
+  int count = 0;
+  for (size_t f = 0; f < paper.faces.size(); ++f)
+  {
+    const std::vector<int>& vs = paper.faces[f].vertices;
+    const Vec3 n = paper.faceNormal(static_cast<int>(f));
+    if (std::abs(n.dot(point - paper.faceCentroid(static_cast<int>(f)))) > margin)
+      continue;
+    bool inside = true;
+    for (size_t i = 0; i < vs.size() && inside; ++i)
+    {
+      const Vec3& a = paper.vertices[vs[i]].folded;
+      const Vec3& b = paper.vertices[vs[(i + 1) % vs.size()]].folded;
+      // Counter-clockwise about the front normal: inside lies left of every side.
+      inside = (b - a).normalized().cross(point - a).dot(n) > margin;
+    }
+    count += inside ? 1 : 0;
+  }
+  return count;
 }
 
 }  // namespace virtual_origami::core

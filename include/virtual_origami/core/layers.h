@@ -12,4 +12,9 @@ namespace virtual_origami::core
 /// Orders that contradict each other (a cycle) are ignored past the first.
 std::vector<int> stackLevels(const Paper& paper);
 
+/// How many layers of paper a point of the folded model lies in: the faces whose folded
+/// polygon contains it (strictly inside, by more than `margin`) and whose plane passes within
+/// `margin` of it. Count it away from creases and vertices, where faces only touch.
+int layerCount(const Paper& paper, const Vec3& point, double margin = 1e-9);
+
 }  // namespace virtual_origami::core

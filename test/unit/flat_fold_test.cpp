@@ -1,0 +1,158 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "test_models.h"
+#include "virtual_origami/core/flat_fold.h"
+#include "virtual_origami/core/layers.h"
+#include "virtual_origami/core/metrics.h"
+
+using namespace virtual_origami::core;
+using namespace virtual_origami::core::test;
+
+namespace
+{
+Vec2 v2(double x, double y) { return Vec2(x, y); }
+
+/// The unit square creased along both diagonals and both midlines.
+Paper creasedSquare()
+{
+  Paper paper = Paper::square(1.0);
+  creaseLine(paper, p3(0, 0), p3(1, 1));
+  creaseLine(paper, p3(1, 0), p3(0, 1));
+  creaseLine(paper, p3(0.5, -0.1), p3(0.5, 1.1));
+  creaseLine(paper, p3(-0.1, 0.5), p3(1.1, 0.5));
+  return paper;
+}
+
+const Vec2 kCentre(0.5, 0.5);
+
+/// The vertex at a crease-pattern point.
+int vertexAt(const Paper& paper, const Vec2& p)
+{
+  for (size_t v = 0; v < paper.vertices.size(); ++v)
+    if ((paper.vertices[v].crease_pattern - p).norm() < 1e-12)
+      return static_cast<int>(v);
+  return -1;
+}
+
+Vec3 foldedAt(const Paper& paper, const Vec2& crease_pattern_point)
+{
+  const int v = vertexAt(paper, crease_pattern_point);
+  EXPECT_GE(v, 0);
+  return v >= 0 ? paper.vertices[v].folded : Vec3::Constant(NAN);
+}
+}  // namespace
+
+TEST(FlatFold, OneCreaseFoldsLikeARotation)
+{
+  Paper paper = Paper::square(1.0);
+  creaseLine(paper, p3(0, 0), p3(1, 1));
+  Paper turned = paper;
+  RotateRequest request;
+  request.click = p3(0.2, 0.8);
+  request.angle = M_PI;
+  ASSERT_TRUE(rotate(turned, request).ok());
+
+  const Expected<FlatFoldResult> folded = flatFold(paper, { { { v2(0, 0), v2(1, 1), M_PI } }, v2(0.9, 0.1) });
+  ASSERT_TRUE(folded.ok()) << folded.message();
+  EXPECT_EQ(folded->moved_faces.size(), 1u);
+  EXPECT_EQ(folded->changed_edges.size(), 1u);
+  EXPECT_LT((foldedAt(paper, v2(0, 1)) - p3(1, 0)).norm(), 1e-12);  // the corner folded onto its mirror image
+  for (size_t v = 0; v < paper.vertices.size(); ++v)
+    EXPECT_LT((paper.vertices[v].folded - turned.vertices[v].folded).norm(), 1e-12);
+  EXPECT_EQ(layerCount(paper, p3(0.7, 0.2)), 2);
+  expectValid(paper);
+}
+
+TEST(FlatFold, AFoldThatDoesNotCloseIsRefusedAndLeavesThePaper)
+{
+  Paper paper = creasedSquare();
+  const Paper before = paper;
+  // One crease alone through the centre: the centre would tear.
+  const Expected<FlatFoldResult> torn = flatFold(paper, { { { v2(0.5, 0), kCentre, M_PI } }, v2(0.9, 0.1) });
+  EXPECT_FALSE(torn.ok());
+  EXPECT_NE(torn.message().find("does not close"), std::string::npos) << torn.message();
+  EXPECT_TRUE(paper == before);
+
+  EXPECT_FALSE(flatFold(paper, { { { v2(0.1, 0.2), v2(0.2, 0.4), M_PI } }, v2(0.9, 0.1) }).ok());  // no crease there
+  EXPECT_FALSE(flatFold(paper, { { { v2(0, 0), v2(1, 1), 4.0 } }, v2(0.9, 0.1) }).ok());            // past 180°
+  EXPECT_FALSE(flatFold(paper, { { { v2(0, 0), v2(1, 1), M_PI } }, v2(2, 2) }).ok());               // fixed point off the sheet
+  EXPECT_FALSE(flatFold(paper, { { { v2(0, 0), v2(1, 1), NAN } }, v2(0.9, 0.1) }).ok());
+  EXPECT_TRUE(paper == before);
+}
+
+// Square base, first half: the sheet folded in half on both diagonals is a triangle of four
+// layers; squashing its top flap opens the flap's quadrant flat into a square beside the
+// flap that is still a triangle.
+TEST(FlatFold, SquashFoldOpensTheFlapIntoASquare)
+{
+  Paper paper = creasedSquare();
+  const Vec2 fixed(0.9, 0.3);  // in the quadrant x > .5, y < .5, on the lower-right side of the diagonal
+  ASSERT_TRUE(flatFold(paper, { { { v2(0, 0), v2(1, 1), M_PI } }, fixed }).ok());
+  ASSERT_TRUE(flatFold(paper, { { { v2(1, 0), v2(0, 1), M_PI } }, fixed }).ok());
+  EXPECT_EQ(layerCount(paper, p3(0.9, 0.3)), 4);
+  EXPECT_EQ(layerCount(paper, p3(0.9, 0.7)), 4);
+  EXPECT_EQ(layerCount(paper, p3(0.6, 0.2)), 0);  // outside the triangle (.5,.5), (1,0), (1,1)
+
+  const Expected<FlatFoldResult> squashed = flatFold(paper, { { { v2(0, 0), kCentre, 0.0 },        // the flap's spine opens
+                                                                { v2(1, 0), kCentre, 0.0 },        // its hinge in one layer
+                                                                { v2(0.5, 0), kCentre, -M_PI },    // its sides fold
+                                                                { v2(0, 0.5), kCentre, M_PI } },
+                                                              fixed });
+  ASSERT_TRUE(squashed.ok()) << squashed.message();
+  expectValid(paper);
+  EXPECT_LT(edgeStrain(paper).max, 1e-12);
+  // The flap's quadrant [0, .5]² now lies flat on the square [.5, 1] × [0, .5].
+  for (const Vec2& corner : { v2(0, 0), v2(0.5, 0), v2(0, 0.5), kCentre })
+  {
+    const Vec3 p = foldedAt(paper, corner);
+    EXPECT_NEAR(p.z(), 0.0, 1e-12);
+    EXPECT_TRUE(p.x() > 0.5 - 1e-12 && p.x() < 1 + 1e-12 && p.y() > -1e-12 && p.y() < 0.5 + 1e-12)
+        << corner.transpose() << " -> " << p.transpose();
+  }
+  // Layers: the square's half beyond the old triangle is the opened flap's two layers alone;
+  // its half on the triangle holds those two over the two layers under the flap; the
+  // triangle (.5,.5), (1,.5), (1,1) keeps the other flap's two. Areas sum to the sheet's.
+  const int beyond = layerCount(paper, p3(0.6, 0.3));
+  const int over = layerCount(paper, p3(0.9, 0.2));
+  const int other = layerCount(paper, p3(0.9, 0.7));
+  EXPECT_EQ(beyond, 2);
+  EXPECT_EQ(over, 4);
+  EXPECT_EQ(other, 2);
+  EXPECT_EQ((beyond + over + other) * 0.125, 1.0);
+}
+
+// An inside reverse fold of a two-layer point: the sheet folded on its diagonal, the tip at
+// (0, 0) reversed along x = 0.3 through both layers. The tip lands mirrored across the line,
+// the spine's piece in the tip turns from valley to mountain, and the vertex where the new
+// creases meet the spine keeps Maekawa's |M − V| = 2.
+TEST(FlatFold, InsideReverseFoldMirrorsTheTipAndFlipsItsSpine)
+{
+  Paper paper = Paper::square(1.0);
+  creaseLine(paper, p3(0, 0), p3(1, 1));
+  const Vec2 fixed(0.9, 0.1);
+  ASSERT_TRUE(flatFold(paper, { { { v2(0, 0), v2(1, 1), M_PI } }, fixed }).ok());
+  creaseLine(paper, p3(0.3, -0.1), p3(0.3, 0.4));  // through both layers
+  ASSERT_EQ(paper.faces.size(), 4u);
+
+  const Expected<FlatFoldResult> reversed = flatFold(paper, { { { v2(0, 0), v2(0.3, 0.3), -M_PI },
+                                                                { v2(0.3, 0), v2(0.3, 0.3), -M_PI },
+                                                                { v2(0, 0.3), v2(0.3, 0.3), -M_PI } },
+                                                              fixed });
+  ASSERT_TRUE(reversed.ok()) << reversed.message();
+  expectValid(paper);
+  EXPECT_LT((foldedAt(paper, v2(0, 0)) - p3(0.6, 0)).norm(), 1e-12);
+  EXPECT_LT((foldedAt(paper, v2(0, 0.3)) - p3(0.3, 0)).norm(), 1e-12);  // the back layer's edge point joins the front's
+  EXPECT_EQ(reversed->moved_faces.size(), 2u);                           // the tip, both layers
+  int mountains = 0, valleys = 0;
+  const int joint = vertexAt(paper, v2(0.3, 0.3));
+  for (const Edge& e : paper.edges)
+    if (e.isCrease() && (e.vertices[0] == joint || e.vertices[1] == joint))
+      (e.fold_angle < 0 ? mountains : valleys) += 1;
+  EXPECT_EQ(mountains, 3);
+  EXPECT_EQ(valleys, 1);
+  // Between x = .3 and .6 the tip adds its two layers to the body's two.
+  EXPECT_EQ(layerCount(paper, p3(0.5, 0.05)), 4);
+  EXPECT_EQ(layerCount(paper, p3(0.8, 0.1)), 2);
+}
