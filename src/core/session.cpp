@@ -24,6 +24,8 @@ const char* kindName(Operation::Kind kind)
       return "reset";
     case Operation::Kind::Load:
       return "load";
+    case Operation::Kind::Pull:
+      return "pull";
   }
   return "unknown";
 }
@@ -150,6 +152,20 @@ Status Session::load(Paper paper, const std::string& path)
   return success();
 }
 
+Expected<PullResult> Session::pull(const std::vector<PullTarget>& targets)
+{
+  Paper next = history_.paper;
+  Expected<PullResult> result = core::pull(next, targets, solver_.get(), held_);
+  if (result)
+  {
+    Operation op;
+    op.kind = Operation::Kind::Pull;
+    op.pull = targets;
+    commit(std::move(next), op);
+  }
+  return result;
+}
+
 Status Session::apply(const Operation& operation)
 {
   switch (operation.kind)
@@ -177,6 +193,11 @@ Status Session::apply(const Operation& operation)
       return reset(operation.size);
     case Operation::Kind::Load:
       return failure("a load is replayed by loading the file itself");
+    case Operation::Kind::Pull:
+    {
+      const auto r = pull(operation.pull);
+      return r ? success() : failure(r.message());
+    }
   }
   return failure("unknown operation");
 }

@@ -141,6 +141,11 @@ json operationToJson(const Operation& op)
     case Operation::Kind::Load:
       j["path"] = op.path;
       break;
+    case Operation::Kind::Pull:
+      j["pull"] = json::array();
+      for (const PullTarget& target : op.pull)
+        j["pull"].push_back({ { "vertex", target.vertex }, { "position", point(target.position) } });
+      break;
     default:
       break;
   }
@@ -157,7 +162,7 @@ Expected<Operation> operationFromJson(const json& j)
     bool known = false;
     for (Operation::Kind k : { Operation::Kind::Crease, Operation::Kind::Rotate, Operation::Kind::Squash,
                                Operation::Kind::Undo, Operation::Kind::Redo, Operation::Kind::Reset,
-                               Operation::Kind::Load })
+                               Operation::Kind::Load, Operation::Kind::Pull })
       if (kind == kindName(k))
       {
         op.kind = k;
@@ -185,6 +190,9 @@ Expected<Operation> operationFromJson(const json& j)
       op.size = j.at("size").get<double>();
     else if (op.kind == Operation::Kind::Load)
       op.path = j.at("path").get<std::string>();
+    else if (op.kind == Operation::Kind::Pull)
+      for (const json& target : j.at("pull"))
+        op.pull.push_back({ integer<int>(target.at("vertex")), point(target.at("position")) });
     return op;
   }
   catch (const std::exception& e)  // json::exception, NotAnInteger

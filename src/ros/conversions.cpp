@@ -128,6 +128,13 @@ Operation toMessage(const core::Operation& op)
     case core::Operation::Kind::Reset:
       msg.size = op.size;
       break;
+    case core::Operation::Kind::Pull:
+      for (const core::PullTarget& target : op.pull)
+      {
+        msg.vertices.push_back(target.vertex);
+        msg.positions.push_back(toPoint(target.position));
+      }
+      break;
     default:
       break;
   }

@@ -4,8 +4,10 @@
 #include <ctime>
 #include <filesystem>
 
+#include <Eigen/Geometry>
 #include <geometry_msgs/TransformStamped.h>
 #include <tf2/LinearMath/Quaternion.h>
+#include <tf2/exceptions.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include "virtual_origami/core/fold_io.h"
@@ -47,6 +49,32 @@ geometry_msgs::TransformStamped transform(const std::string& parent, const std::
   return t;
 }
 
+/// A face's frame: origin at its centroid, z along its front normal, x along its first edge.
+geometry_msgs::TransformStamped faceFrame(const core::Paper& paper, int face, const std::string& parent,
+                                          const std::string& child, const ros::Time& stamp)
+{
+  const std::vector<int>& loop = paper.faces[face].vertices;
+  const core::Vec3 z = paper.faceNormal(face);
+  const core::Vec3 edge = paper.vertices[loop[1]].folded - paper.vertices[loop[0]].folded;
+  const core::Vec3 x = (edge - edge.dot(z) * z).normalized();
+  Eigen::Matrix3d axes;
+  axes << x, z.cross(x), z;
+  const Eigen::Quaterniond q(axes);
+  const core::Vec3 origin = paper.faceCentroid(face);
+  geometry_msgs::TransformStamped t;
+  t.header.stamp = stamp;
+  t.header.frame_id = parent;
+  t.child_frame_id = child;
+  t.transform.translation.x = origin.x();
+  t.transform.translation.y = origin.y();
+  t.transform.translation.z = origin.z();
+  t.transform.rotation.x = q.x();
+  t.transform.rotation.y = q.y();
+  t.transform.rotation.z = q.z();
+  t.transform.rotation.w = q.w();
+  return t;
+}
+
 bool hasSuffix(const std::string& s, const std::string& suffix)
 {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
@@ -59,6 +87,10 @@ PaperModelNode::PaperModelNode(ros::NodeHandle nh, ros::NodeHandle private_nh) :
   style_.frame_id = private_nh.param<std::string>("paper_frame", "paper");
   style_.layer_gap = private_nh.param("layer_gap", style_.layer_gap);
   size_ = private_nh.param("size", 1.0);
+  pin_frame_timeout_ = private_nh.param("pin_frame_timeout", pin_frame_timeout_);
+  face_frames_ = private_nh.param("face_frames", face_frames_);
+  face_frame_prefix_ = private_nh.param<std::string>("face_frame_prefix", "");
+  const double pin_rate = private_nh.param("pin_rate", 30.0);
   // First: it replaces the session, and with it the solver and snap settings set below (a
   // resumed model had no solver, so every fold that needs one was refused: found by chaos).
   restoreOrStart(private_nh);
@@ -76,7 +108,11 @@ PaperModelNode::PaperModelNode(ros::NodeHandle nh, ros::NodeHandle private_nh) :
   const core::Vec3 origin(private_nh.param("paper_x", 0.0), private_nh.param("paper_y", 0.0),
                           private_nh.param("paper_z", 0.0));
   static_tf_.sendTransform(transform(world_frame_, style_.frame_id, origin, private_nh.param("paper_yaw", 0.0)));
-  pin_timer_ = nh_.createTimer(ros::Duration(0.1), &PaperModelNode::broadcastPins, this);
+  pin_timer_ = nh_.createTimer(ros::Duration(0.1), &PaperModelNode::broadcastFrames, this);
+  if (pin_rate > 0)
+    follow_timer_ = nh_.createTimer(ros::Duration(1.0 / pin_rate), &PaperModelNode::followPins, this);
+  else
+    ROS_ERROR("paper_model: pin_rate must be positive (it is %g); pins will not follow their frames", pin_rate);
 
   services_.push_back(nh_.advertiseService("crease", &PaperModelNode::crease, this));
   services_.push_back(nh_.advertiseService("rotate", &PaperModelNode::rotate, this));
@@ -119,7 +155,7 @@ void PaperModelNode::restoreOrStart(ros::NodeHandle& private_nh)
     ROS_ERROR("paper_model: %s; changes will not survive a restart", started.message().c_str());
 }
 
-void PaperModelNode::committed(const std::string& what)
+void PaperModelNode::committed(const std::string& what, const ros::Time& stamp)
 {
   const core::Status journaled = journal_.record(session_);
   if (!journaled)
@@ -128,17 +164,90 @@ void PaperModelNode::committed(const std::string& what)
   op.header.stamp = ros::Time::now();
   op.header.frame_id = style_.frame_id;
   operations_pub_.publish(op);
-  publishState();
+  publishState(stamp);
   ROS_DEBUG("paper_model: %s, revision %lu", what.c_str(), static_cast<unsigned long>(session_.revision()));
 }
 
-void PaperModelNode::publishState()
+void PaperModelNode::publishState(const ros::Time& stamp)
 {
   PaperState state = toMessage(session_.paper(), session_.revision(), pins_);
-  state.header.stamp = ros::Time::now();
+  state.header.stamp = stamp.isZero() ? ros::Time::now() : stamp;
   state.header.frame_id = style_.frame_id;
   state_pub_.publish(state);
   publishMarkers(session_.paper());
+  // Now, not the state's stamp: a pull's older tf stamp would leave the last timer's
+  // broadcast of the old pose as the latest.
+  broadcastFaces(ros::Time::now());
+}
+
+void PaperModelNode::broadcastFaces(const ros::Time& stamp)
+{
+  if (!face_frames_)
+    return;
+  const core::Paper& paper = session_.paper();
+  std::vector<geometry_msgs::TransformStamped> frames;
+  for (size_t f = 0; f < paper.faces.size(); ++f)
+    frames.push_back(faceFrame(paper, static_cast<int>(f), style_.frame_id,
+                               face_frame_prefix_ + "face_" + std::to_string(f), stamp));
+  tf_.sendTransform(frames);
+}
+
+std::vector<int> PaperModelNode::pinnedVertices() const
+{
+  std::vector<int> held;
+  for (const auto& pinned : pins_)
+    held.push_back(pinned.first);
+  return held;
+}
+
+void PaperModelNode::followPins(const ros::TimerEvent&)
+{
+  const core::Paper& paper = session_.paper();
+  const int count = static_cast<int>(paper.vertices.size());
+  const double still = 1e-9 * paper.scale();
+  std::vector<core::PullTarget> targets;
+  ros::Time stamp;
+  bool moved = false;
+  for (const auto& [vertex, pin] : pins_)
+  {
+    if (pin.frame_id.empty() || vertex >= count)
+      continue;
+    geometry_msgs::TransformStamped t;
+    try
+    {
+      t = tf_buffer_.lookupTransform(style_.frame_id, pin.frame_id, ros::Time(0));
+    }
+    catch (const tf2::TransformException& e)
+    {
+      // A cycle pulls every pin or none, so the pins never pull against a stale frame.
+      ROS_WARN_THROTTLE(5.0, "paper_model: vertex %d follows %s, which tf cannot place: %s; the paper stays", vertex,
+                        pin.frame_id.c_str(), e.what());
+      return;
+    }
+    const core::Vec3 target(t.transform.translation.x, t.transform.translation.y, t.transform.translation.z);
+    targets.push_back({ vertex, target });
+    stamp = std::max(stamp, t.header.stamp);
+    const auto last = pulled_to_.find(vertex);
+    if (last == pulled_to_.end() || (last->second - target).norm() > still)
+      moved = true;
+  }
+  if (!moved)
+    return;
+  session_.setHeldVertices(pinnedVertices());
+  const auto result = session_.pull(targets);
+  if (!result)
+  {
+    ROS_WARN_THROTTLE(5.0, "paper_model: the pins cannot be followed: %s", result.message().c_str());
+    return;
+  }
+  for (const core::PullTarget& target : targets)
+    pulled_to_[target.vertex] = target.position;
+  if (result->residual > 1e-6 * paper.scale())
+    ROS_WARN_THROTTLE(5.0, "paper_model: the rigid faces keep the pinned vertices up to %g m from their frames",
+                      result->residual);
+  ROS_DEBUG("paper_model: pulled %zu pins, residual %g m, strain %g", targets.size(), result->residual,
+            result->solve.max_strain);
+  committed("pulled to the pins' frames", stamp);
 }
 
 void PaperModelNode::publishMarkers(const core::Paper& paper)
@@ -146,8 +255,9 @@ void PaperModelNode::publishMarkers(const core::Paper& paper)
   markers_pub_.publish(paperMarkers(paper, style_, ros::Time::now()));
 }
 
-void PaperModelNode::broadcastPins(const ros::TimerEvent&)
+void PaperModelNode::broadcastFrames(const ros::TimerEvent&)
 {
+  broadcastFaces(ros::Time::now());
   std::vector<geometry_msgs::TransformStamped> frames;
   for (const auto& [vertex, pin] : pins_)
     if (vertex < static_cast<int>(session_.paper().vertices.size()))
@@ -186,10 +296,7 @@ bool PaperModelNode::rotate(Rotate::Request& req, Rotate::Response& res)
   request.axis_edge = req.axis_edge;
   request.click = toVec3(req.click);
   request.angle = req.angle;
-  std::vector<int> held;
-  for (const auto& pinned : pins_)
-    held.push_back(pinned.first);
-  session_.setHeldVertices(held);
+  session_.setHeldVertices(pinnedVertices());
   const auto result = session_.rotate(request, req.commit);
   res.success = result.ok();
   res.message = result ? (req.commit ? "rotated" : "preview") : result.message();
@@ -233,7 +340,10 @@ bool PaperModelNode::reset(std_srvs::Trigger::Request&, std_srvs::Trigger::Respo
 {
   const core::Status status = session_.reset(size_);
   if (status)
+  {
     pins_.clear();  // the vertices they held are gone
+    pulled_to_.clear();
+  }
   return answer(status, "reset to an unfolded square", res);
 }
 
@@ -245,12 +355,20 @@ bool PaperModelNode::pin(PinVertex::Request& req, PinVertex::Response& res)
     res.message = "vertex " + std::to_string(req.vertex) + " does not exist (the model has " + std::to_string(count) + ")";
   else if (req.release && !pins_.count(req.vertex))
     res.message = "vertex " + std::to_string(req.vertex) + " is not pinned";
+  else if (!req.release && !req.frame_id.empty() &&
+           !tf_buffer_.canTransform(style_.frame_id, req.frame_id, ros::Time(0), ros::Duration(pin_frame_timeout_),
+                                    &res.message))
+    res.message = "frame \"" + req.frame_id + "\" is not known to tf in " + style_.frame_id + " after " +
+                  std::to_string(pin_frame_timeout_) + " s (" + res.message + "); vertex " +
+                  std::to_string(req.vertex) + " is not pinned";
   else
   {
+    pulled_to_.erase(req.vertex);
     if (req.release)
       pins_.erase(req.vertex);
     else
-      pins_[req.vertex] = { req.frame_id, session_.paper().vertices[req.vertex].folded };
+      pins_[req.vertex] = { req.frame_id, req.frame_id.empty() ? session_.paper().vertices[req.vertex].folded :
+                                                                 core::Vec3::Zero() };  // the frame's origin
     res.success = true;
     res.message = req.release ? "released" : req.frame_id.empty() ? "pinned in place" : "pinned to " + req.frame_id;
     Operation op;
@@ -277,6 +395,7 @@ bool PaperModelNode::load(Load::Request& req, Load::Response& res)
   if (status)
   {
     pins_.clear();
+    pulled_to_.clear();
     committed(res.message);
   }
   return true;

@@ -9,6 +9,7 @@
 
 #include "virtual_origami/core/crease.h"
 #include "virtual_origami/core/paper.h"
+#include "virtual_origami/core/pull.h"
 #include "virtual_origami/core/rotate.h"
 #include "virtual_origami/core/snap.h"
 #include "virtual_origami/core/squash.h"
@@ -28,12 +29,14 @@ struct Operation
     Redo,
     Reset,
     Load,
+    Pull,
   };
   Kind kind = Kind::Crease;
   CreaseRequest crease;   // Crease: the request as given (before snapping)
   RotateRequest rotate;   // Rotate: with face and axis resolved
   double size = 1.0;      // Reset: the sheet's side
   std::string path;       // Load: where the model came from
+  std::vector<PullTarget> pull;  // Pull: where the vertices were pulled to (pins following frames)
   uint64_t revision = 0;  // the revision it produced
 };
 
@@ -86,6 +89,8 @@ public:
   Status redo();
   Status reset(double size);
   Status load(Paper paper, const std::string& path);
+  /// Pulls vertices to points (see pull.h), holding the held vertices.
+  Expected<PullResult> pull(const std::vector<PullTarget>& targets);
 
   /// Applies a logged operation again (its parameters as logged).
   Status apply(const Operation& operation);

@@ -2,14 +2,17 @@
 // state, markers, operations and tf frames, and journals every change to disk.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include <ros/ros.h>
 #include <std_srvs/Trigger.h>
+#include <tf2_ros/buffer.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
+#include <tf2_ros/transform_listener.h>
 #include <virtual_origami/Crease.h>
 #include <virtual_origami/Load.h>
 #include <virtual_origami/PinVertex.h>
@@ -40,10 +43,17 @@ private:
   bool save(Save::Request& req, Save::Response& res);
 
   /// After a committed change: journal it, announce it on `operations`, publish the state.
-  void committed(const std::string& what);
-  void publishState();
+  void committed(const std::string& what, const ros::Time& stamp = ros::Time(0));
+  /// `stamp` zero: now (a pull is stamped with the tf data it followed).
+  void publishState(const ros::Time& stamp = ros::Time(0));
   void publishMarkers(const core::Paper& paper);
-  void broadcastPins(const ros::TimerEvent&);
+  /// The pinned points and, unless switched off, a frame per face (broadcastFaces).
+  void broadcastFrames(const ros::TimerEvent&);
+  void broadcastFaces(const ros::Time& stamp);
+  /// Each cycle: the vertices pinned to tf frames are pulled to their frames' origins and
+  /// the solver re-solves the paper around every pin.
+  void followPins(const ros::TimerEvent&);
+  std::vector<int> pinnedVertices() const;
   void restoreOrStart(ros::NodeHandle& private_nh);
   bool answer(const core::Status& status, const std::string& done, std_srvs::Trigger::Response& res);
 
@@ -51,6 +61,7 @@ private:
   core::Session session_;
   core::SessionJournal journal_;
   Pins pins_;
+  std::map<int, core::Vec3> pulled_to_;  // where each followed pin last pulled its vertex (paper frame)
   MarkerStyle style_;
   std::string world_frame_;
   double size_ = 1.0;
@@ -58,7 +69,12 @@ private:
   std::vector<ros::ServiceServer> services_;
   tf2_ros::StaticTransformBroadcaster static_tf_;
   tf2_ros::TransformBroadcaster tf_;
-  ros::Timer pin_timer_;
+  tf2_ros::Buffer tf_buffer_;
+  tf2_ros::TransformListener tf_listener_{ tf_buffer_ };  // its own thread: lookups may wait in a service
+  double pin_frame_timeout_ = 1.0;  // how long `pin` waits for an unknown frame to appear
+  bool face_frames_ = true;
+  std::string face_frame_prefix_;
+  ros::Timer pin_timer_, follow_timer_;
 };
 
 }  // namespace virtual_origami

@@ -1,0 +1,58 @@
+// An example robot coupled to the paper (SPEC §1): a gripper that grasps a corner of the
+// sheet by pinning it to its own tf frame, swings the frame on a half circle about the
+// middle crease so the sheet folds in half, and lets go; the sheet stays folded.
+#pragma once
+
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <geometry_msgs/TransformStamped.h>
+#include <ros/ros.h>
+#include <tf2_ros/transform_broadcaster.h>
+#include <virtual_origami/PaperState.h>
+
+#include "virtual_origami/core/paper.h"
+#include "virtual_origami/core/result.h"
+
+namespace virtual_origami
+{
+struct GripperOptions
+{
+  /// The corner grasped, counter-clockwise from the origin: 0 (0, 0), 1 (s, 0), 2 (s, s), 3 (0, s).
+  int corner = 1;
+  double duration = 4.0;  // seconds the half circle takes
+  double rate = 30.0;     // Hz of the gripper frame's broadcast
+  std::string frame = "gripper";
+  std::string paper_frame = "paper";
+  bool crease = true;     // crease the middle line first (rigid faces turn only about creases)
+  double timeout = 30.0;  // longest wait for the model (services, catching up)
+};
+
+class GripperExample
+{
+public:
+  GripperExample(ros::NodeHandle nh, GripperOptions options);
+  /// Creases, grasps, folds, releases. Blocks; needs a spinner running for its timer and
+  /// the state subscription (the node starts an AsyncSpinner).
+  core::Status run();
+
+private:
+  core::Status callPin(int vertex, const std::string& frame, bool release);
+  core::Expected<PaperState> stateAfter(uint64_t revision);
+  void broadcast(const ros::WallTimerEvent&);
+  void moveTo(const core::Vec3& position);
+
+  ros::NodeHandle nh_;
+  GripperOptions options_;
+  ros::Subscriber state_sub_;
+  ros::WallTimer timer_;
+  tf2_ros::TransformBroadcaster tf_;
+  std::mutex mutex_;
+  PaperState state_;
+  bool have_state_ = false;
+  bool broadcasting_ = false;
+  core::Vec3 gripper_ = core::Vec3::Zero();  // in the paper frame
+};
+
+}  // namespace virtual_origami

@@ -1,0 +1,213 @@
+#include "virtual_origami/ros/gripper_example.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <std_srvs/Trigger.h>
+#include <virtual_origami/Crease.h>
+#include <virtual_origami/PinVertex.h>
+
+#include "virtual_origami/ros/conversions.h"
+
+namespace virtual_origami
+{
+namespace
+{
+core::Vec2 crease_pattern(const PaperState& state, int v)
+{
+  return { state.vertices_crease_pattern[v].x, state.vertices_crease_pattern[v].y };
+}
+
+core::Vec3 folded(const PaperState& state, int v)
+{
+  return toVec3(state.vertices_folded[v]);
+}
+
+int vertexAt(const PaperState& state, const core::Vec2& point, double tolerance)
+{
+  for (size_t v = 0; v < state.vertices_crease_pattern.size(); ++v)
+    if ((crease_pattern(state, static_cast<int>(v)) - point).norm() < tolerance)
+      return static_cast<int>(v);
+  return -1;
+}
+
+/// Front normal of the face that uses `vertex` (Newell's method over its folded loop).
+core::Vec3 normalAt(const PaperState& state, int vertex)
+{
+  for (const Face& face : state.faces)
+    if (std::find(face.vertices.begin(), face.vertices.end(), vertex) != face.vertices.end())
+    {
+      core::Vec3 n = core::Vec3::Zero();
+      for (size_t i = 0; i < face.vertices.size(); ++i)
+        n += folded(state, face.vertices[i]).cross(folded(state, face.vertices[(i + 1) % face.vertices.size()]));
+      return n.normalized();
+    }
+  return core::Vec3::UnitZ();
+}
+}  // namespace
+
+GripperExample::GripperExample(ros::NodeHandle nh, GripperOptions options) : nh_(nh), options_(std::move(options))
+{
+  state_sub_ = nh_.subscribe<PaperState>("state", 10, [this](const PaperState::ConstPtr& s) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    state_ = *s;
+    have_state_ = true;
+  });
+  timer_ = nh_.createWallTimer(ros::WallDuration(1.0 / std::max(options_.rate, 1.0)), &GripperExample::broadcast, this);
+}
+
+void GripperExample::broadcast(const ros::WallTimerEvent&)
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (!broadcasting_)
+    return;
+  geometry_msgs::TransformStamped t;
+  t.header.stamp = ros::Time::now();
+  t.header.frame_id = options_.paper_frame;
+  t.child_frame_id = options_.frame;
+  t.transform.translation.x = gripper_.x();
+  t.transform.translation.y = gripper_.y();
+  t.transform.translation.z = gripper_.z();
+  t.transform.rotation.w = 1.0;
+  tf_.sendTransform(t);
+}
+
+void GripperExample::moveTo(const core::Vec3& position)
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  gripper_ = position;
+  broadcasting_ = true;
+}
+
+core::Expected<PaperState> GripperExample::stateAfter(uint64_t revision)
+{
+  const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(options_.timeout);
+  while (ros::ok() && ros::WallTime::now() < until)
+  {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (have_state_ && state_.revision >= revision)
+        return state_;
+    }
+    ros::WallDuration(0.01).sleep();
+  }
+  return core::Expected<PaperState>::failure("no state of revision " + std::to_string(revision) + " on " +
+                                             state_sub_.getTopic() + " within " + std::to_string(options_.timeout) +
+                                             " s");
+}
+
+core::Status GripperExample::callPin(int vertex, const std::string& frame, bool release)
+{
+  PinVertex pin;
+  pin.request.vertex = vertex;
+  pin.request.frame_id = frame;
+  pin.request.release = release;
+  const std::string service = nh_.resolveName("pin");
+  if (!ros::service::waitForService(service, ros::Duration(options_.timeout)) || !ros::service::call(service, pin))
+    return core::failure("the service " + service + " did not answer");
+  if (!pin.response.success)
+    return core::failure("pin vertex " + std::to_string(vertex) + ": " + pin.response.message);
+  return core::success();
+}
+
+core::Status GripperExample::run()
+{
+  if (options_.corner < 0 || options_.corner > 3)
+    return core::failure("corner must be 0, 1, 2 or 3, not " + std::to_string(options_.corner));
+  if (!(options_.duration > 0) || !(options_.rate > 0))
+    return core::failure("duration and rate must be positive");
+  core::Expected<PaperState> state = stateAfter(0);
+  if (!state)
+    return core::failure(state.message());
+  double side = 0.0;
+  for (const auto& p : state->vertices_crease_pattern)
+    side = std::max(side, std::max(p.x, p.y));
+  const double tolerance = 1e-6 * side;
+  const core::Vec2 corner((options_.corner == 1 || options_.corner == 2) ? side : 0.0,
+                          options_.corner >= 2 ? side : 0.0);
+  // The middle line between the grasped corner and its neighbour along x.
+  const core::Vec2 line_a(side / 2, 0.0), line_b(side / 2, side);
+
+  if (options_.crease && (vertexAt(*state, line_a, tolerance) < 0 || vertexAt(*state, line_b, tolerance) < 0))
+  {
+    Crease crease;
+    crease.request.start.x = line_a.x();
+    crease.request.start.y = line_a.y();
+    crease.request.end.x = line_b.x();
+    crease.request.end.y = line_b.y();
+    const std::string service = nh_.resolveName("crease");
+    if (!ros::service::waitForService(service, ros::Duration(options_.timeout)) || !ros::service::call(service, crease))
+      return core::failure("the service " + service + " did not answer");
+    if (!crease.response.success)
+      return core::failure("creasing the middle line: " + crease.response.message);
+    state = stateAfter(crease.response.revision);
+    if (!state)
+      return core::failure(state.message());
+  }
+  const int grasped = vertexAt(*state, corner, tolerance);
+  const int axis_a = vertexAt(*state, line_a, tolerance), axis_b = vertexAt(*state, line_b, tolerance);
+  if (grasped < 0 || axis_a < 0 || axis_b < 0)
+    return core::failure("the sheet has no vertex at the corner or at the ends of the middle line");
+
+  // The other hand holds the far half (the middle line included) where it lies.
+  std::vector<int> held;
+  for (size_t v = 0; v < state->vertices_crease_pattern.size(); ++v)
+    if (std::abs(crease_pattern(*state, static_cast<int>(v)).x() - corner.x()) >= side / 2 - tolerance)
+      held.push_back(static_cast<int>(v));
+  for (int v : held)
+    if (const core::Status pinned = callPin(v, "", false); !pinned)
+      return pinned;
+
+  // The half circle about the crease: from the corner, up along the sheet's front normal,
+  // onto the far half.
+  const core::Vec3 a = folded(*state, axis_a), b = folded(*state, axis_b);
+  const core::Vec3 start = folded(*state, grasped);
+  const core::Vec3 direction = (b - a).normalized();
+  const core::Vec3 foot = a + direction * direction.dot(start - a);
+  const core::Vec3 out = start - foot;
+  const core::Vec3 normal = normalAt(*state, grasped);
+  const core::Vec3 up = (normal - normal.dot(direction) * direction).normalized() * out.norm();
+  const auto along = [&](double angle) { return core::Vec3(foot + out * std::cos(angle) + up * std::sin(angle)); };
+
+  moveTo(start);
+  if (const core::Status pinned = callPin(grasped, options_.frame, false); !pinned)
+    return pinned;
+  ROS_INFO("gripper_example: holding vertex %d at corner (%g, %g) on %s; folding over %g s", grasped, corner.x(),
+           corner.y(), options_.frame.c_str(), options_.duration);
+  const int steps = std::max(1, static_cast<int>(std::ceil(options_.duration * options_.rate)));
+  ros::WallRate rate(options_.rate);
+  for (int k = 1; k <= steps && ros::ok(); ++k)
+  {
+    moveTo(along(M_PI * k / steps));
+    rate.sleep();
+  }
+  // Let the model catch up with the end of the trajectory before letting go.
+  const core::Vec3 end = along(M_PI);
+  const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(options_.timeout);
+  bool arrived = false;
+  while (!arrived && ros::ok() && ros::WallTime::now() < until)
+  {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      arrived = grasped < static_cast<int>(state_.vertices_folded.size()) &&
+                (folded(state_, grasped) - end).norm() < tolerance;
+    }
+    ros::WallDuration(0.01).sleep();
+  }
+  if (!arrived)
+    return core::failure("the paper did not follow the gripper to the end of its path within " +
+                         std::to_string(options_.timeout) + " s");
+  if (const core::Status released = callPin(grasped, "", true); !released)
+    return released;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    broadcasting_ = false;
+  }
+  for (int v : held)
+    if (const core::Status released = callPin(v, "", true); !released)
+      return released;
+  ROS_INFO("gripper_example: folded in half and released");
+  return core::success();
+}
+
+}  // namespace virtual_origami
