@@ -33,6 +33,7 @@ bench: build
 	$(BUILD_DIR)/devel/lib/virtual_origami/solver_bench docs/bench
 	$(BUILD_DIR)/devel/lib/virtual_origami/sweep_bench docs/bench
 	$(BUILD_DIR)/devel/lib/virtual_origami/curved_bench docs/bench/curved_solvers.csv
+	$(BUILD_DIR)/devel/lib/virtual_origami/replay_bench docs/bench/replay.csv sequences/crane.json sequences/penguin.json sequences/miura_ori.json
 	/usr/bin/python3 bench/plot_charts.py docs/bench docs/images/bench docs/BENCHMARKS.md
 
 # libFuzzer targets of test/fuzz/ with ASan + UBSan (clang-14, into build-fuzz/), each for
