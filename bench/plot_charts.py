@@ -242,6 +242,50 @@ def chart_curved(tables):
     tables["curved"] = "\n".join(lines)
 
 
+def chart_meshers(tables):
+    """Mesh quality of both meshers (meshers.csv) and mesh resolution against error and time on
+    seed scene 1 (mesh_resolution.csv)."""
+    quality = rows("meshers.csv")
+    if quality:
+        lines = ["| pattern | mesher | spacing | nodes | triangles | min angle | mean 2r/R | share 45–75° | time |",
+                 "|---|---|---|---|---|---|---|---|---|"]
+        for r in quality:
+            lines.append(f"| {r['pattern']} | {r['mesher']} | {fmt(num(r['spacing']))} | {r['nodes']} | {r['triangles']} | "
+                         f"{fmt(num(r['min_angle_deg']))}° | {fmt(num(r['mean_radius_ratio']))} | "
+                         f"{fmt(num(r['share_45_75']), 2)} | {fmt(num(r['mesh_ms']))} ms |")
+        tables["meshers"] = "\n".join(lines)
+    data = rows("mesh_resolution.csv")
+    if not data:
+        return
+    fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
+    for mesher, color in (("bubble", "C1"), ("cgal", "C0")):
+        pts = sorted((r for r in data if r["mesher"] == mesher and num(r["rms_error"]) > 0), key=lambda r: num(r["nodes"]))
+        if not pts:
+            continue
+        left.plot([num(r["nodes"]) for r in pts], [num(r["rms_error"]) for r in pts], "o-", c=color, label=mesher)
+        right.plot([num(r["solve_seconds"]) for r in pts], [num(r["rms_error"]) for r in pts], "o-", c=color,
+                   label=mesher)
+        for r in pts:
+            right.annotate(f"h {r['spacing']}", (num(r["solve_seconds"]), num(r["rms_error"])), fontsize=6)
+    for ax in (left, right):
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_ylabel("RMS error against the finest mesh / side")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+    left.set_xlabel("nodes")
+    right.set_xlabel("solve time of the pull [s]")
+    fig.suptitle("Seed scene 1: mesh resolution against error and time, both meshers")
+    save(fig, "mesh_resolution.png")
+    lines = ["| mesher | spacing | nodes | balanced | solve time | RMS error | max error |", "|---|---|---|---|---|---|---|"]
+    for r in data:
+        reference = num(r["rms_error"]) == 0
+        lines.append(f"| {r['mesher']} | {r['spacing']} | {r['nodes']} | {'yes' if r['passed'] == '1' else 'no'} | "
+                     f"{fmt(num(r['solve_seconds']))} s | {'reference' if reference else fmt(num(r['rms_error']))} | "
+                     f"{'–' if reference else fmt(num(r['max_error']))} |")
+    tables["mesh_resolution"] = "\n".join(lines)
+
+
 def write_tables(tables):
     if not os.path.exists(DOC):
         return
@@ -259,6 +303,7 @@ def main():
     chart_scaling(tables)
     chart_seed_accuracy(tables)
     chart_curved(tables)
+    chart_meshers(tables)
     write_tables(tables)
     print("charts in %s, tables %s into %s" % (IMAGES, ", ".join(tables), DOC))
 
