@@ -62,6 +62,29 @@ FoldStep parseStep(const json& j, const std::string& where)
     if (step.repeat < 1 || step.repeat > 1000)
       throw SequenceError{ where + ".rotate.repeat must be 1 to 1000" };
   }
+  else if (j.contains("flat_fold"))
+  {
+    const json& f = j["flat_fold"];
+    const json creases = f.value("creases", json());
+    if (!creases.is_array() || creases.empty())
+      throw SequenceError{ where + ".flat_fold.creases is missing or empty" };
+    FlatFoldRequest request;
+    for (size_t k = 0; k < creases.size(); ++k)
+    {
+      const std::string at = where + ".flat_fold.creases[" + std::to_string(k) + "]";
+      const json& c = creases[k];
+      if (!c.is_object() || !c.contains("angle_deg") || !c["angle_deg"].is_number())
+        throw SequenceError{ at + ".angle_deg is missing or not a number" };
+      CreaseLineAngle line;
+      line.start = point(c.value("start", json()), at + ".start").head<2>();
+      line.end = point(c.value("end", json()), at + ".end").head<2>();
+      line.angle = c["angle_deg"].get<double>() * M_PI / 180.0;
+      request.creases.push_back(line);
+    }
+    request.fixed_point = point(f.value("fixed", json()), where + ".flat_fold.fixed").head<2>();
+    step.flat_fold = request;
+    step.operation.kind = Operation::Kind::Pull;
+  }
   else if (j.contains("squash"))
     step.operation.kind = Operation::Kind::Squash;
   else if (j.contains("undo"))
@@ -69,7 +92,7 @@ FoldStep parseStep(const json& j, const std::string& where)
   else if (j.contains("redo"))
     step.operation.kind = Operation::Kind::Redo;
   else
-    throw SequenceError{ where + " names no operation (crease, rotate, squash, undo, redo)" };
+    throw SequenceError{ where + " names no operation (crease, rotate, squash, flat_fold, undo, redo)" };
   return step;
 }
 }  // namespace
@@ -103,6 +126,27 @@ Expected<FoldSequence> parseFoldSequence(const std::string& text)
   }
 }
 
+namespace
+{
+/// The fold, committed as the pull of every vertex it moves to where the fold puts it: the
+/// faces there are already rigid, so the solver has nothing to move and the state is the fold's.
+Status applyFlatFold(Session& session, const FlatFoldRequest& request)
+{
+  Paper folded = session.paper();
+  const Expected<FlatFoldResult> result = flatFold(folded, request);
+  if (!result)
+    return failure(result.message());
+  std::vector<PullTarget> targets;
+  for (size_t v = 0; v < folded.vertices.size(); ++v)  // those that stay are off by rounding at most
+    if ((folded.vertices[v].folded - session.paper().vertices[v].folded).norm() > 1e-12 * folded.scale())
+      targets.push_back({ static_cast<int>(v), folded.vertices[v].folded });
+  if (targets.empty())
+    return failure("the flat fold moves nothing");
+  const Expected<PullResult> pulled = session.pull(targets);
+  return pulled ? success() : failure(pulled.message());
+}
+}  // namespace
+
 Expected<std::vector<Paper>> foldSequence(const FoldSequence& sequence, Session& session)
 {
   std::shared_ptr<ShapeSolver> solver = makeSolver(sequence.solver);
@@ -119,7 +163,7 @@ Expected<std::vector<Paper>> foldSequence(const FoldSequence& sequence, Session&
     Operation op = step.operation;
     for (int k = 0; k < step.repeat; ++k)
     {
-      const Status applied = session.apply(op);
+      const Status applied = step.flat_fold ? applyFlatFold(session, *step.flat_fold) : session.apply(op);
       if (!applied)
         return Expected<std::vector<Paper>>::failure("step " + std::to_string(i + 1) +
                                                      (step.note.empty() ? "" : " (" + step.note + ")") + ": " +

@@ -7,6 +7,7 @@
 #include "test_models.h"
 #include "virtual_origami/core/fold_sequence.h"
 #include "virtual_origami/core/metrics.h"
+#include "virtual_origami/solvers/solver_factory.h"
 
 using namespace virtual_origami::core;
 
@@ -114,4 +115,35 @@ TEST(FoldSequence, AStepThatFailsIsNamed)
   EXPECT_FALSE(states.ok());
   EXPECT_NE(states.message().find("step 2 (off the paper)"), std::string::npos) << states.message();
   EXPECT_NE(states.message().find("misses"), std::string::npos) << states.message();
+}
+
+TEST(FoldSequence, AFlatFoldIsRecordedAsThePullOfTheVerticesItMoves)
+{
+  const std::string text = R"({"steps": [{"crease": {"start": [0, 0], "end": [1, 1]}},
+      {"flat_fold": {"creases": [{"start": [0, 0], "end": [1, 1], "angle_deg": 180}], "fixed": [0.9, 0.1]}}]})";
+  const Expected<FoldSequence> sequence = parseFoldSequence(text);
+  ASSERT_TRUE(sequence.ok()) << sequence.message();
+  Session session;
+  const auto states = foldSequence(*sequence, session);
+  ASSERT_TRUE(states.ok()) << states.message();
+  ASSERT_EQ(session.log().size(), 3u);  // reset, crease, the fold
+  const Operation& fold = session.log().back();
+  EXPECT_EQ(fold.kind, Operation::Kind::Pull);
+  ASSERT_EQ(fold.pull.size(), 1u);  // the corner (0, 1), onto (1, 0)
+  EXPECT_LT((fold.pull[0].position - Vec3(1, 0, 0)).norm(), 1e-12);
+  EXPECT_NEAR(std::abs(session.paper().edges[4].fold_angle), M_PI, 1e-12);
+
+  // Replaying the log gives the same state.
+  Session replayed;
+  replayed.setSolver(session.solver() ? std::shared_ptr<ShapeSolver>(makeSolver("newton")) : nullptr);
+  for (const Operation& op : session.log())
+    ASSERT_TRUE(replayed.apply(op).ok());
+  for (size_t v = 0; v < session.paper().vertices.size(); ++v)
+    EXPECT_LT((replayed.paper().vertices[v].folded - session.paper().vertices[v].folded).norm(), 1e-12);
+
+  expectRefused(R"({"steps": [{"flat_fold": {"fixed": [0, 0]}}]})", "flat_fold.creases");
+  expectRefused(R"({"steps": [{"flat_fold": {"creases": [{"start": [0, 0], "end": [1, 1]}], "fixed": [0, 0]}}]})",
+                "angle_deg");
+  expectRefused(R"({"steps": [{"flat_fold": {"creases": [{"start": [0, 0], "end": [1, 1], "angle_deg": 90}]}}]})",
+                "flat_fold.fixed");
 }

@@ -2,6 +2,7 @@
 // validity, and their FOLD files read back.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -85,30 +86,47 @@ void expectRigidAndValid(const Paper& paper)
 }
 }  // namespace
 
-// The crane sequence as far as it folds with rotations: the sheet creased for the square
-// base and folded in half on both diagonals, a right triangle of four layers with the
-// sheet's centre at its right angle.
-TEST(ShippedCrane, EndsInTheFourLayerTriangleOfTheSquareBase)
+/// Layers summed over a grid of cells covering [0, 1]²: the folded model's area counted
+/// with its layers, which must be the sheet's.
+double layeredArea(const Paper& paper, int cells)
+{
+  double sum = 0.0;
+  for (int i = 0; i < cells; ++i)
+    for (int j = 0; j < cells; ++j)
+      sum += layerCount(paper, Vec3((i + 0.5) / cells, (j + 0.5) / cells, 0));
+  return sum / (cells * cells);
+}
+
+// The crane sequence as far as it folds: square base (two diagonal folds, two squash folds),
+// then the bird base (edge creases, top crease, petal folds front and back). The bird base is
+// a diamond along the line from the sheet's corners (1,0) and (0,1), the legs' points, at the
+// bottom (1,0) to the petals' points, the corners (0,0) and (1,1), at (1 - √½, √½): as long
+// as the sheet's side.
+TEST(ShippedCrane, EndsInTheBirdBase)
 {
   size_t operations = 0;
   const std::vector<Paper> states = foldShipped("crane.json", &operations);
   ASSERT_FALSE(states.empty());
-  const Paper& crane = states.back();
-  expectRigidAndValid(crane);
-  EXPECT_EQ(crane.faces.size(), 8u);  // the eight 45° sectors of the square base's creases
-  for (const Vec3& inside : { Vec3(0.9, 0.3, 0), Vec3(0.9, 0.7, 0), Vec3(0.8, 0.45, 0) })
-    EXPECT_EQ(layerCount(crane, inside), 4) << inside.transpose();
-  EXPECT_EQ(layerCount(crane, Vec3(0.3, 0.2, 0)), 0);
-  EXPECT_EQ(layerCount(crane, Vec3(0.9, 0.3, 0.01)), 0);  // flat: nothing off the table
-  // Corners and midpoints of the sheet on the triangle's corners and hypotenuse.
-  EXPECT_LT((foldedAt(crane, Vec2(0.5, 0.5)) - Vec3(0.5, 0.5, 0)).norm(), 1e-12);
-  for (const Vec2& corner : { Vec2(0, 0), Vec2(1, 1) })
-    EXPECT_LT((foldedAt(crane, corner) - Vec3(1, 1, 0)).norm(), 1e-12);
-  for (const Vec2& corner : { Vec2(1, 0), Vec2(0, 1) })
-    EXPECT_LT((foldedAt(crane, corner) - Vec3(1, 0, 0)).norm(), 1e-12);
-  for (const Vec2& midpoint : { Vec2(0.5, 0), Vec2(1, 0.5), Vec2(0.5, 1), Vec2(0, 0.5) })
-    EXPECT_LT((foldedAt(crane, midpoint) - Vec3(1, 0.5, 0)).norm(), 1e-12);
-  expectFoldRoundTrip(crane);
+  const Paper& bird = states.back();
+  expectRigidAndValid(bird);
+  const double h = std::sqrt(0.5), t = 0.5 * std::tan(M_PI / 8);  // t: where the edge creases meet the midlines
+  for (const Vec2& petal_point : { Vec2(0, 0), Vec2(1, 1) })
+    EXPECT_LT((foldedAt(bird, petal_point) - Vec3(1 - h, h, 0)).norm(), 1e-12);
+  for (const Vec2& leg_point : { Vec2(1, 0), Vec2(0, 1) })
+    EXPECT_LT((foldedAt(bird, leg_point) - Vec3(1, 0, 0)).norm(), 1e-12);
+  EXPECT_LT((foldedAt(bird, Vec2(0.5, 0.5)) - Vec3(0.5, 0.5, 0)).norm(), 1e-12);
+  // The diamond's side corners: the top crease's ends.
+  EXPECT_LT((foldedAt(bird, Vec2(0.5, t)) - Vec3(0.5, t, 0)).norm(), 1e-12);
+  EXPECT_LT((foldedAt(bird, Vec2(t, 0.5)) - Vec3(1 - t, 0.5, 0)).norm(), 1e-12);
+  // Layers: 4 in the legs, 8 in the body where the petals lie over the legs' roots, 4 in the
+  // petals above the sheet's centre, none outside the diamond; all of it sums to the sheet.
+  EXPECT_EQ(layerCount(bird, Vec3(0.8, 0.15, 0)), 4);
+  EXPECT_EQ(layerCount(bird, Vec3(0.55, 0.4, 0)), 8);
+  EXPECT_EQ(layerCount(bird, Vec3(0.38, 0.58, 0)), 4);
+  EXPECT_EQ(layerCount(bird, Vec3(0.3, 0.3, 0)), 0);
+  EXPECT_EQ(layerCount(bird, Vec3(0.8, 0.15, 0.01)), 0);  // flat: nothing off the table
+  EXPECT_NEAR(layeredArea(bird, 400), 1.0, 0.01);         // a 1/400 grid misses its edge cells
+  expectFoldRoundTrip(bird);
   expectFramesRoundTrip(states, operations);
 }
 

@@ -3,16 +3,23 @@
 //   {"title": "…", "size": 1.0, "solver": "newton",
 //    "steps": [{"crease": {"start": [x, y], "end": [x, y]}, "note": "…"},
 //              {"rotate": {"click": [x, y, z], "angle_deg": 20, "repeat": 6}},
-//              {"squash": {}}, {"undo": {}}, {"redo": {}}]}
+//              {"squash": {}}, {"undo": {}}, {"redo": {}},
+//              {"flat_fold": {"creases": [{"start": [x, y], "end": [x, y], "angle_deg": 180}, …],
+//                             "fixed": [x, y]}}]}
 //
 // Points are in the `paper` frame, 2D or 3D; a crease may add "eye" and "snap"; a rotation
 // may name "face" and "axis_edge" instead of clicking, and "repeat" turns the same face about
 // the same axis again (one history step each), so a solver follows a large fold in stages.
+// A flat fold (squash, petal, reverse fold: see flat_fold.h) names its creases and the face
+// that stays by crease-pattern points; it is recorded as the pull of every vertex it moves to
+// where the fold puts it, so bags and replays carry it like any other operation.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "virtual_origami/core/flat_fold.h"
 #include "virtual_origami/core/result.h"
 #include "virtual_origami/core/session.h"
 
@@ -21,6 +28,7 @@ namespace virtual_origami::core
 struct FoldStep
 {
   Operation operation;
+  std::optional<FlatFoldRequest> flat_fold;  // when set, this instead of `operation`
   int repeat = 1;
   std::string note;
 };
