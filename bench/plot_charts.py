@@ -286,6 +286,19 @@ def chart_meshers(tables):
     tables["mesh_resolution"] = "\n".join(lines)
 
 
+def table_replay(tables):
+    data = rows("replay.csv")
+    if not data:
+        return
+    lines = ["| model | operations | recorded | replayed | per operation | slowest operation | faster than recorded |",
+             "|---|---|---|---|---|---|---|"]
+    for r in data:
+        lines.append(f"| {r['model']} | {r['operations']} | {fmt(num(r['recorded_s']))} s | {fmt(num(r['replay_ms']))} ms | "
+                     f"{fmt(num(r['per_operation_us']))} µs | {fmt(num(r['slowest_operation_us']))} µs | "
+                     f"{fmt(num(r['speedup']))}× |")
+    tables["replay"] = "\n".join(lines)
+
+
 def write_tables(tables):
     if not os.path.exists(DOC):
         return
@@ -304,6 +317,7 @@ def main():
     chart_seed_accuracy(tables)
     chart_curved(tables)
     chart_meshers(tables)
+    table_replay(tables)
     write_tables(tables)
     print("charts in %s, tables %s into %s" % (IMAGES, ", ".join(tables), DOC))
 
