@@ -3,16 +3,32 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "virtual_origami/curved/bubble_mesh.h"
+#include "virtual_origami/curved/cgal_mesh.h"
 #include "virtual_origami/ros/conversions.h"
 
 namespace virtual_origami
 {
+namespace
+{
+core::Expected<core::CurvedMesh> meshPaper(const core::Paper& paper, const CurvedMeshSolverConfig& config)
+{
+  const double spacing = config.spacing * paper.scale();
+  if (config.mesher == "cgal")
+  {
+    core::CgalMeshOptions options;
+    options.spacing = spacing;
+    return core::cgalMesh(paper, options);
+  }
+  core::BubbleMeshOptions options;
+  options.spacing = spacing;
+  return core::bubbleMesh(paper, options);
+}
+}  // namespace
+
 core::Expected<CurvedSheet> solveCurvedSheet(const core::Paper& paper, const std::vector<int>& held,
                                              const CurvedMeshSolverConfig& config)
 {
-  core::BubbleMeshOptions mesh_options;
-  mesh_options.spacing = config.spacing * paper.scale();
-  core::Expected<core::CurvedMesh> mesh = core::bubbleMesh(paper, mesh_options);
+  core::Expected<core::CurvedMesh> mesh = meshPaper(paper, config);
   if (!mesh)
     return core::Expected<CurvedSheet>::failure("cannot mesh the paper: " + mesh.message());
 
@@ -91,8 +107,8 @@ CurvedMeshSolverNode::CurvedMeshSolverNode(ros::NodeHandle nh, ros::NodeHandle p
 void CurvedMeshSolverNode::reconfigure(CurvedMeshSolverConfig& config, uint32_t)
 {
   config_ = config;
-  ROS_INFO("curved_mesh_solver: %s, spacing %g of the sheet, tolerance %g%s", config_.method.c_str(), config_.spacing,
-           config_.tolerance, config_.enabled ? "" : " (disabled)");
+  ROS_INFO("curved_mesh_solver: %s, %s mesh, spacing %g of the sheet, tolerance %g%s", config_.method.c_str(),
+           config_.mesher.c_str(), config_.spacing, config_.tolerance, config_.enabled ? "" : " (disabled)");
   if (last_state_)
     solveAndPublish();
 }

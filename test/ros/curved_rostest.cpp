@@ -115,6 +115,31 @@ TEST(CurvedMeshSolver, SpacingIsTunedLive)
   EXPECT_NEAR(area3d(fine), 1.0, 1e-6);
 }
 
+TEST(CurvedMeshSolver, MesherIsChosenLive)
+{
+  PaperClient client;
+  SheetListener sheet(client.nh());
+  ASSERT_TRUE(waitFor([&] { return sheet.received() > 0; }, 30.0));
+
+  dynamic_reconfigure::Reconfigure set;
+  dynamic_reconfigure::StrParameter mesher;
+  mesher.name = "mesher";
+  mesher.value = "cgal";
+  set.request.config.strs.push_back(mesher);
+  const std::string service = client.nh().resolveName("curved_mesh_solver/set_parameters");
+  ASSERT_TRUE(ros::service::waitForService(service, ros::Duration(30)));
+  ASSERT_TRUE(ros::service::call(service, set));
+  bool applied = false;
+  for (const dynamic_reconfigure::StrParameter& p : set.response.config.strs)
+    applied = applied || (p.name == "mesher" && p.value == "cgal");
+  EXPECT_TRUE(applied);
+  // CGAL's mesh of the same sheet: it covers the sheet exactly.
+  const visualization_msgs::Marker& remeshed = sheet.next();
+  EXPECT_EQ(remeshed.points.size() % 3, 0u);
+  EXPECT_GT(remeshed.points.size(), 3u * 20);
+  EXPECT_NEAR(area3d(remeshed), 1.0, 1e-6);
+}
+
 int main(int argc, char** argv)
 {
   testing::InitGoogleTest(&argc, argv);
