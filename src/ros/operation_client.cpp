@@ -5,6 +5,7 @@
 #include <virtual_origami/Crease.h>
 #include <virtual_origami/Load.h>
 #include <virtual_origami/PinVertex.h>
+#include <virtual_origami/Pull.h>
 #include <virtual_origami/Rotate.h>
 
 namespace virtual_origami
@@ -26,7 +27,7 @@ OperationClient::OperationClient(const std::string& ns) : nh_(ns) {}
 
 bool OperationClient::waitForServices(double seconds)
 {
-  for (const char* name : { "crease", "rotate", "squash", "undo", "redo", "reset", "pin", "load" })
+  for (const char* name : { "crease", "rotate", "squash", "undo", "redo", "reset", "pin", "pull", "load" })
     if (!ros::service::waitForService(nh_.resolveName(name), ros::Duration(seconds)))
       return false;
   return true;
@@ -70,11 +71,19 @@ core::Status OperationClient::apply(const Operation& op, int animation_steps, do
   }
   if (op.type == "pin")
   {
+    // A pin on a tf frame is held in place instead: the frame is not there on replay, and the
+    // recorded pulls move the vertex as the frame did.
     PinVertex srv;
     srv.request.vertex = op.vertex;
-    srv.request.frame_id = op.frame_id;
     srv.request.release = op.release;
     return call(nh_, "pin", srv);
+  }
+  if (op.type == "pull")
+  {
+    Pull srv;
+    srv.request.vertices = op.vertices;
+    srv.request.positions = op.positions;
+    return call(nh_, "pull", srv);
   }
   if (op.type == "load")
     return load(op.path);

@@ -121,6 +121,7 @@ PaperModelNode::PaperModelNode(ros::NodeHandle nh, ros::NodeHandle private_nh) :
   services_.push_back(nh_.advertiseService("redo", &PaperModelNode::redo, this));
   services_.push_back(nh_.advertiseService("reset", &PaperModelNode::reset, this));
   services_.push_back(nh_.advertiseService("pin", &PaperModelNode::pin, this));
+  services_.push_back(nh_.advertiseService("pull", &PaperModelNode::pull, this));
   services_.push_back(nh_.advertiseService("load", &PaperModelNode::load, this));
   services_.push_back(nh_.advertiseService("save", &PaperModelNode::save, this));
   publishState();
@@ -383,6 +384,32 @@ bool PaperModelNode::pin(PinVertex::Request& req, PinVertex::Response& res)
     operations_pub_.publish(op);
     publishState();
   }
+  return true;
+}
+
+bool PaperModelNode::pull(Pull::Request& req, Pull::Response& res)
+{
+  res.success = false;
+  if (req.vertices.size() != req.positions.size())
+    res.message = "pull needs one position per vertex (" + std::to_string(req.vertices.size()) + " vertices, " +
+                  std::to_string(req.positions.size()) + " positions)";
+  else
+  {
+    std::vector<core::PullTarget> targets;
+    for (size_t i = 0; i < req.vertices.size(); ++i)
+      targets.push_back({ req.vertices[i], toVec3(req.positions[i]) });
+    session_.setHeldVertices(pinnedVertices());
+    const auto result = session_.pull(targets);
+    res.success = result.ok();
+    res.message = result ? "pulled " + std::to_string(targets.size()) + " vertices" : result.message();
+    if (result)
+    {
+      res.residual = result->residual;
+      res.max_strain = result->solve.max_strain;
+      committed(res.message);
+    }
+  }
+  res.revision = session_.revision();
   return true;
 }
 

@@ -11,8 +11,10 @@
 #include <tf2_ros/transform_broadcaster.h>
 #include <tf2_ros/transform_listener.h>
 #include <virtual_origami/PinVertex.h>
+#include <virtual_origami/Pull.h>
 
 #include "ros_test_client.h"
+#include "virtual_origami/ros/operation_client.h"
 #include "virtual_origami/ros/conversions.h"
 #include "virtual_origami/core/metrics.h"
 
@@ -191,6 +193,50 @@ TEST(PinFollow, FaceFramesSitOnTheFaces)
     const core::Vec3 edge = (paper->vertices[loop[1]].folded - paper->vertices[loop[0]].folded).normalized();
     EXPECT_NEAR((q * core::Vec3::UnitX()).dot(edge), 1.0, 1e-9) << name;
   }
+}
+TEST(PinFollow, RecordedPullsAndPinsApplyAgainThroughTheServices)
+{
+  // What a replay does with a recording of a gripper: the pin on its frame becomes a pin in
+  // place, and the recorded pulls move the vertex as the frame did.
+  PaperClient client;
+  const PaperState before = client.state();
+  const int corner = vertexAt(before, 1, 0);
+  ASSERT_GE(corner, 0);
+  OperationClient replay("/origami");
+  ASSERT_TRUE(replay.waitForServices(10.0));
+  Operation pinned;
+  pinned.type = "pin";
+  pinned.vertex = corner;
+  pinned.frame_id = "a_frame_that_is_gone";
+  const core::Status pinned_again = replay.apply(pinned);
+  ASSERT_TRUE(pinned_again) << pinned_again.message();
+  Operation pulled;
+  pulled.type = "pull";
+  pulled.vertices = { corner };
+  const double angle = M_PI / 3;
+  pulled.positions = { toPoint(core::Vec3(0.5 + 0.5 * std::cos(angle), 0, 0.5 * std::sin(angle))) };
+  const core::Status pulled_again = replay.apply(pulled);
+  ASSERT_TRUE(pulled_again) << pulled_again.message();
+  const PaperState after = client.stateAt(before.revision + 1);
+  EXPECT_LE((toVec3(after.vertices_folded[corner]) - toVec3(pulled.positions[0])).norm(), 1e-12);
+  for (const Edge& e : after.edges)
+    if (e.face_left >= 0 && e.face_right >= 0)
+      EXPECT_NEAR(e.fold_angle, angle, 1e-9);
+
+  // Refused, changing nothing: lengths that differ, a target out of reach of rigid faces.
+  Pull::Request uneven;
+  uneven.vertices = { corner };
+  Pull refused = client.call<Pull>("pull", uneven);
+  EXPECT_FALSE(refused.response.success);
+  EXPECT_NE(refused.response.message.find("one position per vertex"), std::string::npos) << refused.response.message;
+  Pull::Request far = uneven;
+  far.positions = { toPoint(core::Vec3(1.5, 0, 0)) };
+  refused = client.call<Pull>("pull", far);
+  EXPECT_FALSE(refused.response.success);
+  EXPECT_NE(refused.response.message.find("unchanged"), std::string::npos) << refused.response.message;
+  EXPECT_EQ(refused.response.revision, after.revision);
+  ros::Duration(0.2).sleep();
+  EXPECT_EQ(client.state().revision, after.revision);
 }
 }  // namespace
 }  // namespace virtual_origami::test

@@ -16,6 +16,7 @@
 #include <virtual_origami/Crease.h>
 #include <virtual_origami/Load.h>
 #include <virtual_origami/PinVertex.h>
+#include <virtual_origami/Pull.h>
 #include <virtual_origami/Rotate.h>
 #include <virtual_origami/Save.h>
 
@@ -39,6 +40,7 @@ private:
   bool redo(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   bool reset(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   bool pin(PinVertex::Request& req, PinVertex::Response& res);
+  bool pull(Pull::Request& req, Pull::Response& res);
   bool load(Load::Request& req, Load::Response& res);
   bool save(Save::Request& req, Save::Response& res);
 
