@@ -97,17 +97,63 @@ double layeredArea(const Paper& paper, int cells)
   return sum / (cells * cells);
 }
 
-// The crane sequence as far as it folds: square base (two diagonal folds, two squash folds),
-// then the bird base (edge creases, top crease, petal folds front and back). The bird base is
-// a diamond along the line from the sheet's corners (1,0) and (0,1), the legs' points, at the
-// bottom (1,0) to the petals' points, the corners (0,0) and (1,1), at (1 - √½, √½): as long
-// as the sheet's side.
-TEST(ShippedCrane, EndsInTheBirdBase)
+// The crane sequence: square base (two diagonal folds, two squash folds), bird base (edge
+// and top creases, petal folds front and back), then the two lower flaps inside-reverse
+// folded up and out as neck and tail, and the two upper flaps opened to right angles as wings.
+// The body lies in the table plane z = 0, its up direction u = (-1,1)/√2 (from the slit's
+// bottom at (1,0) towards the petals' points); the wings' hinge crosses the body at the top of
+// the slit, (1 - √½/2, √½/2).
+TEST(ShippedCrane, EndsInACraneWithNeckTailAndWings)
 {
   size_t operations = 0;
   const std::vector<Paper> states = foldShipped("crane.json", &operations);
   ASSERT_FALSE(states.empty());
-  const Paper& bird = states.back();
+  const Paper& crane = states.back();
+  expectRigidAndValid(crane);
+  const double h = std::sqrt(0.5);
+  const Vec3 slit_top(1 - h / 2, h / 2, 0), up(-h, h, 0), across(-h, -h, 0);
+  const Vec3 neck = foldedAt(crane, Vec2(1, 0)), tail = foldedAt(crane, Vec2(0, 1));
+  const Vec3 centre = foldedAt(crane, Vec2(0.5, 0.5));
+  // Neck and tail: each flap (half a unit long) turned by the reverse fold from straight down
+  // to 45° above the horizontal, on either side of the body.
+  EXPECT_LT((neck - (slit_top + 0.5 * (h * up + h * across))).norm(), 1e-12);
+  EXPECT_LT((tail - (slit_top + 0.5 * (h * up - h * across))).norm(), 1e-12);
+  EXPECT_NEAR((neck - slit_top).dot(up), 0.5 * h, 1e-12);  // raised above the wings' hinge
+  EXPECT_NEAR((tail - slit_top).dot(up), 0.5 * h, 1e-12);
+  EXPECT_GT((neck - centre).dot(up), 0.14);  // and above the sheet's centre, the body's middle
+  EXPECT_GT((tail - centre).dot(up), 0.14);
+  EXPECT_NEAR((neck - tail).norm(), h, 1e-12);
+  // Wings: the petals' points half a unit off the body plane, on opposite sides.
+  const Vec3 wing_a = foldedAt(crane, Vec2(0, 0)), wing_b = foldedAt(crane, Vec2(1, 1));
+  EXPECT_LT((wing_a - (slit_top - Vec3(0, 0, 0.5))).norm(), 1e-12);
+  EXPECT_LT((wing_b - (slit_top + Vec3(0, 0, 0.5))).norm(), 1e-12);
+  EXPECT_LT(wing_a.z() * wing_b.z(), 0.0);
+  EXPECT_NEAR((wing_a - wing_b).norm(), 1.0, 1e-12);
+  // Layers: 4 in the neck and the tail (the flaps' four layers), 8 in the body below the
+  // hinge where both flaps' roots lie, 2 in each wing.
+  // (Probed just off the slit's edges, which now run along the tops of neck and tail.)
+  EXPECT_EQ(layerCount(crane, slit_top + 0.3 * (h * up + h * across) - Vec3(0, 0.02, 0)), 4);
+  EXPECT_EQ(layerCount(crane, slit_top + 0.3 * (h * up - h * across) + Vec3(0.02, 0, 0)), 4);
+  EXPECT_EQ(layerCount(crane, Vec3(0.75, 0.45, 0)), 8);
+  const Vec3 hinge(h, h, 0);  // along the wings' hinge
+  EXPECT_EQ(layerCount(crane, slit_top - 0.08 * hinge - Vec3(0, 0, 0.1)), 2);
+  EXPECT_EQ(layerCount(crane, slit_top - 0.08 * hinge + Vec3(0, 0, 0.1)), 2);
+  // The sheet's area: the wings' four layers of triangles (base √2 - 1, the top crease;
+  // height ½) stand off the table; what lies on it sums to the rest.
+  const double wings = 4 * 0.5 * (std::sqrt(2.0) - 1) * 0.5;
+  EXPECT_NEAR(layeredArea(crane, 400), 1.0 - wings, 0.01);  // a 1/400 grid misses its edge cells
+  expectFoldRoundTrip(crane);
+  expectFramesRoundTrip(states, operations);
+}
+
+// The bird base on the way: a diamond along the line from the lower flaps' points, the
+// corners (1,0) and (0,1), at the bottom (1,0) to the petals' points, the corners (0,0) and
+// (1,1), at (1 - √½, √½): as long as the sheet's side.
+TEST(ShippedCrane, PassesThroughTheBirdBase)
+{
+  const std::vector<Paper> states = foldShipped("crane.json");
+  ASSERT_GE(states.size(), 14u);
+  const Paper& bird = states[13];  // the state after the back petal fold, the 13th step
   expectRigidAndValid(bird);
   const double h = std::sqrt(0.5), t = 0.5 * std::tan(M_PI / 8);  // t: where the edge creases meet the midlines
   for (const Vec2& petal_point : { Vec2(0, 0), Vec2(1, 1) })
@@ -115,19 +161,16 @@ TEST(ShippedCrane, EndsInTheBirdBase)
   for (const Vec2& leg_point : { Vec2(1, 0), Vec2(0, 1) })
     EXPECT_LT((foldedAt(bird, leg_point) - Vec3(1, 0, 0)).norm(), 1e-12);
   EXPECT_LT((foldedAt(bird, Vec2(0.5, 0.5)) - Vec3(0.5, 0.5, 0)).norm(), 1e-12);
-  // The diamond's side corners: the top crease's ends.
   EXPECT_LT((foldedAt(bird, Vec2(0.5, t)) - Vec3(0.5, t, 0)).norm(), 1e-12);
   EXPECT_LT((foldedAt(bird, Vec2(t, 0.5)) - Vec3(1 - t, 0.5, 0)).norm(), 1e-12);
-  // Layers: 4 in the legs, 8 in the body where the petals lie over the legs' roots, 4 in the
-  // petals above the sheet's centre, none outside the diamond; all of it sums to the sheet.
+  // Layers: 4 in the lower flaps, 8 in the body where the petals lie over the flaps' roots,
+  // 4 in the petals above the sheet's centre, none outside the diamond; all sum to the sheet.
   EXPECT_EQ(layerCount(bird, Vec3(0.8, 0.15, 0)), 4);
   EXPECT_EQ(layerCount(bird, Vec3(0.55, 0.4, 0)), 8);
   EXPECT_EQ(layerCount(bird, Vec3(0.38, 0.58, 0)), 4);
   EXPECT_EQ(layerCount(bird, Vec3(0.3, 0.3, 0)), 0);
   EXPECT_EQ(layerCount(bird, Vec3(0.8, 0.15, 0.01)), 0);  // flat: nothing off the table
-  EXPECT_NEAR(layeredArea(bird, 400), 1.0, 0.01);         // a 1/400 grid misses its edge cells
-  expectFoldRoundTrip(bird);
-  expectFramesRoundTrip(states, operations);
+  EXPECT_NEAR(layeredArea(bird, 400), 1.0, 0.01);
 }
 
 // The penguin: feet folded up, both sides folded in as wings, folded in half behind on the
