@@ -13,72 +13,11 @@
 
 #include "virtual_origami/curved/bubble_mesh.h"
 #include "virtual_origami/curved/seed_scenes.h"
+#include "bench_common.h"
 
 using namespace virtual_origami::core;
-
-namespace
-{
-/// An n × n grid of nodes over the unit square, each cell split on a diagonal: a structured
-/// 10,000-node sheet without the cost of bubble-meshing it.
-CurvedMesh gridMesh(const Paper& paper, int n)
-{
-  CurvedMesh mesh;
-  mesh.spacing = 1.0 / (n - 1);
-  mesh.curved_faces.assign(paper.faces.size(), 1);
-  mesh.vertex_nodes.assign(paper.vertices.size(), -1);
-  const auto edgeOf = [&](const Vec2& p, double* t) {
-    for (size_t e = 0; e < paper.edges.size(); ++e)
-    {
-      const Vec2 a = paper.vertices[paper.edges[e].vertices[0]].crease_pattern;
-      const Vec2 b = paper.vertices[paper.edges[e].vertices[1]].crease_pattern;
-      const double s = (p - a).dot(b - a) / (b - a).squaredNorm();
-      if (s > 0 && s < 1 && (a + s * (b - a) - p).norm() < 1e-12)
-      {
-        *t = s;
-        return static_cast<int>(e);
-      }
-    }
-    return -1;
-  };
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i)
-    {
-      MeshNode node;
-      node.crease_pattern = Vec2(i * mesh.spacing, j * mesh.spacing);
-      if ((i == 0 || i == n - 1) && (j == 0 || j == n - 1))
-        for (size_t v = 0; v < paper.vertices.size(); ++v)
-          if ((paper.vertices[v].crease_pattern - node.crease_pattern).norm() < 1e-12)
-          {
-            node.paper_vertex = static_cast<int>(v);
-            mesh.vertex_nodes[v] = static_cast<int>(mesh.nodes.size());
-          }
-      if (node.paper_vertex < 0)
-        node.paper_edge = edgeOf(node.crease_pattern, &node.edge_t);
-      if (node.paper_vertex < 0 && node.paper_edge < 0)
-        node.paper_face = 0;
-      mesh.nodes.push_back(node);
-    }
-  for (int j = 0; j + 1 < n; ++j)
-    for (int i = 0; i + 1 < n; ++i)
-    {
-      const int a = j * n + i, b = a + 1, c = a + n + 1, d = a + n;
-      mesh.triangles.push_back({ { a, b, c }, 0 });
-      mesh.triangles.push_back({ { a, c, d }, 0 });
-    }
-  const Status linked = linkMesh(mesh, paper);
-  if (!linked.ok())
-  {
-    std::cerr << "grid mesh: " << linked.message() << "\n";
-    std::exit(1);
-  }
-  return mesh;
-}
-
-double now()
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-}  // namespace
+using virtual_origami::bench::gridMesh;
+using virtual_origami::bench::now;
 
 int main(int argc, char** argv)
 {

@@ -21,17 +21,14 @@
 #include "virtual_origami/solvers/positions.h"
 #include "virtual_origami/solvers/seed_spring_solver.h"
 #include "virtual_origami/solvers/solver_factory.h"
+#include "bench_common.h"
 
 using namespace virtual_origami::core;
+using virtual_origami::bench::now;
 
 namespace
 {
 constexpr double kGamma = M_PI / 3;
-
-double now()
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 int miuraId(int columns, int i, int j)
 {
@@ -170,23 +167,12 @@ void sweepStability(const std::string& dir)
   }
 }
 
-/// Sustained memory bandwidth: the STREAM triad a = b + s·c, best of five, bytes counted as
-/// STREAM does (24 per element: two reads, one write).
+/// The triad bandwidth (bench_common.h), recorded in the floor CSV.
 double triadBandwidth(std::ofstream& csv)
 {
-  const size_t n = size_t(1) << 24;  // 128 MiB per array, far past the caches
-  std::vector<double> a(n, 0.0), b(n, 1.0), c(n, 2.0);
-  double best = 1e30;
-  for (int r = 0; r < 5; ++r)
-  {
-    const double start = now();
-    const double s = 3.0 + r;
-    for (size_t i = 0; i < n; ++i)
-      a[i] = b[i] + s * c[i];
-    best = std::min(best, now() - start);
-  }
-  const double bandwidth = 24.0 * n / best;
-  csv << "triad_bytes_per_second," << bandwidth << ",check " << a[n / 2] << '\n';
+  double check = 0;
+  const double bandwidth = virtual_origami::bench::triadBandwidth(&check);
+  csv << "triad_bytes_per_second," << bandwidth << ",check " << check << '\n';
   return bandwidth;
 }
 

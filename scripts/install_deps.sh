@@ -9,6 +9,8 @@ PACKAGES=(
   build-essential cmake g++ pkg-config
   # core library
   libeigen3-dev nlohmann-json3-dev libcgal-dev
+  # curved Newton solver: CHOLMOD's supernodal Cholesky, on a single-threaded optimised BLAS
+  libsuitesparse-dev libopenblas0-serial
   # unit tests
   libgtest-dev libgmock-dev googletest
   # catkin and message generation (genmsg + the C++/Python generators)

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <unordered_map>
 
 namespace virtual_origami::core
 {
@@ -60,14 +61,38 @@ public:
   }
 
 private:
+  struct KeyHash
+  {
+    size_t operator()(const std::array<long, 3>& k) const
+    {
+      return static_cast<size_t>(k[0] * 73856093L ^ k[1] * 19349663L ^ k[2] * 83492791L);
+    }
+  };
   std::array<long, 3> key(const Vec3& p) const
   {
     return { static_cast<long>(std::floor(p.x() / cell_)), static_cast<long>(std::floor(p.y() / cell_)),
              static_cast<long>(std::floor(p.z() / cell_)) };
   }
   double cell_;
-  std::map<std::array<long, 3>, std::vector<int>> cells_;
+  std::unordered_map<std::array<long, 3>, std::vector<int>, KeyHash> cells_;
 };
+
+/// The gap between two axis-aligned boxes along the axis where it is widest (0 when they overlap).
+double boxGap(const Vec3& lo_a, const Vec3& hi_a, const Vec3& lo_b, const Vec3& hi_b)
+{
+  return std::max(0.0, std::max((lo_b - hi_a).maxCoeff(), (lo_a - hi_b).maxCoeff()));
+}
+
+template <class Nodes>
+void boundsOf(const Nodes& nodes, const Positions& x, Vec3& lo, Vec3& hi)
+{
+  lo = hi = x.col(nodes[0]);
+  for (int n : nodes)
+  {
+    lo = lo.cwiseMin(x.col(n));
+    hi = hi.cwiseMax(x.col(n));
+  }
+}
 
 /// Unit normal of a triangle and the affine coordinates of `p`'s projection onto its plane.
 struct Projection
@@ -188,6 +213,7 @@ LayerContact::LayerContact(const CurvedMesh& mesh, const Paper& paper, const Cur
   , range_(options.range > 0 ? options.range : mesh.spacing)
   , exclusion_(std::max(0.0, options.exclusion))
   , edge_margin_(options.edge_margin > 0 ? options.edge_margin : 0.5 * mesh.spacing)
+  , skin_(range_)
 {
   open_side_.assign(mesh.triangles.size(), { 0, 0, 0 });
   for (const MeshEdge& e : mesh.edges)
@@ -238,15 +264,19 @@ int LayerContact::edgeSideFor(int a, int b, double signed_distance, const Vec3& 
   return 0;
 }
 
-void LayerContact::update(const Positions& x)
+void LayerContact::findCandidates(const Positions& x)
 {
-  if (!x.allFinite())
-    return;  // a diverged state: the solver rolls it back; keep the pairs of the last good one
+  // Every element pair whose boxes come within reach + edge margin + skin, less those the rules below never
+  // watch whatever the shape (a node's own triangles, neighbours within the exclusion, edges
+  // sharing a node or near each other in one face): while no node moves farther than half
+  // the skin, every pair that comes within reach is among them.
   const double reach = thickness_ + range_;
-  const ElementGrid grid(mesh_, x, std::max(reach, mesh_.spacing), reach);
+  const double wide = reach + edge_margin_ + skin_;
+  candidates_.clear();
+  edge_candidates_.clear();
+  const ElementGrid grid(mesh_, x, std::max(wide, mesh_.spacing), wide);
   std::vector<int> stamp(mesh_.triangles.size(), -1);
-  std::map<std::pair<int, int>, Pair> nearest;  // per (node, paper face), the nearest triangle
-  std::map<std::pair<int, int>, double> nearest_distance;
+  Vec3 lo, hi;
   for (size_t i = 0; i < mesh_.nodes.size(); ++i)
   {
     const int node = static_cast<int>(i);
@@ -255,60 +285,30 @@ void LayerContact::update(const Positions& x)
       const auto& tri = mesh_.triangles[t].nodes;
       if (tri[0] == node || tri[1] == node || tri[2] == node)
         return;
-      const Projection pr = project(x.col(tri[0]), x.col(tri[1]), x.col(tri[2]), p);
-      if (!pr.valid || std::abs(pr.distance) > reach)
+      boundsOf(tri, x, lo, hi);
+      if (boxGap(lo, hi, p, p) > wide)
         return;
-      for (int k = 0; k < 3; ++k)
-      {
-        // A node over an edge between two triangles must count for one of them, whatever
-        // the rounding: a little slack (the nearest triangle per face wins anyway).
-        if (pr.weights[k] >= -1e-3)
-          continue;
-        // Outside across side k: only past the sheet's edge, and not far.
-        const Vec3 side = x.col(tri[(k + 2) % 3]) - x.col(tri[(k + 1) % 3]);
-        const double height = 2 * pr.area / side.norm();
-        if (!open_side_[t][k] || -pr.weights[k] * height > edge_margin_)
-          return;
-      }
       if (exclusion_ > 0 && patternDistance(mesh_, t, mesh_.nodes[node].crease_pattern) < exclusion_)
         return;
-      const std::pair<int, int> key{ node, mesh_.triangles[t].face };
-      const auto known = nearest_distance.find(key);
-      if (known != nearest_distance.end() && known->second <= std::abs(pr.distance))
-        return;
-      const auto remembered = sides_.find(key);
-      const int side = remembered != sides_.end() ? remembered->second : sideFor(node, t, pr.distance);
-      if (side == 0)
-        return;
-      nearest[key] = { node, t, side };
-      nearest_distance[key] = std::abs(pr.distance);
+      candidates_.push_back({ node, t });
     });
   }
-  pairs_.clear();
-  sides_.clear();
-  for (const auto& [key, pair] : nearest)
-  {
-    pairs_.push_back(pair);
-    sides_[key] = pair.side;
-  }
-
   const auto edge_nodes = [this](size_t e) { return mesh_.edges[e].nodes; };
-  const ElementGrid edges(mesh_.edges.size(), x, std::max(reach, mesh_.spacing), reach, edge_nodes);
+  const ElementGrid edges(mesh_.edges.size(), x, std::max(wide, mesh_.spacing), wide, edge_nodes);
   std::vector<int> edge_stamp(mesh_.edges.size(), -1);
-  std::map<std::pair<int, int>, int> edge_sides;
-  edge_pairs_.clear();
+  Vec3 lo_b, hi_b;
   for (size_t ea = 0; ea < mesh_.edges.size(); ++ea)
   {
     const auto& na = mesh_.edges[ea].nodes;
-    const Vec3 p1 = x.col(na[0]), p2 = x.col(na[1]);
-    edges.near(p1.cwiseMin(p2), p1.cwiseMax(p2), edge_stamp, static_cast<int>(ea), [&](int eb) {
+    boundsOf(na, x, lo, hi);
+    edges.near(lo, hi, edge_stamp, static_cast<int>(ea), [&](int eb) {
       if (eb <= static_cast<int>(ea))
         return;
       const auto& nb = mesh_.edges[eb].nodes;
       if (nb[0] == na[0] || nb[0] == na[1] || nb[1] == na[0] || nb[1] == na[1])
         return;
-      const Crossing c = cross(p1, p2, x.col(nb[0]), x.col(nb[1]));
-      if (!c.valid || std::abs(c.distance) > reach || c.s < 0 || c.s > 1 || c.t < 0 || c.t > 1)
+      boundsOf(nb, x, lo_b, hi_b);
+      if (boxGap(lo, hi, lo_b, hi_b) > wide)
         return;
       // Neighbours in one face bend smoothly past each other; only layers are kept apart.
       // Across a crease they are layers as soon as they cross (a fold near 180°).
@@ -320,15 +320,89 @@ void LayerContact::update(const Positions& x)
           segmentDistance2d(mesh_.nodes[na[0]].crease_pattern, mesh_.nodes[na[1]].crease_pattern,
                             mesh_.nodes[nb[0]].crease_pattern, mesh_.nodes[nb[1]].crease_pattern) < mesh_.spacing)
         return;
-      const std::pair<int, int> key{ static_cast<int>(ea), eb };
-      const auto remembered = edge_sides_.find(key);
-      const int side = remembered != edge_sides_.end() ? remembered->second :
-                                                          edgeSideFor(key.first, eb, c.distance, c.normal, x);
-      if (side == 0)
-        return;
-      edge_pairs_.push_back({ key.first, eb, side });
-      edge_sides[key] = side;
+      edge_candidates_.push_back({ static_cast<int>(ea), eb });
     });
+  }
+  candidates_at_ = x;
+}
+
+void LayerContact::update(const Positions& x)
+{
+  if (!x.allFinite())
+    return;  // a diverged state: the solver rolls it back; keep the pairs of the last good one
+  if (candidates_at_.cols() != x.cols() ||
+      (x - candidates_at_).colwise().squaredNorm().maxCoeff() > 0.25 * skin_ * skin_)
+    findCandidates(x);
+  const double reach = thickness_ + range_;
+  std::map<std::pair<int, int>, Pair> nearest;  // per (node, paper face), the nearest triangle
+  std::map<std::pair<int, int>, double> nearest_distance;
+  Vec3 lo, hi, lo_b, hi_b;
+  for (const auto& [node, t] : candidates_)
+  {
+    const Vec3 p = x.col(node);
+    const auto& tri = mesh_.triangles[t].nodes;
+    // A watched node lies within reach of the triangle's plane, over it or at most the edge
+    // margin past its side: within reach + margin of its box.
+    boundsOf(tri, x, lo, hi);
+    if (boxGap(lo, hi, p, p) > reach + edge_margin_)
+      continue;
+    const Projection pr = project(x.col(tri[0]), x.col(tri[1]), x.col(tri[2]), p);
+    if (!pr.valid || std::abs(pr.distance) > reach)
+      continue;
+    bool outside = false;
+    for (int k = 0; k < 3 && !outside; ++k)
+    {
+      // A node over an edge between two triangles must count for one of them, whatever
+      // the rounding: a little slack (the nearest triangle per face wins anyway).
+      if (pr.weights[k] >= -1e-3)
+        continue;
+      // Outside across side k: only past the sheet's edge, and not far.
+      const Vec3 side = x.col(tri[(k + 2) % 3]) - x.col(tri[(k + 1) % 3]);
+      const double height = 2 * pr.area / side.norm();
+      outside = !open_side_[t][k] || -pr.weights[k] * height > edge_margin_;
+    }
+    if (outside)
+      continue;
+    const std::pair<int, int> key{ node, mesh_.triangles[t].face };
+    const auto known = nearest_distance.find(key);
+    if (known != nearest_distance.end() && known->second <= std::abs(pr.distance))
+      continue;
+    const auto remembered = sides_.find(key);
+    const int side = remembered != sides_.end() ? remembered->second : sideFor(node, t, pr.distance);
+    if (side == 0)
+      continue;
+    nearest[key] = { node, t, side };
+    nearest_distance[key] = std::abs(pr.distance);
+  }
+  pairs_.clear();
+  sides_.clear();
+  for (const auto& [key, pair] : nearest)
+  {
+    pairs_.push_back(pair);
+    sides_[key] = pair.side;
+  }
+
+  std::map<std::pair<int, int>, int> edge_sides;
+  edge_pairs_.clear();
+  for (const auto& [ea, eb] : edge_candidates_)
+  {
+    const auto& na = mesh_.edges[ea].nodes;
+    const auto& nb = mesh_.edges[eb].nodes;
+    boundsOf(na, x, lo, hi);
+    boundsOf(nb, x, lo_b, hi_b);
+    if (boxGap(lo, hi, lo_b, hi_b) > reach)
+      continue;
+    const Crossing c = cross(x.col(na[0]), x.col(na[1]), x.col(nb[0]), x.col(nb[1]));
+    if (!c.valid || std::abs(c.distance) > reach || c.s < 0 || c.s > 1 || c.t < 0 || c.t > 1)
+      continue;
+    const std::pair<int, int> key{ ea, eb };
+    const auto remembered = edge_sides_.find(key);
+    const int side =
+        remembered != edge_sides_.end() ? remembered->second : edgeSideFor(ea, eb, c.distance, c.normal, x);
+    if (side == 0)
+      continue;
+    edge_pairs_.push_back({ ea, eb, side });
+    edge_sides[key] = side;
   }
   edge_sides_ = std::move(edge_sides);
 }
@@ -369,6 +443,23 @@ double LayerContact::evaluate(const Positions& x, const Assembly& out) const
     energy += addTerm<4>({ na[0], na[1], nb[0], nb[1] }, stiffness_, gap - thickness_, grad, out);
   }
   return energy;
+}
+
+std::vector<std::array<int, 4>> LayerContact::pairNodes() const
+{
+  std::vector<std::array<int, 4>> groups;
+  for (const Pair& pair : pairs_)
+  {
+    const auto& tri = mesh_.triangles[pair.triangle].nodes;
+    groups.push_back({ pair.node, tri[0], tri[1], tri[2] });
+  }
+  for (const EdgePair& pair : edge_pairs_)
+  {
+    const auto& na = mesh_.edges[pair.a].nodes;
+    const auto& nb = mesh_.edges[pair.b].nodes;
+    groups.push_back({ na[0], na[1], nb[0], nb[1] });
+  }
+  return groups;
 }
 
 double LayerContact::worstGap(const Positions& x) const

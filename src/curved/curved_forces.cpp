@@ -12,24 +12,21 @@ namespace
 /// leaves out: positive when stretched, negative when compressed.
 void addTension(const StretchTerm& s, const Vec3& d, double length, const Assembly& out)
 {
-  if (!out.hessian || !(length > 0))
+  if (!out.wantsHessian() || !(length > 0))
     return;
   const Vec3 u = d / length;
   const Eigen::Matrix3d block = s.weight * (1.0 - s.rest / length) * (Eigen::Matrix3d::Identity() - u * u.transpose());
   const int fi = (*out.free_index)[s.i], fj = (*out.free_index)[s.j];
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c)
-    {
-      if (fi >= 0)
-        out.hessian->emplace_back(3 * fi + r, 3 * fi + c, block(r, c));
-      if (fj >= 0)
-        out.hessian->emplace_back(3 * fj + r, 3 * fj + c, block(r, c));
-      if (fi >= 0 && fj >= 0)
-      {
-        out.hessian->emplace_back(3 * fi + r, 3 * fj + c, -block(r, c));
-        out.hessian->emplace_back(3 * fj + r, 3 * fi + c, -block(r, c));
-      }
-    }
+  if (fi >= 0)
+    out.addBlock(fi, fi, block);
+  if (fj >= 0)
+    out.addBlock(fj, fj, block);
+  if (fi >= 0 && fj >= 0)
+  {
+    const Eigen::Matrix3d opposite = -block;
+    out.addBlock(fi, fj, opposite);
+    out.addBlock(fj, fi, opposite);
+  }
 }
 }  // namespace
 
@@ -192,6 +189,51 @@ CurvedTerms curvedTerms(const CurvedMesh& mesh, const Paper& paper, const Curved
   return terms;
 }
 
+std::vector<std::array<int, 4>> termGroups(const CurvedTerms& terms)
+{
+  std::vector<std::array<int, 4>> groups;
+  groups.reserve(terms.stretch.size() + terms.shear.size() / 3 + terms.bend.size());
+  for (const StretchTerm& s : terms.stretch)
+    groups.push_back({ s.i, s.j, -1, -1 });
+  for (const ShearTerm& s : terms.shear)
+    groups.push_back({ s.o, s.i, s.j, -1 });
+  for (const BendTerm& b : terms.bend)
+    groups.push_back({ b.a, b.b, b.left, b.right });
+  return groups;
+}
+
+Eigen::SparseMatrix<double> blockPattern(int free_count, const std::vector<int>& free_index,
+                                         const std::vector<std::array<int, 4>>& groups)
+{
+  std::vector<std::vector<int>> rows(free_count);  // per block column, its block rows
+  for (int f = 0; f < free_count; ++f)
+    rows[f].push_back(f);
+  for (const auto& group : groups)
+    for (int a : group)
+      for (int b : group)
+        if (a >= 0 && b >= 0 && a != b && free_index[a] >= 0 && free_index[b] >= 0)
+          rows[free_index[b]].push_back(free_index[a]);
+  size_t blocks = 0;
+  for (auto& r : rows)
+  {
+    std::sort(r.begin(), r.end());
+    r.erase(std::unique(r.begin(), r.end()), r.end());
+    blocks += r.size();
+  }
+  Eigen::SparseMatrix<double> m(3 * free_count, 3 * free_count);
+  m.reserve(static_cast<Eigen::Index>(9 * blocks));
+  for (int f = 0; f < free_count; ++f)
+    for (int c = 0; c < 3; ++c)
+    {
+      m.startVec(3 * f + c);
+      for (int fr : rows[f])
+        for (int r = 0; r < 3; ++r)
+          m.insertBack(3 * fr + r, 3 * f + c) = 0.0;
+    }
+  m.finalize();
+  return m;
+}
+
 CurvedEnergy evaluateCurved(const CurvedTerms& terms, const Positions& x, const Assembly& out)
 {
   CurvedEnergy energy;
@@ -210,23 +252,23 @@ CurvedEnergy evaluateCurved(const CurvedTerms& terms, const Positions& x, const 
     Eigen::Matrix<double, 3, 3> grad;
     Eigen::Matrix<double, 9, 9> curvature;
     const double angle = cornerAngle(x.col(s.o), x.col(s.i), x.col(s.j), out.free_index ? &grad : nullptr,
-                                     out.hessian ? &curvature : nullptr);
+                                     out.wantsHessian() ? &curvature : nullptr);
     energy.shear +=
-        addTerm<3>({ s.o, s.i, s.j }, s.weight, angle - s.rest, grad, out, out.hessian ? &curvature : nullptr);
+        addTerm<3>({ s.o, s.i, s.j }, s.weight, angle - s.rest, grad, out, out.wantsHessian() ? &curvature : nullptr);
   }
   for (const BendTerm& b : terms.bend)
   {
     Eigen::Matrix<double, 3, 4> grad;
     Eigen::Matrix<double, 12, 12> curvature;
     double angle = hingeAngle(x.col(b.a), x.col(b.b), x.col(b.left), x.col(b.right), out.free_index ? &grad : nullptr,
-                              out.hessian ? &curvature : nullptr);
+                              out.wantsHessian() ? &curvature : nullptr);
     // A crease folded to ±π measures on the branch nearest its rest angle.
     if (angle - b.rest > M_PI)
       angle -= 2 * M_PI;
     else if (b.rest - angle > M_PI)
       angle += 2 * M_PI;
     energy.bend += addTerm<4>({ b.a, b.b, b.left, b.right }, b.weight, angle - b.rest, grad, out,
-                              out.hessian ? &curvature : nullptr);
+                              out.wantsHessian() ? &curvature : nullptr);
   }
   return energy;
 }

@@ -3,8 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
-
-#include <Eigen/SparseCholesky>
+#include <stdexcept>
 
 #include "virtual_origami/solvers/solve_budget.h"
 
@@ -12,8 +11,6 @@ namespace virtual_origami::core
 {
 namespace
 {
-using SparseMatrix = Eigen::SparseMatrix<double>;
-
 double largestNodeForce(const Eigen::VectorXd& g)
 {
   double worst = 0.0;
@@ -30,13 +27,6 @@ void moveFree(Positions& x, const Positions& from, const Eigen::VectorXd& step, 
       x.col(v) = from.col(v) + alpha * step.segment<3>(3 * free_index[v]);
 }
 
-bool samePattern(const SparseMatrix& a, const SparseMatrix& b)
-{
-  return a.rows() == b.rows() && a.nonZeros() == b.nonZeros() &&
-         std::equal(a.outerIndexPtr(), a.outerIndexPtr() + a.outerSize() + 1, b.outerIndexPtr()) &&
-         std::equal(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros(), b.innerIndexPtr());
-}
-
 /// SolveLimits for the shared budget: the iteration cap is checked by the caller.
 SolveLimits budgetLimits(const CurvedSolveOptions& options, int max_iterations)
 {
@@ -44,6 +34,30 @@ SolveLimits budgetLimits(const CurvedSolveOptions& options, int max_iterations)
   limits.max_iterations = max_iterations;
   limits.max_seconds = options.max_seconds;
   return limits;
+}
+
+/// The test both methods make before each step, from the gradient at the current state: stop
+/// on a non-finite state (diverged, with `nonfinite` as the message), at balance (converged)
+/// or at the end of the budget; else count the step about to be taken.
+bool stopBeforeStep(const Eigen::VectorXd& g, double energy, double force_scale, double tolerance,
+                    const SolveBudget& budget, const char* nonfinite, CurvedReport& report)
+{
+  report.max_force = largestNodeForce(g) / force_scale;
+  if (!std::isfinite(energy) || !std::isfinite(report.max_force))
+  {
+    report.diverged = true;
+    report.message = nonfinite;
+    return true;
+  }
+  if (report.max_force <= tolerance)
+  {
+    report.converged = true;
+    return true;
+  }
+  if (budget.exhausted(report.iterations))
+    return true;
+  ++report.iterations;
+  return false;
 }
 }  // namespace
 
@@ -115,89 +129,94 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
   const double max_move = options_.max_step * contact_.range();
   const int n = 3 * free_count;
   Positions trial = x;
-  std::vector<Eigen::Triplet<double>> triplets;
   Eigen::VectorXd g(n);
-  Eigen::SimplicialLDLT<SparseMatrix>& solver = factorization_;
   std::string stuck;
-  // Levenberg–Marquardt damping: starts in proportion to the force, falls while full steps
-  // succeed (towards Newton's quadratic convergence), rises when they are cut back.
-  double mu = 0.0;
+  // A factorisation of an earlier Hessian (this solve's or the last one's, for the same free
+  // nodes) is a positive definite step matrix: its steps descend, and near balance they
+  // converge nearly as fast as Newton's for a fraction of the cost (no Hessian, no
+  // factorisation). It is used while the last step, fresh or not, cut the largest force by
+  // modified_newton_rate; where Newton itself crawls (far from balance, contact coming in)
+  // every step is fresh.
+  const bool same_free = factor_free_ == free_index && factorization_.rows() == n;
+  if (!same_free)
+    factorization_.reset();
+  bool refresh = !factorization_.valid();
+  double last_force = INFINITY;
+  // Levenberg–Marquardt damping: falls while full steps succeed (towards Newton's quadratic
+  // convergence), rises when they are cut back. A solve starts from where the last one left
+  // it: a drag's next small pull needs about as little, and starting higher would damp the
+  // soft bending modes for many iterations. The first solve starts in proportion to the force.
+  double& mu = damping_mu_;
+  if (!same_free)
+    mu = -1.0;
   while (true)
   {
     contact_.update(x);
     g.setZero();
-    triplets.clear();
-    const double e = energy(x, { &free_index, &g, &triplets }, &report.energy, &report.contact_energy);
-    report.max_force = largestNodeForce(g) / force_scale;
-    if (!std::isfinite(e) || !std::isfinite(report.max_force))
-    {
-      report.diverged = true;
-      report.message = "non-finite energy; rolled back";
+    double e = energy(x, { &free_index, &g, nullptr }, &report.energy, &report.contact_energy);
+    if (stopBeforeStep(g, e, force_scale, options_.tolerance, budget, "non-finite energy; rolled back", report))
       break;
-    }
-    if (report.max_force <= options_.tolerance)
-    {
-      report.converged = true;
-      break;
-    }
-    if (budget.exhausted(report.iterations))
-      break;
-    ++report.iterations;
-    SparseMatrix hessian(n, n);
-    hessian.setFromTriplets(triplets.begin(), triplets.end());
-    if (report.iterations == 1)
-      mu = options_.damping * g.norm() / mesh_.spacing;
-    double last_alpha = 0;
+    if (!(options_.modified_newton_rate > 0) ||
+        (report.iterations > 1 && !(report.max_force <= options_.modified_newton_rate * last_force)))
+      refresh = true;
+    last_force = report.max_force;
     const double worst_gap = contact_.worstGap(x);
-    bool accepted = false;
-    // The Hessian is exact and may be indefinite away from balance: the damping rises until
-    // the shifted matrix is positive definite and its step lowers the energy.
-    for (int attempt = 0; attempt < 30 && !accepted; ++attempt)
-    {
-      if (attempt > 0)
-        mu *= 10;
-      SparseMatrix damped = hessian;
-      for (int i = 0; i < n; ++i)
-        damped.coeffRef(i, i) += mu;
-      // The ordering and elimination tree depend on the pattern alone, which changes only
-      // when contact pairs come or go: analyse it once, then only factorise.
-      if (!samePattern(damped, pattern_))
-      {
-        solver.analyzePattern(damped);
-        pattern_ = damped;
-      }
-      solver.factorize(damped);
-      if (solver.info() != Eigen::Success || !(solver.vectorD().minCoeff() > 0))
-        continue;
-      Eigen::VectorXd step = solver.solve(-g);
+    // Armijo's line search along `step`, no watched pair crossing over (by more than half the
+    // thickness, which the penalty then pushes back: a penalty alone can be outweighed by a
+    // large step). Returns the step length taken, 0 when none lowers the energy.
+    const auto search = [&](Eigen::VectorXd& step) {
       double longest = 0.0;
       for (int i = 0; i < free_count; ++i)
         longest = std::max(longest, step.segment<3>(3 * i).norm());
       if (!std::isfinite(longest))
-        continue;
+        return 0.0;
       if (longest > max_move)
         step *= max_move / longest;
       const double slope = g.dot(step);
       if (!(slope < 0))
-        continue;
+        return 0.0;
       double alpha = 1.0;
       for (int k = 0; k < 30; ++k, alpha *= 0.5)
       {
         moveFree(trial, x, step, alpha, free_index);
-        // A penalty alone can be outweighed by a large step: no watched pair may cross over
-        // (by more than half the thickness, which the penalty then pushes back).
         if (contact_.worstGap(trial) < std::min(0.0, worst_gap) - 0.5 * contact_.thickness())
           continue;
         if (energy(trial, {}) <= e + 1e-4 * alpha * slope)
         {
           std::swap(x, trial);
-          last_alpha = alpha;
-          accepted = true;
-          break;
+          return alpha;
         }
       }
+      return 0.0;
+    };
+    if (!refresh)
+    {
+      Eigen::VectorXd step = factorization_.solve(-g);
+      const double alpha = search(step);
+      refresh = alpha < 1.0;
+      if (alpha > 0)
+        continue;
     }
-    if (!accepted)
+    // A fresh exact Hessian, factorised.
+    refresh = false;
+    e = assembleHessian(x, free_index, free_count, g);
+    if (mu < 0)
+      mu = options_.damping * g.norm() / mesh_.spacing;
+    double last_alpha = 0;
+    // The Hessian is exact and may be indefinite away from balance: the damping rises until
+    // the shifted matrix is positive definite and its step lowers the energy.
+    for (int attempt = 0; attempt < 30 && last_alpha == 0; ++attempt)
+    {
+      if (attempt > 0)
+        mu *= 10;
+      ++report.factorizations;
+      if (!factorization_.factorize(hessian_, mu))
+        continue;
+      factor_free_ = free_index;
+      Eigen::VectorXd step = factorization_.solve(-g);
+      last_alpha = search(step);
+    }
+    if (last_alpha == 0)
     {
       stuck = "no step lowers the energy any further";
       break;
@@ -213,6 +232,33 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
     report.message = msg.str();
   }
   return report;
+}
+
+double CurvedSolver::assembleHessian(const Positions& x, const std::vector<int>& free_index, int free_count,
+                                     Eigen::VectorXd& g)
+{
+  // The pattern covers the terms and every contact pair seen so far for these free nodes, so
+  // it (and the factorisation's analysis) stays put while contacts come and go.
+  if (pattern_free_ != free_index)
+  {
+    pattern_groups_ = termGroups(terms_);
+    hessian_ = blockPattern(free_count, free_index, pattern_groups_);
+    pattern_free_ = free_index;
+  }
+  for (int round = 0;; ++round)
+  {
+    hessian_.coeffs().setZero();
+    g.setZero();
+    BlockHessian blocks{ &hessian_ };
+    const double e = energy(x, { &free_index, &g, nullptr, &blocks });
+    if (blocks.missing == 0)
+      return e;
+    if (round > 0)
+      throw std::logic_error("curved solver: a Hessian block outside the terms and contacts");
+    const std::vector<std::array<int, 4>> contacts = contact_.pairNodes();
+    pattern_groups_.insert(pattern_groups_.end(), contacts.begin(), contacts.end());
+    hessian_ = blockPattern(free_count, free_index, pattern_groups_);
+  }
 }
 
 CurvedReport CurvedSolver::rk4(Positions& x, const std::vector<int>& free_index, int free_count)
@@ -269,21 +315,9 @@ CurvedReport CurvedSolver::rk4(Positions& x, const std::vector<int>& free_index,
     contact_.update(x);
     // k1 from the current state also gives the force to test for balance.
     const Eigen::VectorXd a1 = acceleration(x, v);
-    report.max_force = largestNodeForce(g) / force_scale;
-    if (!std::isfinite(report.max_force))
-    {
-      report.diverged = true;
-      report.message = "rk4 produced non-finite forces; rolled back";
+    if (stopBeforeStep(g, 0.0, force_scale, options_.tolerance, budget, "rk4 produced non-finite forces; rolled back",
+                       report))
       break;
-    }
-    if (report.max_force <= options_.tolerance)
-    {
-      report.converged = true;
-      break;
-    }
-    if (budget.exhausted(report.iterations))
-      break;
-    ++report.iterations;
     const Eigen::VectorXd v1 = v;
     moveFree(xs, x, v1, dt / 2, free_index);
     const Eigen::VectorXd v2 = v + dt / 2 * a1;

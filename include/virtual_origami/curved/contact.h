@@ -54,6 +54,8 @@ public:
   double evaluate(const Positions& x, const Assembly& out = {}) const;
 
   int watchedPairs() const { return static_cast<int>(pairs_.size() + edge_pairs_.size()); }
+  /// The four nodes each watched pair couples (node and triangle, or two edges).
+  std::vector<std::array<int, 4>> pairNodes() const;
   /// Watched pairs closer than the thickness (pressing).
   int touching(const Positions& x) const;
   /// The smallest gap of a watched pair on its own side (negative: crossed over); infinity
@@ -76,12 +78,20 @@ private:
     int a = -1, b = -1;
     int side = 0;
   };
+  /// Rebuilds the candidate pairs from a grid, at `x`.
+  void findCandidates(const Positions& x);
   int sideFor(int node, int triangle, double signed_distance) const;
   int edgeSideFor(int a, int b, double signed_distance, const Vec3& normal, const Positions& x) const;
 
   const CurvedMesh& mesh_;
   const Paper& paper_;
   double thickness_, stiffness_, range_, exclusion_, edge_margin_;
+  /// Candidate pairs are found within reach + skin and kept until some node has moved half
+  /// the skin: most updates then test only them, not the whole mesh.
+  double skin_;
+  std::vector<std::array<int, 2>> candidates_;       // (node, triangle)
+  std::vector<std::array<int, 2>> edge_candidates_;  // (edge, edge), lower first
+  Positions candidates_at_;
   std::vector<std::array<char, 3>> open_side_;  // per triangle: the side opposite corner k is the sheet's edge
   std::vector<std::vector<int>> node_faces_;
   std::vector<Pair> pairs_;

@@ -6,6 +6,7 @@
 // triangles, so one set of moduli means the same paper at every mesh resolution.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -72,13 +73,72 @@ struct CurvedEnergy
   double total() const { return stretch + shear + bend; }
 };
 
-/// Where the gradient and Gauss–Newton matrix go: one 3-row block per free node, indexed by
-/// `free_index` (−1 for a held node, whose rows and columns are dropped).
+/// A Hessian assembled straight into a sparse matrix (no triplets to sort): its pattern holds
+/// full 3 × 3 blocks (blockPattern), and a block the pattern lacks is counted in `missing`
+/// (the caller then grows the pattern and assembles again).
+struct BlockHessian
+{
+  Eigen::SparseMatrix<double>* matrix = nullptr;
+  int missing = 0;
+
+  /// Adds `block` at block row fk, block column fl (free node indices).
+  template <class Block>
+  void add(int fk, int fl, const Block& block)
+  {
+    const int* outer = matrix->outerIndexPtr();
+    const int* inner = matrix->innerIndexPtr();
+    const int column = 3 * fl;
+    const int* begin = inner + outer[column];
+    const int* end = inner + outer[column + 1];
+    const int* at = std::lower_bound(begin, end, 3 * fk);
+    if (at == end || *at != 3 * fk)
+    {
+      ++missing;
+      return;
+    }
+    // The three columns of a block column share their rows: the block sits at the same
+    // offset in each.
+    const long offset = at - begin;
+    double* values = matrix->valuePtr();
+    for (int c = 0; c < 3; ++c)
+    {
+      double* v = values + outer[column + c] + offset;
+      v[0] += block(0, c);
+      v[1] += block(1, c);
+      v[2] += block(2, c);
+    }
+  }
+};
+
+/// The pattern of full 3 × 3 blocks over `free_count` free nodes coupling every two free nodes
+/// of each group (and each node with itself): zero values, ready for BlockHessian.
+Eigen::SparseMatrix<double> blockPattern(int free_count, const std::vector<int>& free_index,
+                                         const std::vector<std::array<int, 4>>& groups);
+
+/// The node groups the terms couple (an edge, a triangle, a hinge; unused slots −1).
+std::vector<std::array<int, 4>> termGroups(const CurvedTerms& terms);
+
+/// Where the gradient and Hessian go: one 3-row block per free node, indexed by `free_index`
+/// (−1 for a held node, whose rows and columns are dropped), as triplets or into a
+/// BlockHessian.
 struct Assembly
 {
   const std::vector<int>* free_index = nullptr;
   Eigen::VectorXd* gradient = nullptr;                 // += ∇E over the free nodes
   std::vector<Eigen::Triplet<double>>* hessian = nullptr;  // += the Hessian (see addTerm)
+  BlockHessian* blocks = nullptr;                           // or += it here
+
+  bool wantsHessian() const { return hessian || blocks; }
+  template <class Block>
+  void addBlock(int fk, int fl, const Block& block) const
+  {
+    if (blocks)
+      blocks->add(fk, fl, block);
+    else
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+          hessian->emplace_back(3 * fk + r, 3 * fl + c, block(r, c));
+  }
 };
 
 /// Adds ½·w·r² to the returned energy and its derivatives to `out`, for a measure with
@@ -95,7 +155,7 @@ double addTerm(const std::array<int, K>& nodes, double weight, double residual, 
     for (int k = 0; k < K; ++k)
       if (const int f = (*out.free_index)[nodes[k]]; f >= 0)
         out.gradient->segment<3>(3 * f) += weight * residual * grad.col(k);
-  if (out.hessian)
+  if (out.wantsHessian())
   {
     const Eigen::Map<const Eigen::Matrix<double, 3 * K, 1>> g(grad.data());
     Eigen::Matrix<double, 3 * K, 3 * K> h = weight * g * g.transpose();
@@ -105,9 +165,7 @@ double addTerm(const std::array<int, K>& nodes, double weight, double residual, 
       if (const int fk = (*out.free_index)[nodes[k]]; fk >= 0)
         for (int l = 0; l < K; ++l)
           if (const int fl = (*out.free_index)[nodes[l]]; fl >= 0)
-            for (int r = 0; r < 3; ++r)
-              for (int c = 0; c < 3; ++c)
-                out.hessian->emplace_back(3 * fk + r, 3 * fl + c, h(3 * k + r, 3 * l + c));
+            out.addBlock(fk, fl, h.template block<3, 3>(3 * k, 3 * l));
   }
   return 0.5 * weight * residual * residual;
 }

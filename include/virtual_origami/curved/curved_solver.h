@@ -8,10 +8,9 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/SparseCholesky>
-
 #include "virtual_origami/curved/contact.h"
 #include "virtual_origami/curved/curved_forces.h"
+#include "virtual_origami/curved/spd_factorization.h"
 
 namespace virtual_origami::core
 {
@@ -41,6 +40,9 @@ struct CurvedSolveOptions
   /// farther than max_step × the contact range, so contact sees every approach.
   double damping = 1e-2;
   double max_step = 0.4;
+  /// Newton keeps stepping with an earlier factorisation (no new Hessian) while each step
+  /// cuts the largest force by at least this factor; 0: a fresh Hessian every iteration.
+  double modified_newton_rate = 0.5;
   /// RK4: the step (0: half the stability limit of the stiffest mode) and the
   /// mass-proportional damping rate (0: twice the first bending mode's frequency).
   double time_step = 0.0;
@@ -52,6 +54,7 @@ struct CurvedReport
   bool converged = false;
   bool diverged = false;  // non-finite or exploding: the positions were rolled back
   int iterations = 0;     // Newton iterations or RK4 steps
+  int factorizations = 0;  // Newton: sparse Cholesky factorisations (the rest reused one)
   double max_force = 0.0;  // largest force on a free node, / (stretch × spacing)
   CurvedEnergy energy;
   double contact_energy = 0.0;
@@ -85,6 +88,8 @@ public:
 private:
   CurvedReport newton(Positions& x, const std::vector<int>& free_index, int free_count);
   CurvedReport rk4(Positions& x, const std::vector<int>& free_index, int free_count);
+  /// Energy, gradient (into g) and Hessian (into hessian_) at x.
+  double assembleHessian(const Positions& x, const std::vector<int>& free_index, int free_count, Eigen::VectorXd& g);
   double energy(const Positions& x, const Assembly& out, CurvedEnergy* parts = nullptr, double* contact = nullptr) const;
 
   const CurvedMesh& mesh_;
@@ -92,9 +97,13 @@ private:
   CurvedTerms terms_;
   LayerContact contact_;
   CurvedSolveOptions options_;
-  // Newton's factorisation and the pattern it was analysed for, kept across solves.
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> factorization_;
-  Eigen::SparseMatrix<double> pattern_;
+  // Newton's Hessian and factorisation, kept across solves, and the free nodes it is for.
+  Eigen::SparseMatrix<double> hessian_;
+  SpdFactorization factorization_;
+  std::vector<int> factor_free_;
+  double damping_mu_ = -1.0;  // Newton's Levenberg–Marquardt shift where the last solve left it
+  std::vector<int> pattern_free_;  // the free nodes hessian_'s pattern is for
+  std::vector<std::array<int, 4>> pattern_groups_;
 };
 
 }  // namespace virtual_origami::core

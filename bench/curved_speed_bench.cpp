@@ -1,0 +1,243 @@
+// Speed of the curved-paper solvers (issue 4's target, issue 8's charts): (a) static solves per
+// second of small pulls on a 10,000-vertex sheet; (b) time per step against vertex count up to
+// 100,000 vertices, one Newton iteration and one RK4 step, beside the machine's floor measured
+// in the same run (memory traffic of an explicit step over the triad bandwidth, one sparse
+// Cholesky factorisation for an implicit one); (c) the RK4 stability map, step × stiffness,
+// against the predicted limit. Wall time and process CPU time both: the machine is shared.
+//
+//   curved_speed_bench [out_dir]   writes curved_speed.csv, curved_scaling.csv, curved_stability.csv
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include <Eigen/Eigenvalues>
+
+#include "virtual_origami/curved/seed_scenes.h"
+#include "virtual_origami/curved/spd_factorization.h"
+#include "bench_common.h"
+
+using namespace virtual_origami::core;
+using virtual_origami::bench::gridMesh;
+using virtual_origami::bench::now;
+
+namespace
+{
+double cpuNow()
+{
+  return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
+}
+
+/// Seed scene 1's sheet meshed as an n × n grid, corner c held, corner a on the scene's pull.
+struct PulledSheet
+{
+  SeedScene scene;
+  CurvedMesh mesh;
+  Positions rest;
+  std::vector<CurvedPin> pins;
+
+  explicit PulledSheet(int n) : scene(*seedScene(1)), mesh(gridMesh(scene.paper, n)), rest(placeNodes(mesh, scene.paper))
+  {
+    const int fixed = mesh.vertex_nodes[scene.fixed], pulled = mesh.vertex_nodes[scene.pulled];
+    pins = { { fixed, rest.col(fixed) }, { pulled, rest.col(pulled) } };
+  }
+  void pullTo(double s) { pins[1].position = scene.pullAt(s); }
+};
+
+/// (a) The 10,000-vertex sheet dragged along scene 1's pull: five solves bring it to 5% of the
+/// pull, then each timed solve moves the corner by a small step (1/2000 of the pull, about a
+/// tenth of a mesh spacing) and solves to the solver's default tolerance from the last balance.
+void smallPulls(const std::string& dir)
+{
+  std::ofstream csv(dir + "/curved_speed.csv");
+  csv << "vertices,solves,converged,iterations,factorizations,seconds,cpu_seconds,solves_per_second,"
+         "solves_per_cpu_second,pull_step,tolerance,max_force\n";
+  PulledSheet sheet(100);
+  CurvedSolver solver(sheet.mesh, sheet.scene.paper);
+  Positions x = sheet.rest;
+  double s = 0;
+  for (int k = 0; k < 5; ++k)
+  {
+    sheet.pullTo(s += 0.01);
+    solver.solve(x, sheet.pins);
+  }
+  const double step = 5e-4;
+  int solves = 0, converged = 0, iterations = 0, factorizations = 0;
+  double worst = 0;
+  const double start = now(), cpu_start = cpuNow();
+  while (solves < 200 && now() - start < 40)
+  {
+    sheet.pullTo(s += step);
+    const CurvedReport r = solver.solve(x, sheet.pins);
+    ++solves;
+    converged += r.converged;
+    iterations += r.iterations;
+    factorizations += r.factorizations;
+    worst = std::max(worst, r.max_force);
+  }
+  const double seconds = now() - start, cpu = cpuNow() - cpu_start;
+  csv << sheet.mesh.nodes.size() << ',' << solves << ',' << converged << ',' << iterations << ',' << factorizations
+      << ',' << seconds << ',' << cpu << ',' << solves / seconds << ',' << solves / cpu << ',' << step << ','
+      << solver.options().tolerance << ',' << worst << '\n';
+  std::printf("10k sheet: %d small pulls (%d converged, %d iterations, %d factorisations) in %.2f s (cpu %.2f s): "
+              "%.2f solves/s (%.2f per cpu second)\n",
+              solves, converged, iterations, factorizations, seconds, cpu, solves / seconds, solves / cpu);
+}
+
+/// Bytes an RK4 step must move at least: four force evaluations, each reading the term lists
+/// and the positions and writing the forces, plus the state vectors of the four stages (about
+/// a dozen reads and writes of 3 doubles per vertex).
+double rk4Bytes(const CurvedTerms& terms, size_t vertices)
+{
+  const double term_bytes = terms.stretch.size() * sizeof(StretchTerm) + terms.shear.size() * sizeof(ShearTerm) +
+                            terms.bend.size() * sizeof(BendTerm);
+  return 4 * (term_bytes + 2 * 24.0 * vertices) + 12 * 24.0 * vertices;
+}
+
+/// (b) Time per step against vertex count: one Newton iteration (contact, gradient, Hessian
+/// assembly, factorisation, solve, line search: the difference of budgets of 2 and 1
+/// iterations, so setup and the symbolic analysis cancel) and one RK4 step (budgets of 3 and
+/// 1), each on the sheet 1% into the pull; beside them one CHOLMOD factorisation of the same
+/// Hessian (its analysis done first) and the RK4 step's bytes over the triad bandwidth.
+void scaling(const std::string& dir)
+{
+  double check = 0;
+  const double bandwidth = virtual_origami::bench::triadBandwidth(&check);
+  std::printf("triad bandwidth %.2f GB/s\n", bandwidth / 1e9);
+  std::ofstream csv(dir + "/curved_scaling.csv");
+  csv << "vertices,newton_iteration_seconds,newton_iteration_cpu_seconds,newton_factorizations,"
+         "factorization_seconds,rk4_step_seconds,rk4_step_cpu_seconds,rk4_floor_seconds,rk4_bytes_per_step,"
+         "triad_bytes_per_second\n";
+  for (int n : { 32, 55, 100, 173, 316 })
+  {
+    PulledSheet sheet(n);
+    sheet.pullTo(0.01);
+    const auto run = [&](CurvedMethod method, int budget, int* factorizations) {
+      CurvedSolveOptions options;
+      options.method = method;
+      options.tolerance = 0;
+      options.max_iterations = budget;
+      options.max_steps = budget;
+      options.modified_newton_rate = 0;  // every iteration a fresh Hessian and factorisation
+      CurvedSolver solver(sheet.mesh, sheet.scene.paper, {}, {}, options);
+      Positions x = sheet.rest;
+      const double start = now(), cpu_start = cpuNow();
+      const CurvedReport r = solver.solve(x, sheet.pins);
+      if (factorizations)
+        *factorizations = r.factorizations;
+      return std::pair<double, double>(now() - start, cpuNow() - cpu_start);
+    };
+    int f1 = 0, f2 = 0;
+    const auto n1 = run(CurvedMethod::Newton, 1, &f1);
+    const auto n2 = run(CurvedMethod::Newton, 2, &f2);
+    const auto r1 = run(CurvedMethod::Rk4, 1, nullptr);
+    const auto r3 = run(CurvedMethod::Rk4, 3, nullptr);
+
+    // The floor of an implicit step: one numeric factorisation of the Hessian at the start.
+    std::vector<int> free_index(sheet.mesh.nodes.size());
+    int free_count = 0;
+    for (size_t v = 0; v < free_index.size(); ++v)
+      free_index[v] = (static_cast<int>(v) == sheet.pins[0].node || static_cast<int>(v) == sheet.pins[1].node) ?
+                          -1 :
+                          free_count++;
+    const CurvedTerms terms = curvedTerms(sheet.mesh, sheet.scene.paper, {});
+    Positions x = sheet.rest;
+    for (const CurvedPin& pin : sheet.pins)
+      x.col(pin.node) = pin.position;
+    Eigen::SparseMatrix<double> hessian = blockPattern(free_count, free_index, termGroups(terms));
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(3 * free_count);
+    BlockHessian blocks{ &hessian };
+    evaluateCurved(terms, x, { &free_index, &g, nullptr, &blocks });
+    SpdFactorization factorization;
+    double shift = 1e-6;
+    while (!factorization.factorize(hessian, shift) && shift < 1e3)
+      shift *= 10;
+    const double start = now();
+    factorization.factorize(hessian, shift);
+    const double factor = now() - start;
+
+    const double bytes = rk4Bytes(terms, sheet.mesh.nodes.size());
+    const double newton = n2.first - n1.first, newton_cpu = n2.second - n1.second;
+    const double rk4 = (r3.first - r1.first) / 2, rk4_cpu = (r3.second - r1.second) / 2;
+    csv << sheet.mesh.nodes.size() << ',' << newton << ',' << newton_cpu << ',' << f2 - f1 << ',' << factor << ','
+        << rk4 << ',' << rk4_cpu << ',' << bytes / bandwidth << ',' << bytes << ',' << bandwidth << '\n';
+    std::printf("  %zu vertices: newton iteration %.1f ms (cpu %.1f, %d factorisations), one factorisation %.1f ms, "
+                "rk4 step %.2f ms (cpu %.2f, floor %.3f ms)\n",
+                sheet.mesh.nodes.size(), newton * 1e3, newton_cpu * 1e3, f2 - f1, factor * 1e3, rk4 * 1e3,
+                rk4_cpu * 1e3, bytes / bandwidth * 1e3);
+    std::fflush(stdout);
+  }
+}
+
+/// (c) RK4's stability map: seed scene 1's sheet (spacing 0.2) one hand step into its pull,
+/// at stretch moduli over three decades and steps around the predicted limit Δt = 2.83/ω_max
+/// (the imaginary-axis reach of RK4; ω_max² the largest eigenvalue of M⁻¹H at the start).
+/// Diverged: the solver's own check, or the force grown a thousandfold.
+void stability(const std::string& dir)
+{
+  std::ofstream csv(dir + "/curved_stability.csv");
+  csv << "stretch,omega_max,dt_limit,dt_over_limit,dt,steps,converged,diverged,max_force\n";
+  const SeedScene scene = *seedScene(1);
+  BubbleMeshOptions mesh_options;
+  mesh_options.spacing = 0.2;
+  const CurvedMesh mesh = *bubbleMesh(scene.paper, mesh_options);
+  const Positions start = placeNodes(mesh, scene.paper);
+  const std::vector<CurvedPin> pins = { { mesh.vertex_nodes[scene.fixed], start.col(mesh.vertex_nodes[scene.fixed]) },
+                                        { mesh.vertex_nodes[scene.pulled], scene.pullAt(0.05) } };
+  for (double stretch : { 0.1, 0.3, 1.0, 3.0, 10.0, 30.0, 100.0 })
+  {
+    CurvedMaterial material;
+    material.stretch = stretch;
+    const CurvedTerms terms = curvedTerms(mesh, scene.paper, material);
+    std::vector<int> free_index(mesh.nodes.size());
+    int free_count = 0;
+    for (size_t v = 0; v < free_index.size(); ++v)
+      free_index[v] = (static_cast<int>(v) == pins[0].node || static_cast<int>(v) == pins[1].node) ? -1 : free_count++;
+    Positions x = start;
+    for (const CurvedPin& pin : pins)
+      x.col(pin.node) = pin.position;
+    std::vector<Eigen::Triplet<double>> triplets;
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(3 * free_count);
+    evaluateCurved(terms, x, { &free_index, &g, &triplets });
+    Eigen::SparseMatrix<double> h(3 * free_count, 3 * free_count);
+    h.setFromTriplets(triplets.begin(), triplets.end());
+    Eigen::VectorXd inv_sqrt_mass(3 * free_count);
+    for (size_t v = 0; v < free_index.size(); ++v)
+      if (free_index[v] >= 0)
+        inv_sqrt_mass.segment<3>(3 * free_index[v]).setConstant(1 / std::sqrt(terms.mass[v]));
+    const Eigen::MatrixXd scaled = inv_sqrt_mass.asDiagonal() * Eigen::MatrixXd(h) * inv_sqrt_mass.asDiagonal();
+    const double omega = std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(scaled).eigenvalues().maxCoeff());
+    const double limit = 2.83 / omega;
+    for (int k = 0; k <= 12; ++k)
+    {
+      const double ratio = 0.4 + 0.1 * k;  // 0.4 … 1.6 of the limit
+      CurvedSolveOptions options;
+      options.method = CurvedMethod::Rk4;
+      options.time_step = ratio * limit;
+      options.tolerance = 1e-6;
+      options.max_steps = 3000;
+      CurvedSolver solver(mesh, scene.paper, material, {}, options);
+      Positions y = start;
+      const double initial = solver.maxForce(y, pins);
+      const CurvedReport r = solver.solve(y, pins);
+      const bool diverged = r.diverged || !(r.max_force < 1e3 * initial);
+      csv << stretch << ',' << omega << ',' << limit << ',' << ratio << ',' << options.time_step << ',' << r.iterations
+          << ',' << r.converged << ',' << diverged << ',' << r.max_force << '\n';
+    }
+  }
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  const std::string dir = argc > 1 ? argv[1] : "docs/bench";
+  smallPulls(dir);
+  stability(dir);
+  std::cout << "wrote " << dir << "/curved_speed.csv, curved_stability.csv\n";
+  scaling(dir);
+  std::cout << "wrote " << dir << "/curved_scaling.csv\n";
+  return 0;
+}

@@ -1,0 +1,41 @@
+// The sparse Cholesky factorisation behind the curved Newton solver: CHOLMOD's supernodal
+// LLᵀ of A + μI (the Levenberg–Marquardt shift applied inside the factorisation, no copy of
+// A). Its fill-reducing ordering and symbolic analysis depend on A's pattern alone, so they
+// are computed once and reused while the pattern stays (it changes only when contact pairs
+// come or go).
+#pragma once
+
+#include <memory>
+
+#include <Eigen/Sparse>
+
+namespace virtual_origami::core
+{
+class SpdFactorization
+{
+public:
+  SpdFactorization();
+  ~SpdFactorization();
+  SpdFactorization(const SpdFactorization&) = delete;
+  SpdFactorization& operator=(const SpdFactorization&) = delete;
+
+  /// Factorises a + shift·I (a symmetric; its lower triangle is read). False when that is
+  /// not positive definite; the factor is then unusable until the next success.
+  bool factorize(const Eigen::SparseMatrix<double>& a, double shift);
+  /// (a + shift·I)⁻¹ b with the last successful factorisation.
+  Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
+  bool valid() const { return valid_; }
+  int rows() const { return rows_; }
+  /// Symbolic analyses done so far (one per new pattern).
+  int analyses() const { return analyses_; }
+  void reset() { valid_ = false; }
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  bool valid_ = false;
+  int rows_ = 0;
+  int analyses_ = 0;
+};
+
+}  // namespace virtual_origami::core
