@@ -99,11 +99,12 @@ double layeredArea(const Paper& paper, int cells)
 
 // The crane sequence: square base (two diagonal folds, two squash folds), bird base (edge
 // and top creases, petal folds front and back), then the two lower flaps inside-reverse
-// folded up and out as neck and tail, and the two upper flaps opened to right angles as wings.
+// folded up and out as neck and tail, the head reverse folded down at the neck's end, and the
+// two upper flaps opened to right angles as wings.
 // The body lies in the table plane z = 0, its up direction u = (-1,1)/√2 (from the slit's
 // bottom at (1,0) towards the petals' points); the wings' hinge crosses the body at the top of
 // the slit, (1 - √½/2, √½/2).
-TEST(ShippedCrane, EndsInACraneWithNeckTailAndWings)
+TEST(ShippedCrane, EndsInACraneWithNeckTailHeadAndWings)
 {
   size_t operations = 0;
   const std::vector<Paper> states = foldShipped("crane.json", &operations);
@@ -112,17 +113,28 @@ TEST(ShippedCrane, EndsInACraneWithNeckTailAndWings)
   expectRigidAndValid(crane);
   const double h = std::sqrt(0.5);
   const Vec3 slit_top(1 - h / 2, h / 2, 0), up(-h, h, 0), across(-h, -h, 0);
-  const Vec3 neck = foldedAt(crane, Vec2(1, 0)), tail = foldedAt(crane, Vec2(0, 1));
+  const Vec3 head = foldedAt(crane, Vec2(1, 0)), tail = foldedAt(crane, Vec2(0, 1));
+  const Vec3 crown = foldedAt(crane, Vec2(0.88, 0));  // where the head's crease meets the neck's top
   const Vec3 centre = foldedAt(crane, Vec2(0.5, 0.5));
-  // Neck and tail: each flap (half a unit long) turned by the reverse fold from straight down
-  // to 45° above the horizontal, on either side of the body.
-  EXPECT_LT((neck - (slit_top + 0.5 * (h * up + h * across))).norm(), 1e-12);
+  // Neck and tail: each lower flap (half a unit long) turned by its reverse fold from straight
+  // down to 45° above the horizontal, on either side of the body; the neck's top edge then
+  // runs to the crown, 0.38 from the slit, where the head turns down.
+  const Vec3 neck_direction = h * up + h * across;
+  EXPECT_LT((crown - (slit_top + 0.38 * neck_direction)).norm(), 1e-12);
   EXPECT_LT((tail - (slit_top + 0.5 * (h * up - h * across))).norm(), 1e-12);
-  EXPECT_NEAR((neck - slit_top).dot(up), 0.5 * h, 1e-12);  // raised above the wings' hinge
+  EXPECT_NEAR((crown - slit_top).dot(up), 0.38 * h, 1e-12);  // raised above the wings' hinge
   EXPECT_NEAR((tail - slit_top).dot(up), 0.5 * h, 1e-12);
-  EXPECT_GT((neck - centre).dot(up), 0.14);  // and above the sheet's centre, the body's middle
+  EXPECT_GT((crown - centre).dot(up), 0.06);  // and above the sheet's centre, the body's middle
   EXPECT_GT((tail - centre).dot(up), 0.14);
-  EXPECT_NEAR((neck - tail).norm(), h, 1e-12);
+  // The head: the neck's last 0.12 mirrored across its crease (22.5° from the neck's top edge,
+  // towards its lower edge): it points 45° below the neck.
+  const Vec3 unfolded_tip = slit_top + 0.5 * neck_direction;
+  const Eigen::AngleAxisd turn(M_PI / 8, Vec3::UnitZ());  // from the neck towards its lower edge
+  const Vec3 crease_direction = turn * neck_direction;
+  const Vec3 foot = crown + (unfolded_tip - crown).dot(crease_direction) * crease_direction;
+  EXPECT_LT((head - (2 * foot - unfolded_tip)).norm(), 1e-12);
+  EXPECT_NEAR((head - crown).norm(), 0.12, 1e-12);
+  EXPECT_NEAR((head - crown).normalized().dot(neck_direction), std::cos(M_PI / 4), 1e-12);
   // Wings: the petals' points half a unit off the body plane, on opposite sides.
   const Vec3 wing_a = foldedAt(crane, Vec2(0, 0)), wing_b = foldedAt(crane, Vec2(1, 1));
   EXPECT_LT((wing_a - (slit_top - Vec3(0, 0, 0.5))).norm(), 1e-12);
