@@ -27,7 +27,10 @@ using namespace virtual_origami::core;
 
 namespace
 {
-double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+double now()
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
 
 constexpr double kDeg = M_PI / 180;
 
@@ -123,9 +126,9 @@ bool qualityTable(const std::string& path, const Meshers& meshers)
           return false;
         }
         const MeshQuality q = meshQuality(*mesh, pattern.paper);
-        csv << pattern.name << "," << name << "," << spacing << "," << mesh->nodes.size() << "," << mesh->triangles.size()
-            << "," << q.min_angle / kDeg << "," << q.max_angle / kDeg << "," << q.mean_radius_ratio << ","
-            << q.well_shaped << "," << best * 1e3 << "\n";
+        csv << pattern.name << "," << name << "," << spacing << "," << mesh->nodes.size() << ","
+            << mesh->triangles.size() << "," << q.min_angle / kDeg << "," << q.max_angle / kDeg << ","
+            << q.mean_radius_ratio << "," << q.well_shaped << "," << best * 1e3 << "\n";
         std::printf("%-15s %-6s h %.4f: %5zu nodes %5zu triangles, angles %5.1f°–%5.1f°, 2r/R %.3f, 45–75° %.2f, "
                     "%.1f ms\n",
                     pattern.name.c_str(), name.c_str(), spacing, mesh->nodes.size(), mesh->triangles.size(),

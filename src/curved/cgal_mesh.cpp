@@ -34,7 +34,10 @@ using Triangulation =
 using Criteria = CGAL::Delaunay_mesh_size_criteria_2<Triangulation>;
 using Point = Kernel::Point_2;
 
-double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+double cross2(const Vec2& a, const Vec2& b)
+{
+  return a.x() * b.y() - a.y() * b.x();
+}
 
 /// Whether `p` lies strictly inside the polygon (even–odd rule).
 bool insidePolygon(const std::vector<Vec2>& polygon, const Vec2& p)
@@ -264,8 +267,9 @@ Expected<CurvedMesh> cgalMesh(const Paper& paper, const CgalMeshOptions& options
       else
         return Failure::failure("meshing failed: a node lies outside the paper");
     }
-    std::sort(on_edges.begin(), on_edges.end(),
-              [](const auto& a, const auto& b) { return std::tie(std::get<0>(a), std::get<1>(a)) < std::tie(std::get<0>(b), std::get<1>(b)); });
+    std::sort(on_edges.begin(), on_edges.end(), [](const auto& a, const auto& b) {
+      return std::tie(std::get<0>(a), std::get<1>(a)) < std::tie(std::get<0>(b), std::get<1>(b));
+    });
     std::stable_sort(in_faces.begin(), in_faces.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
 
     std::map<Triangulation::Vertex_handle, int> node_of;
