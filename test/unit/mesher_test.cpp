@@ -335,3 +335,35 @@ TEST(CgalMesh, CarriesSeedScene1ToItsAcceptance)
   EXPECT_LT((a - c).norm(), 1e-3);
   EXPECT_GT(a.z(), c.z());  // pulled over onto c, not beside it
 }
+
+TEST(MeshQuality, RadiusRatioAndWellShapedShareOfKnownTriangles)
+{
+  // The unit square as two right isosceles triangles: 2r/R = 2(√2 − 1), no angle in 45°–75°
+  // throughout (each has a right angle).
+  const Paper square = Paper::square(1.0);
+  CurvedMesh halves;
+  for (int v = 0; v < 4; ++v)
+  {
+    MeshNode node;
+    node.crease_pattern = square.vertices[v].crease_pattern;
+    node.paper_vertex = v;
+    halves.nodes.push_back(node);
+  }
+  halves.triangles = { { { 0, 1, 2 }, 0 }, { { 0, 2, 3 }, 0 } };
+  halves.spacing = 1.0;
+  const MeshQuality q = meshQuality(halves, square);
+  EXPECT_NEAR(q.mean_radius_ratio, 2 * (std::sqrt(2.0) - 1), 1e-12);
+  EXPECT_EQ(q.well_shaped, 0.0);
+  EXPECT_NEAR(q.min_angle, 45 * kDeg, 1e-12);
+  EXPECT_NEAR(q.max_angle, 90 * kDeg, 1e-12);
+  EXPECT_NEAR(q.area, 1.0, 1e-12);
+
+  // Miura-ori of 60° parallelograms with sides equal to the spacing: every triangle is
+  // equilateral, 2r/R = 1 and all of them well shaped.
+  const Paper miura = miuraOri(3, 3, 1.0, 1.0, 60 * kDeg);
+  const Expected<CurvedMesh> mesh = cgal(miura, 1.0);
+  ASSERT_TRUE(mesh.ok()) << mesh.message();
+  const MeshQuality m = meshQuality(*mesh, miura);
+  EXPECT_NEAR(m.mean_radius_ratio, 1.0, 1e-9);
+  EXPECT_EQ(m.well_shaped, 1.0);
+}
