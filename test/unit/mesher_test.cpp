@@ -18,7 +18,6 @@
 #include "virtual_origami/core/reference_patterns.h"
 #include "virtual_origami/curved/bubble_mesh.h"
 #include "virtual_origami/curved/cgal_mesh.h"
-#include "virtual_origami/curved/seed_scenes.h"
 
 using namespace virtual_origami::core;
 using namespace virtual_origami::core::test;
@@ -309,31 +308,6 @@ TEST(CgalMesh, CoarseFacesKeepOnlyTheirCornersAndSharedEdgeNodes)
   for (size_t t = 0; t < mesh->triangles.size(); ++t)
     area += mesh->restArea(static_cast<int>(t));
   EXPECT_NEAR(area, 1.0, 1e-12);
-}
-
-TEST(CgalMesh, CarriesSeedScene1ToItsAcceptance)
-{
-  // The solver takes either mesher's mesh: scene 1 on the CGAL mesh passes what the bubble
-  // mesh's run is held to (test/unit/curved_solver_test.cpp).
-  const Expected<SeedScene> scene = seedScene(1, 1.0, 0.5e-3);
-  ASSERT_TRUE(scene.ok()) << scene.message();
-  // The bubble mesh run's spacing (at 0.14 the CGAL mesh's curl bends 39° at one hinge).
-  const Expected<CurvedMesh> mesh = cgal(scene->paper, 0.1);
-  ASSERT_TRUE(mesh.ok()) << mesh.message();
-  SeedSceneOptions options;
-  options.contact.thickness = 0.25e-3;
-  const SeedSceneRun run = runSeedSceneOn(*scene, *mesh, options);
-  ASSERT_EQ(run.steps.size(), 20u);
-  for (const SeedSceneStep& step : run.steps)
-    EXPECT_TRUE(step.report.converged) << step.fraction << ": " << step.report.message;
-  const CurvedMetrics& end = run.steps.back().metrics;
-  EXPECT_LT(end.strain.max, 1e-3);
-  EXPECT_LT(end.max_bend, 30 * kDeg);
-  EXPECT_EQ(end.penetrations, 0);
-  const Vec3 a = run.positions.col(run.mesh.vertex_nodes[scene->pulled]);
-  const Vec3 c = run.positions.col(run.mesh.vertex_nodes[scene->fixed]);
-  EXPECT_LT((a - c).norm(), 1e-3);
-  EXPECT_GT(a.z(), c.z());  // pulled over onto c, not beside it
 }
 
 TEST(MeshQuality, RadiusRatioAndWellShapedShareOfKnownTriangles)
