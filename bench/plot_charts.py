@@ -299,6 +299,83 @@ def table_replay(tables):
     tables["replay"] = "\n".join(lines)
 
 
+def chart_curved_speed(tables):
+    """curved_speed_bench: small pulls on the 10,000-vertex sheet, time per step against vertex
+    count with the floor, and RK4's stability map."""
+    speed = rows("curved_speed.csv")
+    if speed:
+        lines = ["| vertices | solves | converged | Newton iterations | factorisations | solves/s (wall) | "
+                 "solves per CPU second | tolerance |", "|---|---|---|---|---|---|---|---|"]
+        for r in speed:
+            lines.append(f"| {r['vertices']} | {r['solves']} | {r['converged']} | {r['iterations']} | "
+                         f"{r['factorizations']} | {fmt(num(r['solves_per_second']))} | "
+                         f"{fmt(num(r['solves_per_cpu_second']))} | {r['tolerance']} |")
+        tables["curved_speed"] = "\n".join(lines)
+
+    data = rows("curved_scaling.csv")
+    if data:
+        v = [num(r["vertices"]) for r in data]
+        fig, ax = plt.subplots(figsize=(7, 4.5))
+        # CPU time: the machine is shared, and wall time there is noise on top of one core's work.
+        ax.loglog(v, [num(r["newton_iteration_cpu_seconds"]) for r in data], "o-", c="C0",
+                  label="newton: one iteration")
+        ax.loglog(v, [num(r["factorization_cpu_seconds"]) for r in data], "--", c="C0",
+                  label="floor: one CHOLMOD factorisation")
+        ax.loglog(v, [num(r["rk4_step_cpu_seconds"]) for r in data], "o-", c="C3", label="rk4: one step")
+        ax.loglog(v, [num(r["rk4_floor_seconds"]) for r in data], "--", c="C3",
+                  label="floor: bytes per step / triad bandwidth")
+        ax.set_xlabel("vertices (grid sheet, seed scene 1's pull)")
+        ax.set_ylabel("CPU seconds (one core)")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+        ax.set_title("Curved paper: time per step against vertex count (triad %.1f GB/s)"
+                     % (num(data[0]["triad_bytes_per_second"]) / 1e9))
+        save(fig, "curved_scaling.png")
+        lines = ["CPU time of one core (wall time in brackets, shared machine).", "",
+                 "| vertices | newton iteration | one CHOLMOD factorisation | ratio | rk4 step | its floor | ratio |",
+                 "|---|---|---|---|---|---|---|"]
+        for r in data:
+            n, nc, f, fc, k, kc, kf = (num(r[c]) for c in (
+                "newton_iteration_seconds", "newton_iteration_cpu_seconds", "factorization_seconds",
+                "factorization_cpu_seconds", "rk4_step_seconds", "rk4_step_cpu_seconds", "rk4_floor_seconds"))
+            lines.append(f"| {r['vertices']} | {fmt(nc * 1e3)} ms ({fmt(n * 1e3)}) | {fmt(fc * 1e3)} ms "
+                         f"({fmt(f * 1e3)}) | {fmt(nc / fc)}× | {fmt(kc * 1e3)} ms ({fmt(k * 1e3)}) | "
+                         f"{fmt(kf * 1e3)} ms | {fmt(kc / kf)}× |")
+        tables["curved_scaling"] = "\n".join(lines)
+
+    stab = rows("curved_stability.csv")
+    if stab:
+        fig, ax = plt.subplots(figsize=(7, 4.5))
+        styles = {"converged": ("o", "C2"), "stalled": ("s", "C1"), "diverged": ("x", "C3")}
+        for state, (marker, color) in styles.items():
+            pts = [r for r in stab if (state == "diverged" and r["diverged"] == "1") or
+                   (state == "converged" and r["diverged"] == "0" and r["converged"] == "1") or
+                   (state == "stalled" and r["diverged"] == "0" and r["converged"] == "0")]
+            ax.scatter([num(r["dt"]) for r in pts], [num(r["stretch"]) for r in pts], marker=marker, c=color, s=18,
+                       label=f"rk4 {state}")
+        limits = sorted({(num(r["stretch"]), num(r["dt_limit"])) for r in stab})
+        ax.plot([p[1] for p in limits], [p[0] for p in limits], "k-", lw=1, label="predicted limit 2.83 / ω_max")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("step Δt")
+        ax.set_ylabel("stretch modulus k")
+        ax.legend(fontsize=8)
+        ax.set_title("Stability map of the seed's RK4 on curved paper (scene 1)")
+        save(fig, "curved_stability.png")
+        inside = [r for r in stab if num(r["dt_over_limit"]) <= 1.0 + 1e-9]
+        beyond = [r for r in stab if num(r["dt_over_limit"]) > 1.0 + 1e-9]
+        first = {}
+        for r in stab:
+            if r["diverged"] == "1":
+                k = num(r["stretch"])
+                first[k] = min(first.get(k, math.inf), num(r["dt_over_limit"]))
+        tables["curved_stability"] = (
+            f"{len(stab)} (Δt, k) cells: inside the predicted limit {sum(r['diverged'] == '1' for r in inside)} of "
+            f"{len(inside)} diverged; beyond it {sum(r['diverged'] == '1' for r in beyond)} of {len(beyond)}. "
+            "Smallest diverging Δt / limit per stretch modulus: "
+            + ", ".join(f"k = {fmt(k)}: {fmt(v)}" for k, v in sorted(first.items())) + ".")
+
+
 def write_tables(tables):
     if not os.path.exists(DOC):
         return
@@ -316,6 +393,7 @@ def main():
     chart_scaling(tables)
     chart_seed_accuracy(tables)
     chart_curved(tables)
+    chart_curved_speed(tables)
     chart_meshers(tables)
     table_replay(tables)
     write_tables(tables)
