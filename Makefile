@@ -25,21 +25,12 @@ test: build
 run: build
 	bash scripts/run.sh output
 
-# Benchmarks (never part of test), see docs/BENCHMARKS.md: solver_bench (solvers.csv,
-# seed_accuracy.csv, seed_stability.csv; docs/SOLVERS.md), sweep_bench (error_time.csv,
-# stability_map.csv, scaling.csv, machine_floor.csv), curved_bench (curved_solvers.csv),
-# curved_speed_bench (curved_speed.csv, curved_scaling.csv, curved_stability.csv; on one core:
-# CHOLMOD's OpenMP loops capped to one thread),
-# mesh_bench (meshers.csv, mesh_resolution.csv), then the charts into docs/images/bench/
-# and the tables of docs/BENCHMARKS.md (Debian's python3 with python3-matplotlib).
+# Benchmarks (never part of test), see docs/BENCHMARKS.md: solver_bench, sweep_bench,
+# curved_bench, curved_speed_bench (on one core), replay_bench and mesh_bench write CSV into
+# docs/bench/, each timed (bench_wall_time.csv); then the charts into docs/images/bench/ and the
+# tables of docs/BENCHMARKS.md (Debian's python3 with python3-matplotlib).
 bench: build
-	$(BUILD_DIR)/devel/lib/virtual_origami/solver_bench docs/bench
-	$(BUILD_DIR)/devel/lib/virtual_origami/sweep_bench docs/bench
-	$(BUILD_DIR)/devel/lib/virtual_origami/curved_bench docs/bench/curved_solvers.csv
-	OMP_THREAD_LIMIT=1 $(BUILD_DIR)/devel/lib/virtual_origami/curved_speed_bench docs/bench
-	$(BUILD_DIR)/devel/lib/virtual_origami/replay_bench docs/bench/replay.csv sequences/crane.json sequences/penguin.json sequences/miura_ori.json
-	$(BUILD_DIR)/devel/lib/virtual_origami/mesh_bench docs/bench
-	/usr/bin/python3 bench/plot_charts.py docs/bench docs/images/bench docs/BENCHMARKS.md
+	bash scripts/run_bench.sh $(BUILD_DIR)
 
 # libFuzzer targets of test/fuzz/ with ASan + UBSan (clang-14, into build-fuzz/), each for
 # FUZZ_SECONDS, one after the other; crashes land in test/fuzz/crashes/ (docs/RELIABILITY.md).

@@ -31,6 +31,8 @@ PACKAGES=(
   python3-rostest python3-roslaunch python3-rospy python3-rosnode
   python3-std-srvs python3-tf2-ros python3-visualization-msgs
   xvfb xdotool imagemagick
+  # fold_sequence's PNG frames (rsvg-convert)
+  librsvg2-bin
   # fuzzing (make fuzz): clang with libFuzzer and the sanitizer runtimes
   clang-14 libclang-rt-14-dev
   # benchmark charts (make bench)

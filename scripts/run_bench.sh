@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# `make bench`: every benchmark driver one after the other, each timed (wall and CPU seconds into
+# docs/bench/bench_wall_time.csv), then the charts and the tables of docs/BENCHMARKS.md, whose
+# "Wall time" section is written from that file last, so the page gives the time of the run
+# that made it. Usage: scripts/run_bench.sh [BUILD_DIR]
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+build="${1:-$root/build}"
+bin="$build/devel/lib/virtual_origami"
+out="$root/docs/bench"
+doc="$root/docs/BENCHMARKS.md"
+export PATH=/usr/bin:$PATH
+cd "$root"
+mkdir -p "$out"
+
+times_csv="$out/bench_wall_time.csv"
+pending="$(mktemp)"
+trap 'rm -f "$pending"' EXIT
+echo "step,wall_seconds,cpu_seconds" >"$pending"
+
+# CPU seconds of every child process so far (user + system), from the shell's `times`.
+children_cpu() {
+  times | tail -n 1 | tr -d 's' | awk '{ split($1, u, "m"); split($2, s, "m"); printf "%.3f", u[1] * 60 + u[2] + s[1] * 60 + s[2] }'
+}
+
+minus() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.3f", a - b }'; }
+
+run_start="$(date +%s.%N)"
+run_cpu="$(children_cpu)"
+step() {
+  local name="$1"
+  shift
+  echo "bench: $name"
+  local start cpu
+  start="$(date +%s.%N)"
+  cpu="$(children_cpu)"
+  "$@"
+  echo "$name,$(minus "$(date +%s.%N)" "$start"),$(minus "$(children_cpu)" "$cpu")" >>"$pending"
+}
+
+step solver_bench "$bin/solver_bench" "$out"
+step sweep_bench "$bin/sweep_bench" "$out"
+step curved_bench "$bin/curved_bench" "$out/curved_solvers.csv"
+# One core: CHOLMOD's OpenMP loops capped to one thread.
+step curved_speed_bench env OMP_THREAD_LIMIT=1 "$bin/curved_speed_bench" "$out"
+step replay_bench "$bin/replay_bench" "$out/replay.csv" sequences/crane.json sequences/penguin.json sequences/miura_ori.json
+step mesh_bench "$bin/mesh_bench" "$out"
+step plot_charts /usr/bin/python3 bench/plot_charts.py "$out" docs/images/bench "$doc"
+echo "total,$(minus "$(date +%s.%N)" "$run_start"),$(minus "$(children_cpu)" "$run_cpu")" >>"$pending"
+mv "$pending" "$times_csv"
+trap - EXIT
+/usr/bin/python3 bench/plot_charts.py "$out" docs/images/bench "$doc" --only wall_time
