@@ -18,7 +18,10 @@ struct Box
     max_x = std::max(max_x, x);
     max_y = std::max(max_y, y);
   }
-  double size() const { return std::max({ max_x - min_x, max_y - min_y, 1e-12 }); }
+  double size() const
+  {
+    return std::max({ max_x - min_x, max_y - min_y, 1e-12 });
+  }
 };
 
 const char* strokeOf(Assignment a)
@@ -34,6 +37,28 @@ const char* strokeOf(Assignment a)
     default:
       return R"(stroke="#888888")";
   }
+}
+
+/// Text as SVG character data: a step's note may hold any character.
+std::string xmlEscaped(const std::string& text)
+{
+  std::string out;
+  for (char c : text)
+    switch (c)
+    {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      default:
+        out += c;
+    }
+  return out;
 }
 }  // namespace
 
@@ -59,12 +84,16 @@ std::string paperSvg(const Paper& paper, const std::string& title)
   const auto fY = [&](const Vec3& p) { return margin + (folded.max_y - seen(p).y()) / folded.size() * panel; };
 
   std::ostringstream svg;
-  svg << R"(<svg xmlns="http://www.w3.org/2000/svg" width=")" << 2 * panel + 4 * margin << R"(" height=")"
-      << panel + 3 * margin << R"(" font-family="sans-serif" font-size="12">)" << '\n';
+  // The title gets a line of its own under both panels: a step's note is longer than one panel.
+  const double height = panel + (title.empty() ? 3 : 4) * margin;
+  svg << R"(<svg xmlns="http://www.w3.org/2000/svg" width=")" << 2 * panel + 4 * margin << R"(" height=")" << height
+      << R"(" font-family="sans-serif" font-size="12">)" << '\n';
   svg << R"(<rect width="100%" height="100%" fill="white"/>)" << '\n';
   svg << "<text x=\"" << margin << "\" y=\"" << panel + 2.6 * margin << "\">crease pattern</text>\n";
-  svg << "<text x=\"" << 3 * margin + panel << "\" y=\"" << panel + 2.6 * margin << "\">folded, seen from above the front"
-      << (title.empty() ? "" : ": " + title) << "</text>\n";
+  svg << "<text x=\"" << 3 * margin + panel << "\" y=\"" << panel + 2.6 * margin
+      << "\">folded, seen from above the front</text>\n";
+  if (!title.empty())
+    svg << "<text x=\"" << margin << "\" y=\"" << panel + 3.6 * margin << "\">" << xmlEscaped(title) << "</text>\n";
   for (const Edge& e : paper.edges)
   {
     const Vec2& a = paper.vertices[e.vertices[0]].crease_pattern;
@@ -75,9 +104,8 @@ std::string paperSvg(const Paper& paper, const std::string& title)
   // Folded faces far to near (painter's order), front side light, back side darker.
   std::vector<int> order(paper.faces.size());
   std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
-    return seen(paper.faceCentroid(a)).z() < seen(paper.faceCentroid(b)).z();
-  });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int a, int b) { return seen(paper.faceCentroid(a)).z() < seen(paper.faceCentroid(b)).z(); });
   for (int f : order)
   {
     svg << "<polygon points=\"";
