@@ -130,6 +130,17 @@ Scene triangulatedMiuraScene(int columns, int rows)
   return scene;
 }
 
+/// Budgets of the small scenes (a few faces): tight enough to keep the run short, and cheap
+/// enough to take the seed scheme's median of the repeats as well.
+void useSmallSceneBudgets(Scene& scene)
+{
+  scene.seed_iterations = 200000;
+  scene.seed_seconds = 5.0;
+  scene.repeat_seed = true;
+  scene.max_iterations = 20000;
+  scene.max_seconds = 2.0;
+}
+
 /// Stops the benchmark when a scene does not start where its closed form puts it.
 void expectStart(const std::string& name, double error)
 {
@@ -175,11 +186,7 @@ Scene creaseScene(const std::string& name, double from, double to, double next)
     scene.pull_next = { { 3, halvedSquare(next, crease).vertices[3].folded } };
   scene.held = { 0, 1, 4, 5 };
   scene.angle_error = [crease, to](const Paper& p) { return std::abs(measuredFoldAngles(p)[crease] - to); };
-  scene.seed_iterations = 200000;
-  scene.seed_seconds = 5.0;
-  scene.repeat_seed = true;
-  scene.max_iterations = 20000;
-  scene.max_seconds = 2.0;
+  useSmallSceneBudgets(scene);
   return scene;
 }
 
@@ -222,11 +229,7 @@ Scene degree4Scene(int mode, double rho1)
   scene.step.angle = 0.05;
   const double rho1_next = rho1 + scene.step.angle;
   scene.angle_error = [mode, rho1_next](const Paper& p) { return degree4Error(p, mode, rho1_next); };
-  scene.seed_iterations = 200000;
-  scene.seed_seconds = 5.0;
-  scene.repeat_seed = true;
-  scene.max_iterations = 20000;
-  scene.max_seconds = 2.0;
+  useSmallSceneBudgets(scene);
   return scene;
 }
 
@@ -300,11 +303,7 @@ Scene craneScene()
   }
   scene.step.angle = -0.05;
   scene.angle_error = [](const Paper&) { return NAN; };
-  scene.seed_iterations = 200000;
-  scene.seed_seconds = 5.0;
-  scene.repeat_seed = true;
-  scene.max_iterations = 20000;
-  scene.max_seconds = 2.0;
+  useSmallSceneBudgets(scene);
   return scene;
 }
 
