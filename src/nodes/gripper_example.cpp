@@ -15,6 +15,7 @@ int main(int argc, char** argv)
   private_nh.param("frame", options.frame, options.frame);
   private_nh.param("paper_frame", options.paper_frame, options.paper_frame);
   private_nh.param("crease", options.crease, options.crease);
+  private_nh.param("curved", options.curved, options.curved);
   private_nh.param("timeout", options.timeout, options.timeout);
   virtual_origami::GripperExample gripper(ros::NodeHandle(), options);
   ros::AsyncSpinner spinner(2);

@@ -8,9 +8,7 @@
 
 namespace virtual_origami
 {
-namespace
-{
-core::Expected<core::CurvedMesh> meshPaper(const core::Paper& paper, const CurvedMeshSolverConfig& config)
+core::Expected<core::CurvedMesh> meshCurvedSheet(const core::Paper& paper, const CurvedMeshSolverConfig& config)
 {
   const double spacing = config.spacing * paper.scale();
   if (config.mesher == "cgal")
@@ -23,12 +21,33 @@ core::Expected<core::CurvedMesh> meshPaper(const core::Paper& paper, const Curve
   options.spacing = spacing;
   return core::bubbleMesh(paper, options);
 }
+
+namespace
+{
+core::CurvedSolveOptions solveOptions(const CurvedMeshSolverConfig& config)
+{
+  core::CurvedSolveOptions options;
+  options.method = config.method == "rk4" ? core::CurvedMethod::Rk4 : core::CurvedMethod::Newton;
+  options.tolerance = config.tolerance;
+  options.max_iterations = config.max_iterations;
+  options.max_seconds = config.max_seconds;
+  return options;
+}
 }  // namespace
+
+core::CurvedSheetFollower curvedFollower(const CurvedMeshSolverConfig& config)
+{
+  core::CurvedFollowOptions options;
+  options.material.bend = config.bend * options.material.stretch;
+  options.solve = solveOptions(config);
+  return core::CurvedSheetFollower([config](const core::Paper& paper) { return meshCurvedSheet(paper, config); },
+                                   options);
+}
 
 core::Expected<CurvedSheet> solveCurvedSheet(const core::Paper& paper, const std::vector<int>& held,
                                              const CurvedMeshSolverConfig& config)
 {
-  core::Expected<core::CurvedMesh> mesh = meshPaper(paper, config);
+  core::Expected<core::CurvedMesh> mesh = meshCurvedSheet(paper, config);
   if (!mesh)
     return core::Expected<CurvedSheet>::failure("cannot mesh the paper: " + mesh.message());
 
@@ -46,12 +65,7 @@ core::Expected<CurvedSheet> solveCurvedSheet(const core::Paper& paper, const std
 
   core::CurvedMaterial material;
   material.bend = config.bend * material.stretch;
-  core::CurvedSolveOptions options;
-  options.method = config.method == "rk4" ? core::CurvedMethod::Rk4 : core::CurvedMethod::Newton;
-  options.tolerance = config.tolerance;
-  options.max_iterations = config.max_iterations;
-  options.max_seconds = config.max_seconds;
-  core::CurvedSolver solver(sheet.mesh, paper, material, core::ContactOptions{}, options);
+  core::CurvedSolver solver(sheet.mesh, paper, material, core::ContactOptions{}, solveOptions(config));
   sheet.report = solver.solve(sheet.positions, pins);
   return sheet;
 }
@@ -60,7 +74,8 @@ namespace
 {
 // The bent sheet as two markers in the state's frame: triangles, and the mesh's edges so that
 // the bend reads in rviz's flat shading.
-visualization_msgs::MarkerArray sheetMarkers(const CurvedSheet& sheet, const std_msgs::Header& header)
+visualization_msgs::MarkerArray sheetMarkers(const core::CurvedMesh& mesh, const core::Positions& positions,
+                                             const std_msgs::Header& header)
 {
   visualization_msgs::Marker triangles;
   triangles.header = header;
@@ -74,9 +89,9 @@ visualization_msgs::MarkerArray sheetMarkers(const CurvedSheet& sheet, const std
   triangles.color.g = 0.75f;
   triangles.color.b = 0.95f;
   triangles.color.a = 0.85f;
-  for (const core::MeshTriangle& t : sheet.mesh.triangles)
+  for (const core::MeshTriangle& t : mesh.triangles)
     for (int node : t.nodes)
-      triangles.points.push_back(toPoint(sheet.positions.col(node)));
+      triangles.points.push_back(toPoint(positions.col(node)));
 
   visualization_msgs::Marker edges = triangles;
   edges.ns = "curved_mesh_edges";
@@ -85,9 +100,9 @@ visualization_msgs::MarkerArray sheetMarkers(const CurvedSheet& sheet, const std
   edges.color.r = edges.color.g = edges.color.b = 0.2f;
   edges.color.a = 1.0f;
   edges.points.clear();
-  for (const core::MeshEdge& e : sheet.mesh.edges)
+  for (const core::MeshEdge& e : mesh.edges)
     for (int node : e.nodes)
-      edges.points.push_back(toPoint(sheet.positions.col(node)));
+      edges.points.push_back(toPoint(positions.col(node)));
 
   visualization_msgs::MarkerArray markers;
   markers.markers = { triangles, edges };
@@ -96,17 +111,24 @@ visualization_msgs::MarkerArray sheetMarkers(const CurvedSheet& sheet, const std
 }  // namespace
 
 CurvedMeshSolverNode::CurvedMeshSolverNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
-  : reconfigure_server_(private_nh)
+  : reconfigure_server_(private_nh), tf_listener_(tf_buffer_)
 {
   mesh_pub_ = nh.advertise<visualization_msgs::MarkerArray>("curved_mesh", 1, true);
   reconfigure_server_.setCallback([this](CurvedMeshSolverConfig& c, uint32_t level) { reconfigure(c, level); });
   // Only the newest state matters: a slow solve skips the states that came meanwhile.
   state_sub_ = nh.subscribe<PaperState>("state", 1, [this](const PaperState::ConstPtr& s) { onState(s); });
+  const double pin_rate = private_nh.param("pin_rate", 30.0);
+  if (pin_rate > 0)
+    follow_timer_ = nh.createTimer(ros::Duration(1.0 / pin_rate), &CurvedMeshSolverNode::followFrames, this);
+  else
+    ROS_ERROR("curved_mesh_solver: pin_rate must be positive (it is %g); the sheet will not follow pins on frames",
+              pin_rate);
 }
 
 void CurvedMeshSolverNode::reconfigure(CurvedMeshSolverConfig& config, uint32_t)
 {
   config_ = config;
+  follower_.emplace(curvedFollower(config_));  // a new mesh and solver with the new parameters
   ROS_INFO("curved_mesh_solver: %s, %s mesh, spacing %g of the sheet, tolerance %g%s", config_.method.c_str(),
            config_.mesher.c_str(), config_.spacing, config_.tolerance, config_.enabled ? "" : " (disabled)");
   if (last_state_)
@@ -119,38 +141,124 @@ void CurvedMeshSolverNode::onState(const PaperState::ConstPtr& state)
   solveAndPublish();
 }
 
+bool CurvedMeshSolverNode::currentPins(std::vector<core::PullTarget>& pins, ros::Time& stamp, std::string& error,
+                                       const ros::Duration& wait)
+{
+  pins.clear();
+  for (const Pin& pin : last_state_->pins)
+  {
+    if (pin.vertex < 0 || pin.vertex >= static_cast<int>(last_state_->vertices_folded.size()))
+    {
+      error = "pinned vertex " + std::to_string(pin.vertex) + " does not exist";
+      return false;
+    }
+    if (pin.frame_id.empty())
+    {
+      pins.push_back({ pin.vertex, toVec3(last_state_->vertices_folded[pin.vertex]) });
+      continue;
+    }
+    try
+    {
+      const geometry_msgs::TransformStamped t =
+          tf_buffer_.lookupTransform(last_state_->header.frame_id, pin.frame_id, ros::Time(0), wait);
+      pins.push_back(
+          { pin.vertex, core::Vec3(t.transform.translation.x, t.transform.translation.y, t.transform.translation.z) });
+      stamp = std::max(stamp, t.header.stamp);
+    }
+    catch (const tf2::TransformException& e)
+    {
+      error =
+          "vertex " + std::to_string(pin.vertex) + " follows " + pin.frame_id + ", which tf cannot place: " + e.what();
+      return false;
+    }
+  }
+  return true;
+}
+
 void CurvedMeshSolverNode::solveAndPublish()
 {
-  if (!config_.enabled)
+  if (!config_.enabled || !follower_)
     return;
+  const unsigned long revision = last_state_->revision;
   core::Expected<core::Paper> paper = fromMessage(*last_state_);
   if (!paper)
   {
-    ROS_WARN("curved_mesh_solver: state %lu cannot be read: %s", static_cast<unsigned long>(last_state_->revision),
-             paper.message().c_str());
+    ROS_WARN("curved_mesh_solver: state %lu cannot be read: %s", revision, paper.message().c_str());
     return;
   }
-  std::vector<int> held;
-  for (const Pin& pin : last_state_->pins)
-    held.push_back(pin.vertex);
-  core::Expected<CurvedSheet> sheet = solveCurvedSheet(*paper, held, config_);
-  if (!sheet)
+  // Stamped with the newest transform followed, else with the state's stamp.
+  // A frame just pinned may not have reached this node's tf listener yet: a moment's wait.
+  std::vector<core::PullTarget> pins;
+  ros::Time stamp;
+  std::string error;
+  if (!currentPins(pins, stamp, error, ros::Duration(0.5)))
   {
-    ROS_WARN("curved_mesh_solver: state %lu: %s", static_cast<unsigned long>(last_state_->revision),
-             sheet.message().c_str());
-    return;
+    // A frame tf does not know yet: its vertex held where the model has it until it does.
+    ROS_WARN_THROTTLE(5.0, "curved_mesh_solver: state %lu: %s; its vertex stays where the state has it", revision,
+                      error.c_str());
+    stamp = ros::Time();
+    pins.clear();
+    for (const Pin& pin : last_state_->pins)
+      if (pin.vertex >= 0 && pin.vertex < static_cast<int>(last_state_->vertices_folded.size()))
+        pins.push_back({ pin.vertex, toVec3(last_state_->vertices_folded[pin.vertex]) });
   }
-  if (sheet->report.diverged)
+  if (stamp.isZero())
+    stamp = last_state_->header.stamp;
+  const core::Expected<core::CurvedReport> report = follower_->solveState(*paper, pins);
+  if (!report)
   {
     // Never publish a diverged sheet; the last good one stays on the latched topic.
-    ROS_WARN("curved_mesh_solver: state %lu diverged: %s", static_cast<unsigned long>(last_state_->revision),
-             sheet->report.message.c_str());
+    ROS_WARN("curved_mesh_solver: state %lu: %s", revision, report.message().c_str());
     return;
   }
-  mesh_pub_.publish(sheetMarkers(*sheet, last_state_->header));
-  ROS_DEBUG("curved_mesh_solver: state %lu, %zu nodes, %d iterations, residual %g",
-            static_cast<unsigned long>(last_state_->revision), sheet->mesh.nodes.size(), sheet->report.iterations,
-            sheet->report.max_force);
+  publish(stamp, *report, "state");
+}
+
+void CurvedMeshSolverNode::followFrames(const ros::TimerEvent&)
+{
+  if (!config_.enabled || !follower_ || !follower_->hasSheet() || !last_state_)
+    return;
+  bool on_frames = false;
+  for (const Pin& pin : last_state_->pins)
+    on_frames = on_frames || !pin.frame_id.empty();
+  if (!on_frames)
+    return;
+  std::vector<core::PullTarget> pins;
+  ros::Time stamp;
+  std::string error;
+  if (!currentPins(pins, stamp, error))
+  {
+    ROS_WARN_THROTTLE(5.0, "curved_mesh_solver: %s; the sheet stays", error.c_str());
+    return;
+  }
+  // Only a move is solved: a frame standing still leaves the sheet as it is.
+  const double still = 1e-9 * follower_->paper().scale();
+  bool moved = pins.size() != follower_->pins().size();
+  for (size_t i = 0; !moved && i < pins.size(); ++i)
+    moved = pins[i].vertex != follower_->pins()[i].vertex ||
+            (pins[i].position - follower_->pins()[i].position).norm() > still;
+  if (!moved)
+    return;
+  const core::Expected<core::CurvedReport> report = follower_->follow(pins);
+  if (!report)
+  {
+    ROS_WARN_THROTTLE(5.0, "curved_mesh_solver: following the pins' frames: %s", report.message().c_str());
+    return;
+  }
+  publish(stamp, *report, "frames");
+}
+
+void CurvedMeshSolverNode::publish(const ros::Time& stamp, const core::CurvedReport& report, const char* what)
+{
+  std_msgs::Header header = last_state_->header;
+  header.stamp = stamp;
+  mesh_pub_.publish(sheetMarkers(follower_->mesh(), follower_->positions(), header));
+  if (!report.converged)
+    ROS_WARN_THROTTLE(5.0, "curved_mesh_solver: state %lu (%s): not balanced after %d iterations (force %g)",
+                      static_cast<unsigned long>(last_state_->revision), what, report.iterations, report.max_force);
+  ROS_DEBUG("curved_mesh_solver: state %lu (%s), %zu nodes, %d steps, %d iterations, residual %g",
+            static_cast<unsigned long>(last_state_->revision), what, follower_->mesh().nodes.size(),
+            follower_->lastSteps(), report.iterations, report.max_force);
 }
 
 }  // namespace virtual_origami

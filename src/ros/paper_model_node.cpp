@@ -234,13 +234,20 @@ void PaperModelNode::followPins(const ros::TimerEvent&)
   }
   if (!moved)
     return;
-  session_.setHeldVertices(pinnedVertices());
+  const std::vector<int> held = pinnedVertices();
+  if (refused_ && refused_->revision == session_.revision() && refused_->targets == targets && refused_->held == held)
+    return;
+  session_.setHeldVertices(held);
   const auto result = session_.pull(targets);
   if (!result)
   {
+    // Refused cycles (a frame the rigid faces cannot reach) repeat while the frame moves on:
+    // one warning every few seconds, and a frame standing still is not solved again.
     ROS_WARN_THROTTLE(5.0, "paper_model: the pins cannot be followed: %s", result.message().c_str());
+    refused_ = RefusedPull{ session_.revision(), targets, held };
     return;
   }
+  refused_.reset();
   for (const core::PullTarget& target : targets)
     pulled_to_[target.vertex] = target.position;
   if (result->residual > 1e-6 * paper.scale())
@@ -262,8 +269,8 @@ void PaperModelNode::broadcastFrames(const ros::TimerEvent&)
   std::vector<geometry_msgs::TransformStamped> frames;
   for (const auto& [vertex, pin] : pins_)
     if (vertex < static_cast<int>(session_.paper().vertices.size()))
-      frames.push_back(transform(style_.frame_id, "pin_" + std::to_string(vertex),
-                                 session_.paper().vertices[vertex].folded, 0.0));
+      frames.push_back(
+          transform(style_.frame_id, "pin_" + std::to_string(vertex), session_.paper().vertices[vertex].folded, 0.0));
   if (!frames.empty())
     tf_.sendTransform(frames);
 }
@@ -353,7 +360,8 @@ bool PaperModelNode::pin(PinVertex::Request& req, PinVertex::Response& res)
   const int count = static_cast<int>(session_.paper().vertices.size());
   res.success = false;
   if (req.vertex < 0 || req.vertex >= count)
-    res.message = "vertex " + std::to_string(req.vertex) + " does not exist (the model has " + std::to_string(count) + ")";
+    res.message =
+        "vertex " + std::to_string(req.vertex) + " does not exist (the model has " + std::to_string(count) + ")";
   else if (req.release && !pins_.count(req.vertex))
     res.message = "vertex " + std::to_string(req.vertex) + " is not pinned";
   else if (!req.release && !req.frame_id.empty() &&

@@ -1,8 +1,10 @@
 // The curved_mesh_solver node (SPEC §4.2, §5): follows paper_model's `state`, meshes the
 // crease pattern into one conforming triangle mesh, lets the paper bend around its pinned
-// vertices with the curved-paper solver, and publishes the bent sheet for rviz. It never
-// writes back into the model: the rigid faces stay the committed state, the mesh shows how
-// real paper would sag between them.
+// vertices with the curved-paper solver, and publishes the bent sheet for rviz. Pins on tf
+// frames are looked up at `pin_rate` and the sheet follows them from its last balance, also
+// where the rigid faces of the model cannot (one face does not bend). It never writes back
+// into the model: the rigid faces stay the committed state, the mesh shows how real paper
+// would bend between them.
 #pragma once
 
 #include <optional>
@@ -10,9 +12,12 @@
 
 #include <dynamic_reconfigure/server.h>
 #include <ros/ros.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
 #include <virtual_origami/CurvedMeshSolverConfig.h>
 #include <virtual_origami/PaperState.h>
 
+#include "virtual_origami/curved/curved_follow.h"
 #include "virtual_origami/curved/curved_solver.h"
 
 namespace virtual_origami
@@ -30,6 +35,12 @@ struct CurvedSheet
 core::Expected<CurvedSheet> solveCurvedSheet(const core::Paper& paper, const std::vector<int>& held,
                                              const CurvedMeshSolverConfig& config);
 
+/// The mesh of `paper` the node makes with `config` (its mesher and spacing).
+core::Expected<core::CurvedMesh> meshCurvedSheet(const core::Paper& paper, const CurvedMeshSolverConfig& config);
+
+/// The follower the node keeps: its mesher, material and solve options from `config`.
+core::CurvedSheetFollower curvedFollower(const CurvedMeshSolverConfig& config);
+
 class CurvedMeshSolverNode
 {
 public:
@@ -39,12 +50,23 @@ private:
   void onState(const PaperState::ConstPtr& state);
   void reconfigure(CurvedMeshSolverConfig& config, uint32_t level);
   void solveAndPublish();
+  void followFrames(const ros::TimerEvent&);
+  /// The pins of the last state, those on frames at their frame's origin as tf has it now
+  /// (`stamp`: the newest transform used, else left as it is); false, with `error`, when tf
+  /// cannot place a frame within `wait`.
+  bool currentPins(std::vector<core::PullTarget>& pins, ros::Time& stamp, std::string& error,
+                   const ros::Duration& wait = ros::Duration(0));
+  void publish(const ros::Time& stamp, const core::CurvedReport& report, const char* what);
 
   CurvedMeshSolverConfig config_;
   dynamic_reconfigure::Server<CurvedMeshSolverConfig> reconfigure_server_;
   PaperState::ConstPtr last_state_;
+  std::optional<core::CurvedSheetFollower> follower_;
+  tf2_ros::Buffer tf_buffer_;
+  tf2_ros::TransformListener tf_listener_;
   ros::Subscriber state_sub_;
   ros::Publisher mesh_pub_;
+  ros::Timer follow_timer_;
 };
 
 }  // namespace virtual_origami

@@ -1,6 +1,9 @@
 // An example robot coupled to the paper (SPEC §1): a gripper that grasps a corner of the
 // sheet by pinning it to its own tf frame, swings the frame on a half circle about the
-// middle crease so the sheet folds in half, and lets go; the sheet stays folded.
+// middle line so the sheet folds in half, and lets go; the sheet stays folded. With rigid
+// faces the middle line is creased first and the model follows the frame; in the curved mode
+// the sheet is grasped uncreased, bends (curved_mesh_solver follows the frame; the model's
+// one rigid face cannot), and the crease is pressed in at the end of the path.
 #pragma once
 
 #include <mutex>
@@ -10,6 +13,7 @@
 #include <geometry_msgs/TransformStamped.h>
 #include <ros/ros.h>
 #include <tf2_ros/transform_broadcaster.h>
+#include <visualization_msgs/MarkerArray.h>
 #include <virtual_origami/PaperState.h>
 
 #include "virtual_origami/core/paper.h"
@@ -25,7 +29,10 @@ struct GripperOptions
   double rate = 30.0;     // Hz of the gripper frame's broadcast
   std::string frame = "gripper";
   std::string paper_frame = "paper";
-  bool crease = true;     // crease the middle line first (rigid faces turn only about creases)
+  bool crease = true;  // crease the middle line first (rigid faces turn only about creases)
+  /// Grasp the uncreased sheet, hold only its far edge, let it bend on the way, and crease
+  /// and fold the middle line (the carried half on top) at the end of the path.
+  bool curved = false;
   double timeout = 30.0;  // longest wait for the model (services, catching up)
 };
 
@@ -39,13 +46,23 @@ public:
 
 private:
   core::Status callPin(int vertex, const std::string& frame, bool release);
+  core::Expected<PaperState> creaseMiddle(const core::Vec2& a, const core::Vec2& b);
+  /// The curved mode's end: presses the middle line a→b into a crease and folds the half that
+  /// holds `carried` onto the other, a valley of 180° (the carried half on top).
+  core::Status press(const core::Vec2& a, const core::Vec2& b, int carried);
   core::Expected<PaperState> stateAfter(uint64_t revision);
   void broadcast(const ros::WallTimerEvent&);
-  void moveTo(const core::Vec3& position);
+  /// Moves the frame; the time from which every broadcast has it there.
+  ros::Time moveTo(const core::Vec3& position);
+  /// The curved mode: waits until curved_mesh_solver (when one publishes `curved_mesh`) has
+  /// bent the sheet with the frame where it has been since `since`.
+  void awaitCurvedSheet(const ros::Time& since);
 
   ros::NodeHandle nh_;
   GripperOptions options_;
   ros::Subscriber state_sub_;
+  ros::Subscriber sheet_sub_;
+  ros::Time sheet_stamp_;  // of the newest curved_mesh
   ros::WallTimer timer_;
   tf2_ros::TransformBroadcaster tf_;
   std::mutex mutex_;

@@ -4,6 +4,7 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -64,6 +65,15 @@ private:
   core::SessionJournal journal_;
   Pins pins_;
   std::map<int, core::Vec3> pulled_to_;  // where each followed pin last pulled its vertex (paper frame)
+  /// The last cycle the faces could not follow: the same targets with the same held vertices on
+  /// the same revision are not solved again (a frame standing still where it cannot be reached).
+  struct RefusedPull
+  {
+    uint64_t revision = 0;
+    std::vector<core::PullTarget> targets;
+    std::vector<int> held;
+  };
+  std::optional<RefusedPull> refused_;
   MarkerStyle style_;
   std::string world_frame_;
   double size_ = 1.0;
@@ -73,7 +83,7 @@ private:
   tf2_ros::TransformBroadcaster tf_;
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_{ tf_buffer_ };  // its own thread: lookups may wait in a service
-  double pin_frame_timeout_ = 1.0;  // how long `pin` waits for an unknown frame to appear
+  double pin_frame_timeout_ = 1.0;                        // how long `pin` waits for an unknown frame to appear
   bool face_frames_ = true;
   std::string face_frame_prefix_;
   ros::Timer pin_timer_, follow_timer_;

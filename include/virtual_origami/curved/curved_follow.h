@@ -1,0 +1,93 @@
+// A curved sheet that follows its pins as they move (a gripper's frame): the mesh and the last
+// balance are kept from one solve to the next, so each move starts from where the paper lies
+// instead of from its rigid faces. A long move is split into short ones: Newton, started a
+// whole half circle away from the answer, does not find it.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "virtual_origami/core/pull.h"
+#include "virtual_origami/curved/curved_solver.h"
+
+namespace virtual_origami::core
+{
+using CurvedMesher = std::function<Expected<CurvedMesh>(const Paper&)>;
+
+struct CurvedFollowOptions
+{
+  CurvedMaterial material;
+  ContactOptions contact;
+  CurvedSolveOptions solve;
+  /// No pin moves farther than this many mesh spacings in one solve; a longer move is made in
+  /// equal steps, each solved from the last.
+  double max_pin_step = 0.25;
+  int max_steps = 400;  // a move that would need more steps is refused
+};
+
+class CurvedSheetFollower
+{
+public:
+  explicit CurvedSheetFollower(CurvedMesher mesher, CurvedFollowOptions options = {});
+
+  /// A state of the paper with its pins (every held vertex and where it is held). The mesh is
+  /// kept while the crease pattern stays the same, else made anew; the solve starts from the
+  /// last balance while the folded positions stay the same too (the pins alone moved), else
+  /// from the state's rigid faces. Fails, changing nothing, on a pin of a vertex that does not
+  /// exist or at a point that is not finite, a paper the mesher cannot mesh, a move of more than
+  /// max_steps steps, or a solve that diverges (the last balance stays).
+  Expected<CurvedReport> solveState(const Paper& paper, const std::vector<PullTarget>& pins);
+
+  /// The pins of the current state moved: the same as solveState with the current state.
+  /// Fails, changing nothing, before any state.
+  Expected<CurvedReport> follow(const std::vector<PullTarget>& pins);
+
+  bool hasSheet() const
+  {
+    return mesh_ != nullptr;
+  }
+  const Paper& paper() const
+  {
+    return *paper_;
+  }
+  const CurvedMesh& mesh() const
+  {
+    return *mesh_;
+  }
+  const Positions& positions() const
+  {
+    return x_;
+  }
+  /// The pins the current positions balance.
+  const std::vector<PullTarget>& pins() const
+  {
+    return pins_;
+  }
+  /// How many solves the last move took (1 unless it was split).
+  int lastSteps() const
+  {
+    return last_steps_;
+  }
+
+private:
+  Status checkPins(const Paper& paper, const std::vector<PullTarget>& pins) const;
+  Expected<CurvedReport> moveTo(const std::vector<PullTarget>& pins);
+
+  CurvedMesher mesher_;
+  CurvedFollowOptions options_;
+  // The solver keeps references to the paper and the mesh: both live on the heap, at fixed
+  // addresses, for as long as the solver does.
+  std::unique_ptr<Paper> paper_;
+  std::unique_ptr<CurvedMesh> mesh_;
+  std::unique_ptr<CurvedSolver> solver_;
+  Positions x_;
+  std::vector<PullTarget> pins_;
+  int last_steps_ = 0;
+};
+
+/// Whether two papers have the same crease pattern (vertices, edges with their assignments,
+/// faces): one mesh serves both.
+bool sameCreasePattern(const Paper& a, const Paper& b);
+
+}  // namespace virtual_origami::core

@@ -1,0 +1,153 @@
+#include "virtual_origami/curved/curved_follow.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace virtual_origami::core
+{
+bool sameCreasePattern(const Paper& a, const Paper& b)
+{
+  if (a.vertices.size() != b.vertices.size() || a.edges.size() != b.edges.size() || a.faces.size() != b.faces.size())
+    return false;
+  for (size_t v = 0; v < a.vertices.size(); ++v)
+    if (a.vertices[v].crease_pattern != b.vertices[v].crease_pattern)
+      return false;
+  for (size_t e = 0; e < a.edges.size(); ++e)
+    if (a.edges[e].vertices != b.edges[e].vertices || a.edges[e].assignment != b.edges[e].assignment)
+      return false;
+  for (size_t f = 0; f < a.faces.size(); ++f)
+    if (a.faces[f].vertices != b.faces[f].vertices)
+      return false;
+  return true;
+}
+
+namespace
+{
+bool sameFoldedState(const Paper& a, const Paper& b)
+{
+  const double still = 1e-12 * std::max(a.scale(), b.scale());
+  for (size_t v = 0; v < a.vertices.size(); ++v)
+    if ((a.vertices[v].folded - b.vertices[v].folded).norm() > still)
+      return false;
+  return true;
+}
+}  // namespace
+
+CurvedSheetFollower::CurvedSheetFollower(CurvedMesher mesher, CurvedFollowOptions options)
+  : mesher_(std::move(mesher)), options_(std::move(options))
+{}
+
+Status CurvedSheetFollower::checkPins(const Paper& paper, const std::vector<PullTarget>& pins) const
+{
+  std::vector<char> seen(paper.vertices.size(), 0);
+  for (const PullTarget& pin : pins)
+  {
+    if (pin.vertex < 0 || pin.vertex >= static_cast<int>(paper.vertices.size()))
+      return failure("pinned vertex " + std::to_string(pin.vertex) + " does not exist (the paper has " +
+                     std::to_string(paper.vertices.size()) + ")");
+    if (!pin.position.allFinite())
+      return failure("the pin of vertex " + std::to_string(pin.vertex) + " is not at a finite point");
+    if (seen[pin.vertex])
+      return failure("vertex " + std::to_string(pin.vertex) + " is pinned twice");
+    seen[pin.vertex] = 1;
+  }
+  return success();
+}
+
+Expected<CurvedReport> CurvedSheetFollower::solveState(const Paper& paper, const std::vector<PullTarget>& pins)
+{
+  using Failure = Expected<CurvedReport>;
+  if (const Status checked = checkPins(paper, pins); !checked)
+    return Failure::failure(checked.message());
+  const bool same_pattern = mesh_ && sameCreasePattern(*paper_, paper);
+  if (same_pattern && sameFoldedState(*paper_, paper))
+    return moveTo(pins);  // the pins alone moved: from the last balance
+
+  // A new shape: the state's rigid faces are the start, on the kept mesh or a new one. The
+  // old sheet stays until the new one is made.
+  auto next_paper = std::make_unique<Paper>(paper);
+  std::unique_ptr<CurvedMesh> next_mesh;
+  if (same_pattern)
+    next_mesh = std::make_unique<CurvedMesh>(*mesh_);
+  else
+  {
+    Expected<CurvedMesh> meshed = mesher_(paper);
+    if (!meshed)
+      return Failure::failure("cannot mesh the paper: " + meshed.message());
+    next_mesh = std::make_unique<CurvedMesh>(std::move(*meshed));
+  }
+  auto next_solver =
+      std::make_unique<CurvedSolver>(*next_mesh, *next_paper, options_.material, options_.contact, options_.solve);
+  Positions next_x = placeNodes(*next_mesh, *next_paper);
+
+  std::swap(paper_, next_paper);
+  std::swap(mesh_, next_mesh);
+  std::swap(solver_, next_solver);
+  std::swap(x_, next_x);
+  std::vector<PullTarget> last_pins = std::move(pins_);
+  pins_.clear();
+  Expected<CurvedReport> moved = moveTo(pins);
+  if (!moved)
+  {
+    // Back to the last sheet, as it was.
+    std::swap(paper_, next_paper);
+    std::swap(mesh_, next_mesh);
+    std::swap(solver_, next_solver);
+    std::swap(x_, next_x);
+    pins_ = std::move(last_pins);
+  }
+  return moved;
+}
+
+Expected<CurvedReport> CurvedSheetFollower::follow(const std::vector<PullTarget>& pins)
+{
+  if (!hasSheet())
+    return Expected<CurvedReport>::failure("no state to follow pins on yet");
+  if (const Status checked = checkPins(*paper_, pins); !checked)
+    return Expected<CurvedReport>::failure(checked.message());
+  return moveTo(pins);
+}
+
+Expected<CurvedReport> CurvedSheetFollower::moveTo(const std::vector<PullTarget>& pins)
+{
+  using Failure = Expected<CurvedReport>;
+  // Every pin starts from where its node lies now and moves on a straight line.
+  std::vector<Vec3> from;
+  double farthest = 0.0;
+  for (const PullTarget& pin : pins)
+  {
+    from.push_back(x_.col(mesh_->vertex_nodes[pin.vertex]));
+    farthest = std::max(farthest, (pin.position - from.back()).norm());
+  }
+  const double step = options_.max_pin_step * mesh_->spacing;
+  const int steps = step > 0 ? std::max(1, static_cast<int>(std::ceil(farthest / step))) : 1;
+  if (steps > options_.max_steps)
+    return Failure::failure("a pin would move " + std::to_string(farthest) + " in one go, more than " +
+                            std::to_string(options_.max_steps) + " steps of " + std::to_string(step));
+
+  const Positions start = x_;
+  CurvedReport total;
+  std::vector<CurvedPin> at(pins.size());
+  for (int k = 1; k <= steps; ++k)
+  {
+    const double t = static_cast<double>(k) / steps;
+    for (size_t i = 0; i < pins.size(); ++i)
+      at[i] = { mesh_->vertex_nodes[pins[i].vertex],
+                k == steps ? pins[i].position : Vec3(from[i] + t * (pins[i].position - from[i])) };
+    CurvedReport report = solver_->solve(x_, at);
+    report.iterations += total.iterations;
+    report.factorizations += total.factorizations;
+    report.seconds += total.seconds;
+    total = report;
+    if (report.diverged)
+    {
+      x_ = start;
+      return Failure::failure("the curved sheet diverged: " + report.message);
+    }
+  }
+  pins_ = pins;
+  last_steps_ = steps;
+  return total;
+}
+
+}  // namespace virtual_origami::core
