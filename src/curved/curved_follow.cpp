@@ -147,6 +147,7 @@ Expected<CurvedReport> CurvedSheetFollower::moveTo(const std::vector<PullTarget>
   }
   pins_ = pins;
   last_steps_ = steps;
+  balanced_ = total.converged;
   return total;
 }
 

@@ -231,20 +231,26 @@ void CurvedMeshSolverNode::followFrames(const ros::TimerEvent&)
     ROS_WARN_THROTTLE(5.0, "curved_mesh_solver: %s; the sheet stays", error.c_str());
     return;
   }
-  // Only a move is solved: a frame standing still leaves the sheet as it is.
+  // A frame standing still leaves a balanced sheet as it is; a sheet its solve's budget
+  // stopped short of balance is solved on from where it is, a few times, before it is shown.
   const double still = 1e-9 * follower_->paper().scale();
   bool moved = pins.size() != follower_->pins().size();
   for (size_t i = 0; !moved && i < pins.size(); ++i)
     moved = pins[i].vertex != follower_->pins()[i].vertex ||
             (pins[i].position - follower_->pins()[i].position).norm() > still;
-  if (!moved)
+  constexpr int kResumes = 5;
+  if (!moved && (follower_->balanced() || resumed_ >= kResumes))
     return;
+  resumed_ = moved ? 0 : resumed_ + 1;
   const core::Expected<core::CurvedReport> report = follower_->follow(pins);
   if (!report)
   {
     ROS_WARN_THROTTLE(5.0, "curved_mesh_solver: following the pins' frames: %s", report.message().c_str());
     return;
   }
+  // Only balanced sheets are shown while frames move: an unbalanced one is solved on next cycle.
+  if (!report->converged && resumed_ < kResumes)
+    return;
   publish(stamp, *report, "frames");
 }
 

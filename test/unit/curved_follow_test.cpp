@@ -59,6 +59,7 @@ TEST(CurvedFollow, TheSheetBendsAfterACornerSwungOverTheMiddleLine)
     ASSERT_TRUE(report) << report.message();
     EXPECT_TRUE(report->converged) << "step " << k << ": force " << report->max_force;
     EXPECT_EQ(follower.lastSteps(), 1) << "a small move is one solve";
+    EXPECT_TRUE(follower.balanced());
     const Positions& x = follower.positions();
     EXPECT_EQ((x.col(follower.mesh().vertex_nodes[corner]) - along(angle)).norm(), 0.0);
     EXPECT_EQ((x.col(follower.mesh().vertex_nodes[a]) - paper.vertices[a].folded).norm(), 0.0);

@@ -69,6 +69,12 @@ public:
   {
     return last_steps_;
   }
+  /// Whether the last solve reached balance (a solve stopped by its budget can be resumed by
+  /// following the same pins again).
+  bool balanced() const
+  {
+    return balanced_;
+  }
 
 private:
   Status checkPins(const Paper& paper, const std::vector<PullTarget>& pins) const;
@@ -84,6 +90,7 @@ private:
   Positions x_;
   std::vector<PullTarget> pins_;
   int last_steps_ = 0;
+  bool balanced_ = false;
 };
 
 /// Whether two papers have the same crease pattern (vertices, edges with their assignments,

@@ -67,6 +67,7 @@ private:
   ros::Subscriber state_sub_;
   ros::Publisher mesh_pub_;
   ros::Timer follow_timer_;
+  int resumed_ = 0;  // solves resumed on frames standing still since the sheet last balanced
 };
 
 }  // namespace virtual_origami
