@@ -44,32 +44,6 @@ core::CurvedSheetFollower curvedFollower(const CurvedMeshSolverConfig& config)
                                    options);
 }
 
-core::Expected<CurvedSheet> solveCurvedSheet(const core::Paper& paper, const std::vector<int>& held,
-                                             const CurvedMeshSolverConfig& config)
-{
-  core::Expected<core::CurvedMesh> mesh = meshCurvedSheet(paper, config);
-  if (!mesh)
-    return core::Expected<CurvedSheet>::failure("cannot mesh the paper: " + mesh.message());
-
-  CurvedSheet sheet;
-  sheet.mesh = std::move(*mesh);
-  sheet.positions = core::placeNodes(sheet.mesh, paper);
-  std::vector<core::CurvedPin> pins;
-  for (int v : held)
-  {
-    if (v < 0 || v >= static_cast<int>(sheet.mesh.vertex_nodes.size()))
-      return core::Expected<CurvedSheet>::failure("pinned vertex " + std::to_string(v) + " does not exist");
-    const int node = sheet.mesh.vertex_nodes[v];
-    pins.push_back({ node, paper.vertices[v].folded });
-  }
-
-  core::CurvedMaterial material;
-  material.bend = config.bend * material.stretch;
-  core::CurvedSolver solver(sheet.mesh, paper, material, core::ContactOptions{}, solveOptions(config));
-  sheet.report = solver.solve(sheet.positions, pins);
-  return sheet;
-}
-
 namespace
 {
 // The bent sheet as two markers in the state's frame: triangles, and the mesh's edges so that

@@ -22,19 +22,6 @@
 
 namespace virtual_origami
 {
-/// The curved sheet of one state: its mesh, the balanced node positions and how the solve went.
-struct CurvedSheet
-{
-  core::CurvedMesh mesh;
-  core::Positions positions;
-  core::CurvedReport report;
-};
-
-/// Meshes `paper` (bubble mesh at `spacing` × the sheet's scale) and balances it with every
-/// vertex in `held` kept at its folded position. Fails on a paper the mesher cannot mesh.
-core::Expected<CurvedSheet> solveCurvedSheet(const core::Paper& paper, const std::vector<int>& held,
-                                             const CurvedMeshSolverConfig& config);
-
 /// The mesh of `paper` the node makes with `config` (its mesher and spacing).
 core::Expected<core::CurvedMesh> meshCurvedSheet(const core::Paper& paper, const CurvedMeshSolverConfig& config);
 
