@@ -400,12 +400,19 @@ def table_wall_time(tables):
     tables["wall_time"] = "\n".join(lines)
 
 
-def span(values, digits=2, unit=""):
+def nice(x):
+    """A figure for prose: whole numbers from 10 up (with thousands separators), else two digits."""
+    if x is None or not math.isfinite(x):
+        return "–"
+    return f"{x:,.0f}" if abs(x) >= 10 else f"{x:.2g}"
+
+
+def span(values):
     values = [v for v in values if math.isfinite(v)]
     if not values:
         return "–"
-    lo, hi = min(values), max(values)
-    return f"{fmt(lo, digits)}{unit}" if fmt(lo, digits) == fmt(hi, digits) else f"{fmt(lo, digits)}–{fmt(hi, digits)}{unit}"
+    lo, hi = nice(min(values)), nice(max(values))
+    return lo if lo == hi else f"{lo}–{hi}"
 
 
 def conclusions(tables):
@@ -421,8 +428,8 @@ def conclusions(tables):
         others = {s: first(s, 1e-9) for s in ("shape_matching", "rigid_kinematics", "seed_spring")}
         reached = {s: t for s, t in others.items() if math.isfinite(t)}
         out.append(f"- Rigid faces: `newton` is the default solver. On the Miura-ori fold step it reaches strain "
-                   f"1e-9 in {fmt(newton * 1e3)} ms; " +
-                   ", ".join(f"`{s}` in {fmt(t * 1e3)} ms ({fmt(t / newton)}×)" for s, t in reached.items()) +
+                   f"1e-9 in {nice(newton * 1e3)} ms; " +
+                   ", ".join(f"`{s}` in {nice(t * 1e3)} ms ({nice(t / newton)}×)" for s, t in reached.items()) +
                    "".join(f"; `{s}` never" for s in others if s not in reached) +
                    " (error against time above). `rigid_kinematics` stays the ground truth (zero strain by "
                    "construction), `shape_matching` the fallback that needs no factorisation per iteration.")
@@ -458,15 +465,15 @@ def conclusions(tables):
         rk = [r for r in steps if r["method"] == "rk4"]
         ratios = [num(r["rk4_time_over_newton"]) for r in steps if r["method"] == "newton"]
         out.append(f"- Curved paper: Newton is the default. RK4 reached the tolerance in {sum(r['converged'] == '1' for r in rk)} "
-                   f"of {len(rk)} cases within its budget, which was {span(ratios)}× the time Newton took to converge "
-                   "(so these ratios are lower bounds of RK4's cost).")
+                   f"of {len(rk)} cases within its budget and took {span(ratios)}× Newton's time (a lower bound where "
+                   "it ran out of budget).")
     sp = rows("curved_speed.csv")
     if sp:
         r = sp[0]
         rate = num(r["solves_per_cpu_second"])
         out.append(f"- The target of 30 static solves per second of a small pull on a {r['vertices']}-vertex sheet "
-                   f"on one core is {'met' if rate >= 30 else 'not met'}: {fmt(rate)} per CPU second "
-                   f"({fmt(30 / rate) if rate < 30 else fmt(rate / 30)}× {'short' if rate < 30 else 'over'}).")
+                   f"on one core is {'met' if rate >= 30 else 'not met'}: {nice(rate)} per CPU second "
+                   f"({nice(30 / rate) if rate < 30 else nice(rate / 30)}× {'short' if rate < 30 else 'over'}).")
     ms = rows("meshers.csv")
     if ms:
         def share(m):
@@ -495,14 +502,16 @@ def conclusions(tables):
     if mr:
         errs = {m: [num(r["rms_error"]) for r in mr if r["mesher"] == m and num(r["rms_error"]) > 0]
                 for m in ("bubble", "cgal")}
-        out.append(f"- Mesh resolution: RMS error against the finest mesh {span(errs['bubble'])} (bubble) and "
-                   f"{span(errs['cgal'])} (CGAL) over the same spacings: the solve prefers neither mesher.")
+        out.append(f"- Mesh resolution: RMS error against the finest mesh {fmt(min(errs['bubble']), 2)}–"
+                   f"{fmt(max(errs['bubble']), 2)} (bubble) and {fmt(min(errs['cgal']), 2)}–{fmt(max(errs['cgal']), 2)} "
+                   "(CGAL) over the same spacings: the solve prefers neither mesher.")
     rp = rows("replay.csv")
     if rp:
         crane = next((r for r in rp if r["model"] == "crane"), rp[0])
         out.append(f"- Replay: the {crane['model']}'s {crane['operations']} operations replay in "
-                   f"{fmt(num(crane['replay_ms']))} ms, {fmt(num(crane['speedup']))}× faster than recorded (target "
-                   f"100×); the slowest model here is {fmt(min(num(r['speedup']) for r in rp))}× faster.")
+                   f"{nice(num(crane['replay_ms']))} ms, {nice(num(crane['speedup']))}× faster than recorded (target "
+                   f"100×); of the {len(rp)} models replayed the least is {nice(min(num(r['speedup']) for r in rp))}× "
+                   "faster.")
     if out:
         tables["conclusions"] = "\n".join(out)
 

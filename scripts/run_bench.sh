@@ -15,27 +15,33 @@ mkdir -p "$out"
 
 times_csv="$out/bench_wall_time.csv"
 pending="$(mktemp)"
-trap 'rm -f "$pending"' EXIT
+trap 'rm -f "$pending" "$cpu_file"' EXIT
 echo "step,wall_seconds,cpu_seconds" >"$pending"
 
-# CPU seconds of every child process so far (user + system), from the shell's `times`.
+# CPU seconds of every finished child of this shell (user + system) into $cpu_now, from `times`,
+# which must run in this shell itself: in a command substitution it counts a subshell's children.
+cpu_file="$(mktemp)"
 children_cpu() {
-  times | tail -n 1 | tr -d 's' | awk '{ split($1, u, "m"); split($2, s, "m"); printf "%.3f", u[1] * 60 + u[2] + s[1] * 60 + s[2] }'
+  times >"$cpu_file"
+  cpu_now="$(tail -n 1 "$cpu_file" | tr -d 's' | awk '{ split($1, u, "m"); split($2, s, "m"); printf "%.3f", u[1] * 60 + u[2] + s[1] * 60 + s[2] }')"
 }
 
 minus() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.3f", a - b }'; }
 
 run_start="$(date +%s.%N)"
-run_cpu="$(children_cpu)"
+children_cpu
+run_cpu="$cpu_now"
 step() {
   local name="$1"
   shift
   echo "bench: $name"
   local start cpu
   start="$(date +%s.%N)"
-  cpu="$(children_cpu)"
+  children_cpu
+  cpu="$cpu_now"
   "$@"
-  echo "$name,$(minus "$(date +%s.%N)" "$start"),$(minus "$(children_cpu)" "$cpu")" >>"$pending"
+  children_cpu
+  echo "$name,$(minus "$(date +%s.%N)" "$start"),$(minus "$cpu_now" "$cpu")" >>"$pending"
 }
 
 step solver_bench "$bin/solver_bench" "$out"
@@ -46,7 +52,7 @@ step curved_speed_bench env OMP_THREAD_LIMIT=1 "$bin/curved_speed_bench" "$out"
 step replay_bench "$bin/replay_bench" "$out/replay.csv" sequences/crane.json sequences/penguin.json sequences/miura_ori.json
 step mesh_bench "$bin/mesh_bench" "$out"
 step plot_charts /usr/bin/python3 bench/plot_charts.py "$out" docs/images/bench "$doc"
-echo "total,$(minus "$(date +%s.%N)" "$run_start"),$(minus "$(children_cpu)" "$run_cpu")" >>"$pending"
+children_cpu
+echo "total,$(minus "$(date +%s.%N)" "$run_start"),$(minus "$cpu_now" "$run_cpu")" >>"$pending"
 mv "$pending" "$times_csv"
-trap - EXIT
 /usr/bin/python3 bench/plot_charts.py "$out" docs/images/bench "$doc" --only wall_time
