@@ -76,8 +76,8 @@ Expected<CurvedReport> CurvedSheetFollower::solveState(const Paper& paper, const
       return Failure::failure("cannot mesh the paper: " + meshed.message());
     next_mesh = std::make_unique<CurvedMesh>(std::move(*meshed));
   }
-  auto next_solver =
-      std::make_unique<CurvedSolver>(*next_mesh, *next_paper, options_.material, options_.contact, options_.solve);
+  auto next_solver = std::make_unique<CurvedSolver>(*next_mesh, *next_paper, options_.material, options_.contact,
+                                                    options_.solve, options_.surroundings);
   Positions next_x = placeNodes(*next_mesh, *next_paper);
 
   std::swap(paper_, next_paper);

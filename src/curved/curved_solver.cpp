@@ -62,19 +62,24 @@ bool stopBeforeStep(const Eigen::VectorXd& g, double energy, double force_scale,
 }  // namespace
 
 CurvedSolver::CurvedSolver(const CurvedMesh& mesh, const Paper& paper, const CurvedMaterial& material,
-                           const ContactOptions& contact, const CurvedSolveOptions& options)
+                           const ContactOptions& contact, const CurvedSolveOptions& options,
+                           const Surroundings& surroundings)
   : mesh_(mesh)
   , material_(material)
   , terms_(curvedTerms(mesh, paper, material))
   , contact_(mesh, paper, material, contact)
   , options_(options)
+  , surroundings_(surroundings)
 {
+  if (!(surroundings_.table_stiffness > 0))
+    surroundings_.table_stiffness = contact_.stiffness();
 }
 
 double CurvedSolver::energy(const Positions& x, const Assembly& out, CurvedEnergy* parts, double* contact) const
 {
   const CurvedEnergy e = evaluateCurved(terms_, x, out);
-  const double c = contact_.evaluate(x, out);
+  // The table is contact too, the weight a load: both count with contact in the report.
+  const double c = contact_.evaluate(x, out) + evaluateSurroundings(surroundings_, terms_.mass, x, out);
   if (parts)
     *parts = e;
   if (contact)

@@ -39,6 +39,8 @@ core::CurvedSheetFollower curvedFollower(const CurvedMeshSolverConfig& config)
 {
   core::CurvedFollowOptions options;
   options.material.bend = config.bend * options.material.stretch;
+  options.surroundings.gravity = config.gravity;
+  options.surroundings.table = config.table;
   options.solve = solveOptions(config);
   return core::CurvedSheetFollower([config](const core::Paper& paper) { return meshCurvedSheet(paper, config); },
                                    options);

@@ -20,6 +20,7 @@ struct CurvedFollowOptions
   CurvedMaterial material;
   ContactOptions contact;
   CurvedSolveOptions solve;
+  Surroundings surroundings;  // weightless and in the air unless set
   /// No pin moves farther than this many mesh spacings in one solve; a longer move is made in
   /// equal steps, each solved from the last.
   double max_pin_step = 0.25;

@@ -11,6 +11,7 @@
 #include "virtual_origami/curved/contact.h"
 #include "virtual_origami/curved/curved_forces.h"
 #include "virtual_origami/curved/spd_factorization.h"
+#include "virtual_origami/curved/surroundings.h"
 
 namespace virtual_origami::core
 {
@@ -52,13 +53,13 @@ struct CurvedSolveOptions
 struct CurvedReport
 {
   bool converged = false;
-  bool diverged = false;  // non-finite or exploding: the positions were rolled back
-  int iterations = 0;     // Newton iterations or RK4 steps
+  bool diverged = false;   // non-finite or exploding: the positions were rolled back
+  int iterations = 0;      // Newton iterations or RK4 steps
   int factorizations = 0;  // Newton: sparse Cholesky factorisations (the rest reused one)
   double max_force = 0.0;  // largest force on a free node, / (stretch × spacing)
   CurvedEnergy energy;
   double contact_energy = 0.0;
-  int contacts = 0;      // watched node–triangle pairs at the end
+  int contacts = 0;        // watched node–triangle pairs at the end
   double time_step = 0.0;  // RK4
   double seconds = 0.0;
   std::string message;
@@ -69,7 +70,8 @@ class CurvedSolver
 public:
   /// `mesh` and `paper` must outlive the solver.
   CurvedSolver(const CurvedMesh& mesh, const Paper& paper, const CurvedMaterial& material = {},
-               const ContactOptions& contact = {}, const CurvedSolveOptions& options = {});
+               const ContactOptions& contact = {}, const CurvedSolveOptions& options = {},
+               const Surroundings& surroundings = {});
 
   /// Moves the free nodes of `x` (one column per mesh node) to balance, with the pinned nodes
   /// set to their positions first. Contact sides persist from one solve to the next, so a
@@ -78,9 +80,18 @@ public:
   /// On divergence `x` is left as it was given (pins applied) and the report says so.
   CurvedReport solve(Positions& x, const std::vector<CurvedPin>& pins);
 
-  const CurvedTerms& terms() const { return terms_; }
-  const LayerContact& contact() const { return contact_; }
-  CurvedSolveOptions& options() { return options_; }
+  const CurvedTerms& terms() const
+  {
+    return terms_;
+  }
+  const LayerContact& contact() const
+  {
+    return contact_;
+  }
+  CurvedSolveOptions& options()
+  {
+    return options_;
+  }
 
   /// Largest force on a free node over (stretch × spacing), contact included.
   double maxForce(const Positions& x, const std::vector<CurvedPin>& pins);
@@ -90,18 +101,20 @@ private:
   CurvedReport rk4(Positions& x, const std::vector<int>& free_index, int free_count);
   /// Energy, gradient (into g) and Hessian (into hessian_) at x.
   double assembleHessian(const Positions& x, const std::vector<int>& free_index, int free_count, Eigen::VectorXd& g);
-  double energy(const Positions& x, const Assembly& out, CurvedEnergy* parts = nullptr, double* contact = nullptr) const;
+  double energy(const Positions& x, const Assembly& out, CurvedEnergy* parts = nullptr,
+                double* contact = nullptr) const;
 
   const CurvedMesh& mesh_;
   CurvedMaterial material_;
   CurvedTerms terms_;
   LayerContact contact_;
   CurvedSolveOptions options_;
+  Surroundings surroundings_;
   // Newton's Hessian and factorisation, kept across solves, and the free nodes it is for.
   Eigen::SparseMatrix<double> hessian_;
   SpdFactorization factorization_;
   std::vector<int> factor_free_;
-  double damping_mu_ = -1.0;  // Newton's Levenberg–Marquardt shift where the last solve left it
+  double damping_mu_ = -1.0;       // Newton's Levenberg–Marquardt shift where the last solve left it
   std::vector<int> pattern_free_;  // the free nodes hessian_'s pattern is for
   std::vector<std::array<int, 4>> pattern_groups_;
 };
