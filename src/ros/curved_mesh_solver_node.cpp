@@ -48,8 +48,8 @@ core::CurvedSheetFollower curvedFollower(const CurvedMeshSolverConfig& config)
 
 namespace
 {
-// The bent sheet as two markers in the state's frame: triangles, and the mesh's edges so that
-// the bend reads in rviz's flat shading.
+// The bent sheet as markers in the state's frame: the triangles' front and back sides, and the
+// mesh's edges so that the bend reads in rviz's flat shading.
 visualization_msgs::MarkerArray sheetMarkers(const core::CurvedMesh& mesh, const core::Positions& positions,
                                              const std_msgs::Header& header)
 {
@@ -61,13 +61,29 @@ visualization_msgs::MarkerArray sheetMarkers(const core::CurvedMesh& mesh, const
   triangles.action = visualization_msgs::Marker::ADD;
   triangles.pose.orientation.w = 1.0;
   triangles.scale.x = triangles.scale.y = triangles.scale.z = 1.0;
-  triangles.color.r = 0.55f;
-  triangles.color.g = 0.75f;
-  triangles.color.b = 0.95f;
-  triangles.color.a = 0.85f;
+  // The front (crease-pattern counter-clockwise, the side the crease pattern shows) in the
+  // paper markers' colours; the back side, wound the other way, just behind each triangle, so
+  // that each side shows its own colour, lit from its side (the front's points stay exact).
+  triangles.color.r = 0.96f;
+  triangles.color.g = 0.89f;
+  triangles.color.b = 0.76f;
+  triangles.color.a = 1.0f;
+  visualization_msgs::Marker back = triangles;
+  back.ns = "curved_mesh_back";
+  back.color.r = 0.55f;
+  back.color.g = 0.70f;
+  back.color.b = 0.86f;
+  constexpr double kBehind = 0.0004;  // as the paper markers' side offset
   for (const core::MeshTriangle& t : mesh.triangles)
-    for (int node : t.nodes)
-      triangles.points.push_back(toPoint(positions.col(node)));
+  {
+    const core::Vec3 a = positions.col(t.nodes[0]), b = positions.col(t.nodes[1]), c = positions.col(t.nodes[2]);
+    const core::Vec3 normal = (b - a).cross(c - a);
+    const core::Vec3 behind = normal.norm() > 0 ? core::Vec3(-kBehind * normal.normalized()) : core::Vec3::Zero();
+    for (const core::Vec3& p : { a, b, c })
+      triangles.points.push_back(toPoint(p));
+    for (const core::Vec3& p : { a, c, b })
+      back.points.push_back(toPoint(p + behind));
+  }
 
   visualization_msgs::Marker edges = triangles;
   edges.ns = "curved_mesh_edges";
@@ -81,7 +97,7 @@ visualization_msgs::MarkerArray sheetMarkers(const core::CurvedMesh& mesh, const
       edges.points.push_back(toPoint(positions.col(node)));
 
   visualization_msgs::MarkerArray markers;
-  markers.markers = { triangles, edges };
+  markers.markers = { triangles, back, edges };
   return markers;
 }
 }  // namespace
