@@ -121,8 +121,9 @@ void CurvedMeshSolverNode::reconfigure(CurvedMeshSolverConfig& config, uint32_t)
 {
   config_ = config;
   follower_.emplace(curvedFollower(config_));  // a new mesh and solver with the new parameters
-  ROS_INFO("curved_mesh_solver: %s, %s mesh, spacing %g of the sheet, tolerance %g%s", config_.method.c_str(),
-           config_.mesher.c_str(), config_.spacing, config_.tolerance, config_.enabled ? "" : " (disabled)");
+  ROS_INFO("curved_mesh_solver: %s, %s mesh, spacing %g of the sheet, tolerance %g%s%s", config_.method.c_str(),
+           config_.mesher.c_str(), config_.spacing, config_.tolerance,
+           config_.gravity > 0 || config_.table ? ", weight and table" : "", config_.enabled ? "" : " (disabled)");
   if (last_state_)
     solveAndPublish();
 }
