@@ -233,15 +233,6 @@ Scene degree4Scene(int mode, double rho1)
   return scene;
 }
 
-/// The vertex at a crease-pattern point, -1 when none.
-int vertexAt(const Paper& paper, const Vec2& point)
-{
-  for (size_t v = 0; v < paper.vertices.size(); ++v)
-    if ((paper.vertices[v].crease_pattern - point).norm() < 1e-9)
-      return static_cast<int>(v);
-  return -1;
-}
-
 /// sequences/crane.json: from the working directory (make bench runs in the source tree),
 /// else beside this file.
 std::string craneSequenceText()
@@ -285,8 +276,8 @@ Scene craneScene()
   }
   scene.paper = (*states)[13];
   const double t = 0.5 * std::tan(M_PI / 8);
-  const int corner = vertexAt(scene.paper, Vec2(0, 0)), middle = vertexAt(scene.paper, Vec2(0.5, 0)),
-            root = vertexAt(scene.paper, Vec2(0.5, t));
+  const int corner = scene.paper.vertexAt(Vec2(0, 0), 1e-9), middle = scene.paper.vertexAt(Vec2(0.5, 0), 1e-9),
+            root = scene.paper.vertexAt(Vec2(0.5, t), 1e-9);
   scene.step.axis_edge = corner < 0 || root < 0 ? -1 : scene.paper.findEdge(corner, root);
   if (scene.step.axis_edge < 0 || middle < 0)
   {

@@ -120,6 +120,14 @@ int Paper::findEdge(int a, int b) const
   return -1;
 }
 
+int Paper::vertexAt(const Vec2& crease_pattern_point, double tolerance) const
+{
+  for (size_t v = 0; v < vertices.size(); ++v)
+    if ((vertices[v].crease_pattern - crease_pattern_point).norm() <= tolerance)
+      return static_cast<int>(v);
+  return -1;
+}
+
 std::vector<int> Paper::facesOfVertex(int vertex) const
 {
   std::vector<int> result;

@@ -130,9 +130,8 @@ core::Status GripperExample::callPin(int vertex, const std::string& frame, bool 
   pin.request.vertex = vertex;
   pin.request.frame_id = frame;
   pin.request.release = release;
-  const std::string service = nh_.resolveName("pin");
-  if (!ros::service::waitForService(service, ros::Duration(options_.timeout)) || !ros::service::call(service, pin))
-    return core::failure("the service " + service + " did not answer");
+  if (const core::Status called = call("pin", pin); !called)
+    return called;
   if (!pin.response.success)
     return core::failure("pin vertex " + std::to_string(vertex) + ": " + pin.response.message);
   return core::success();
@@ -145,9 +144,8 @@ core::Expected<PaperState> GripperExample::creaseMiddle(const core::Vec2& a, con
   crease.request.start.y = a.y();
   crease.request.end.x = b.x();
   crease.request.end.y = b.y();
-  const std::string service = nh_.resolveName("crease");
-  if (!ros::service::waitForService(service, ros::Duration(options_.timeout)) || !ros::service::call(service, crease))
-    return core::Expected<PaperState>::failure("the service " + service + " did not answer");
+  if (const core::Status called = call("crease", crease); !called)
+    return core::Expected<PaperState>::failure(called.message());
   if (!crease.response.success)
     return core::Expected<PaperState>::failure("creasing the middle line: " + crease.response.message);
   return stateAfter(crease.response.revision);
@@ -188,9 +186,8 @@ core::Status GripperExample::press(const core::Vec2& a, const core::Vec2& b, int
   rotate.request.axis_edge = axis;
   rotate.request.angle = turn;
   rotate.request.commit = true;
-  const std::string service = nh_.resolveName("rotate");
-  if (!ros::service::waitForService(service, ros::Duration(options_.timeout)) || !ros::service::call(service, rotate))
-    return core::failure("the service " + service + " did not answer");
+  if (const core::Status called = call("rotate", rotate); !called)
+    return called;
   if (!rotate.response.success)
     return core::failure("folding the middle line: " + rotate.response.message);
   state = stateAfter(rotate.response.revision);

@@ -20,14 +20,6 @@ CurvedSheetFollower makeFollower(CurvedFollowOptions options = {})
   return CurvedSheetFollower([](const Paper& paper) { return bubbleMesh(paper); }, options);
 }
 
-int vertexAt(const Paper& paper, const Vec2& p)
-{
-  for (size_t v = 0; v < paper.vertices.size(); ++v)
-    if ((paper.vertices[v].crease_pattern - p).norm() < 1e-12)
-      return static_cast<int>(v);
-  return -1;
-}
-
 /// The corner (1, 0) on the half circle about the line x = 0.5, up along +z.
 Vec3 along(double angle)
 {
@@ -37,7 +29,7 @@ Vec3 along(double angle)
 TEST(CurvedFollow, TheSheetBendsAfterACornerSwungOverTheMiddleLine)
 {
   const Paper paper = Paper::square(1.0);
-  const int a = vertexAt(paper, { 0, 0 }), d = vertexAt(paper, { 0, 1 }), corner = vertexAt(paper, { 1, 0 });
+  const int a = paper.vertexAt({ 0, 0 }), d = paper.vertexAt({ 0, 1 }), corner = paper.vertexAt({ 1, 0 });
   ASSERT_GE(a, 0);
   ASSERT_GE(d, 0);
   ASSERT_GE(corner, 0);
@@ -78,7 +70,7 @@ TEST(CurvedFollow, TheSheetBendsAfterACornerSwungOverTheMiddleLine)
 TEST(CurvedFollow, ALongMoveIsSplitAndTheSameStateKeepsItsBalance)
 {
   const Paper paper = Paper::square(1.0);
-  const int a = vertexAt(paper, { 0, 0 }), d = vertexAt(paper, { 0, 1 }), corner = vertexAt(paper, { 1, 0 });
+  const int a = paper.vertexAt({ 0, 0 }), d = paper.vertexAt({ 0, 1 }), corner = paper.vertexAt({ 1, 0 });
   CurvedSheetFollower follower = makeFollower();
   ASSERT_TRUE(follower.solveState(paper, { { a, paper.vertices[a].folded }, { d, paper.vertices[d].folded } }));
   const std::vector<PullTarget> lifted{ { a, paper.vertices[a].folded },

@@ -42,14 +42,6 @@ Paper turned(const Paper& paper, const RotationRing& ring, double angle)
   return next;
 }
 
-/// The vertex of `paper` at crease-pattern position (x, y).
-int vertexAt(const Paper& paper, double x, double y)
-{
-  for (size_t v = 0; v < paper.vertices.size(); ++v)
-    if ((paper.vertices[v].crease_pattern - Vec2(x, y)).norm() < 1e-12)
-      return static_cast<int>(v);
-  return -1;
-}
 }  // namespace
 
 TEST(CreaseDrag, SnapsBothEndsToTheCornersOfADiagonal)
@@ -125,11 +117,11 @@ TEST(RotationRing, DraggingTowardsTheAxisLiftsTheHalfTowardsTheEye)
   // The core turns the half as the ring said: up towards the eye, a valley fold.
   const Paper up = turned(paper, ring, quarter);
   EXPECT_NEAR(up.edges[ring.axis_edge].fold_angle, M_PI / 2, 1e-9);
-  const Vec3 corner = up.vertices[vertexAt(up, 1, 0)].folded;
+  const Vec3 corner = up.vertices[up.vertexAt(Vec2(1, 0))].folded;
   EXPECT_GT(corner.z(), 0.5);
   EXPECT_TRUE(ringPoint(ring, quarter).isApprox(p3(0.55, 0.55, 0.25 * std::sqrt(2.0))));
   // The other half stays.
-  EXPECT_EQ(up.vertices[vertexAt(up, 0, 1)].folded, p3(0, 1));
+  EXPECT_EQ(up.vertices[up.vertexAt(Vec2(0, 1))].folded, p3(0, 1));
 }
 
 TEST(RotationRing, PressOnTheOtherHalfTurnsItTheSameWay)
@@ -139,8 +131,8 @@ TEST(RotationRing, PressOnTheOtherHalfTurnsItTheSameWay)
   const double angle = ringAngle(ring, p3(0.45, 0.45), kFromAbove);
   const Paper up = turned(paper, ring, angle);
   EXPECT_NEAR(up.edges[ring.axis_edge].fold_angle, M_PI / 2, 1e-9);
-  EXPECT_GT(up.vertices[vertexAt(up, 0, 1)].folded.z(), 0.5);
-  EXPECT_EQ(up.vertices[vertexAt(up, 1, 0)].folded, p3(1, 0));
+  EXPECT_GT(up.vertices[up.vertexAt(Vec2(0, 1))].folded.z(), 0.5);
+  EXPECT_EQ(up.vertices[up.vertexAt(Vec2(1, 0))].folded, p3(1, 0));
 }
 
 TEST(RotationRing, SeenFromTheSideTheAngleFollowsThePointerAroundTheRing)

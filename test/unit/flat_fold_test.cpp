@@ -27,18 +27,9 @@ Paper creasedSquare()
 
 const Vec2 kCentre(0.5, 0.5);
 
-/// The vertex at a crease-pattern point.
-int vertexAt(const Paper& paper, const Vec2& p)
-{
-  for (size_t v = 0; v < paper.vertices.size(); ++v)
-    if ((paper.vertices[v].crease_pattern - p).norm() < 1e-12)
-      return static_cast<int>(v);
-  return -1;
-}
-
 Vec3 foldedAt(const Paper& paper, const Vec2& crease_pattern_point)
 {
-  const int v = vertexAt(paper, crease_pattern_point);
+  const int v = paper.vertexAt(crease_pattern_point);
   EXPECT_GE(v, 0);
   return v >= 0 ? paper.vertices[v].folded : Vec3::Constant(NAN);
 }
@@ -146,7 +137,7 @@ TEST(FlatFold, InsideReverseFoldMirrorsTheTipAndFlipsItsSpine)
   EXPECT_LT((foldedAt(paper, v2(0, 0.3)) - p3(0.3, 0)).norm(), 1e-12);  // the back layer's edge point joins the front's
   EXPECT_EQ(reversed->moved_faces.size(), 2u);                           // the tip, both layers
   int mountains = 0, valleys = 0;
-  const int joint = vertexAt(paper, v2(0.3, 0.3));
+  const int joint = paper.vertexAt(v2(0.3, 0.3));
   for (const Edge& e : paper.edges)
     if (e.isCrease() && (e.vertices[0] == joint || e.vertices[1] == joint))
       (e.fold_angle < 0 ? mountains : valleys) += 1;

@@ -126,3 +126,14 @@ TEST(Kinematics, AnglesThatDoNotCloseAreRejected)
   EXPECT_FALSE(positions.ok());
   EXPECT_NE(positions.message().find("do not close"), std::string::npos) << positions.message();
 }
+
+TEST(Paper, FindsAVertexByItsCreasePatternPoint)
+{
+  const Paper paper = Paper::square(2.0);
+  const int corner = paper.vertexAt(Vec2(2, 0));
+  ASSERT_GE(corner, 0);
+  EXPECT_EQ(paper.vertices[corner].crease_pattern, Vec2(2, 0));
+  EXPECT_EQ(paper.vertexAt(Vec2(2, 1e-6)), -1);            // not within the default 1e-12
+  EXPECT_EQ(paper.vertexAt(Vec2(2, 1e-6), 1e-5), corner);  // within a looser one
+  EXPECT_EQ(paper.vertexAt(Vec2(1, 1), 0.5), -1);          // the centre is no vertex
+}

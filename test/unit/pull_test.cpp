@@ -20,14 +20,6 @@ using namespace virtual_origami::core::test;
 
 namespace
 {
-int vertexAt(const Paper& paper, double x, double y)
-{
-  for (size_t v = 0; v < paper.vertices.size(); ++v)
-    if ((paper.vertices[v].crease_pattern - Vec2(x, y)).norm() < 1e-12)
-      return static_cast<int>(v);
-  return -1;
-}
-
 /// The unit square creased at x = 0.5, and the vertices of its half x ≤ 0.5.
 Paper creasedInHalf(std::vector<int>& left_half)
 {
@@ -53,7 +45,7 @@ TEST(Pull, ACornerSwungAboutTheCreaseTurnsItsFaceRigidly)
   {
     std::vector<int> held;
     Paper paper = creasedInHalf(held);
-    const int corner = vertexAt(paper, 1, 0), other = vertexAt(paper, 1, 1);
+    const int corner = paper.vertexAt(Vec2(1, 0)), other = paper.vertexAt(Vec2(1, 1));
     std::unique_ptr<ShapeSolver> solver = makeSolver(name);
     const double angle = 2.0;
     // In small steps, as a pin following a frame does.
@@ -66,7 +58,7 @@ TEST(Pull, ACornerSwungAboutTheCreaseTurnsItsFaceRigidly)
     EXPECT_LE(edgeStrain(paper).max, 1e-9) << name;
     // Closed form: the far corner turns the same way about the crease.
     EXPECT_LE((paper.vertices[other].folded - (swung(angle) + Vec3(0, 1, 0))).norm(), 1e-8) << name;
-    const int crease = paper.findEdge(vertexAt(paper, 0.5, 0), vertexAt(paper, 0.5, 1));
+    const int crease = paper.findEdge(paper.vertexAt(Vec2(0.5, 0)), paper.vertexAt(Vec2(0.5, 1)));
     EXPECT_NEAR(paper.edges[crease].fold_angle, angle, 1e-8) << name;
     for (int v : held)
       EXPECT_LE((paper.vertices[v].folded -
@@ -80,11 +72,11 @@ TEST(Pull, FoldedFlatTheHalvesGetTheLayerOrderTheyCameFrom)
 {
   std::vector<int> held;
   Paper paper = creasedInHalf(held);
-  const int corner = vertexAt(paper, 1, 0);
+  const int corner = paper.vertexAt(Vec2(1, 0));
   std::unique_ptr<ShapeSolver> solver = makeSolver("newton");
   for (int k = 1; k <= 30; ++k)
     ASSERT_TRUE(pull(paper, { { corner, swung(M_PI * k / 30) } }, solver.get(), held).ok());
-  const int crease = paper.findEdge(vertexAt(paper, 0.5, 0), vertexAt(paper, 0.5, 1));
+  const int crease = paper.findEdge(paper.vertexAt(Vec2(0.5, 0)), paper.vertexAt(Vec2(0.5, 1)));
   EXPECT_NEAR(paper.edges[crease].fold_angle, M_PI, 1e-9);
   const Edge& hinge = paper.edges[crease];
   const int carried = paper.faceCentroid(hinge.faces[0]).z() == 0.0 ? hinge.faces[1] : hinge.faces[0];
@@ -98,7 +90,7 @@ TEST(Pull, RefusalsLeaveThePaperAsItWas)
   std::vector<int> held;
   Paper paper = creasedInHalf(held);
   const Paper before = paper;
-  const int corner = vertexAt(paper, 1, 0);
+  const int corner = paper.vertexAt(Vec2(1, 0));
   std::unique_ptr<ShapeSolver> solver = makeSolver("newton");
   const double nan = std::numeric_limits<double>::quiet_NaN();
   EXPECT_NE(pull(paper, { { 99, swung(0.1) } }, solver.get(), held).message().find("does not exist"),
@@ -121,7 +113,7 @@ TEST(Pull, IsAnOperationTheLogReplaysAndTheJournalKeeps)
   Session session(creasedInHalf(held));
   session.setSolver(std::shared_ptr<ShapeSolver>(makeSolver("newton")));
   session.setHeldVertices(held);
-  const int corner = vertexAt(session.paper(), 1, 0);
+  const int corner = session.paper().vertexAt(Vec2(1, 0));
   const std::string path =
       (std::filesystem::temp_directory_path() / ("vo_pull_" + std::to_string(::getpid()) + ".jsonl")).string();
   SessionJournal journal;

@@ -12,13 +12,6 @@ namespace virtual_origami::core
 {
 namespace
 {
-int vertexAt(const Paper& paper, const Vec2& p)
-{
-  for (size_t v = 0; v < paper.vertices.size(); ++v)
-    if ((paper.vertices[v].crease_pattern - p).norm() < 1e-12)
-      return static_cast<int>(v);
-  return -1;
-}
 
 Surroundings onTable(double gravity)
 {
@@ -97,7 +90,7 @@ TEST(Surroundings, ASheetOnTheTableRestsWithTheTableCarryingItsWeight)
 TEST(Surroundings, TheHeavierTheSheetTheMoreOfItStaysOnTheTable)
 {
   const Paper paper = Paper::square(1.0);
-  const int a = vertexAt(paper, { 0, 0 }), d = vertexAt(paper, { 0, 1 }), corner = vertexAt(paper, { 1, 0 });
+  const int a = paper.vertexAt({ 0, 0 }), d = paper.vertexAt({ 0, 1 }), corner = paper.vertexAt({ 1, 0 });
   // Highest node of the far third of the sheet, and lowest node of all, after the lift.
   const auto lift = [&](double gravity, double* lowest) {
     CurvedFollowOptions options;

@@ -93,6 +93,8 @@ struct Paper
   double faceArea(int face) const;  // crease-pattern area
   /// The edge joining two vertices, or -1.
   int findEdge(int a, int b) const;
+  /// The vertex at a crease-pattern point (within `tolerance`), or -1.
+  int vertexAt(const Vec2& crease_pattern_point, double tolerance = 1e-12) const;
   /// Faces that use a vertex.
   std::vector<int> facesOfVertex(int vertex) const;
 

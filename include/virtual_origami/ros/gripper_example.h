@@ -45,6 +45,17 @@ public:
   core::Status run();
 
 private:
+  /// Calls the paper's service `name` (waiting for it up to the timeout); fails when it does
+  /// not answer. Whether it succeeded is the response's.
+  template <class Service>
+  core::Status call(const std::string& name, Service& service)
+  {
+    const std::string resolved = nh_.resolveName(name);
+    if (!ros::service::waitForService(resolved, ros::Duration(options_.timeout)) ||
+        !ros::service::call(resolved, service))
+      return core::failure("the service " + resolved + " did not answer");
+    return core::success();
+  }
   core::Status callPin(int vertex, const std::string& frame, bool release);
   core::Expected<PaperState> creaseMiddle(const core::Vec2& a, const core::Vec2& b);
   /// The curved mode's end: presses the middle line a→b into a crease and folds the half that
