@@ -92,16 +92,8 @@ void GripperExample::awaitCurvedSheet(const ros::Time& since)
 {
   if (sheet_sub_.getNumPublishers() == 0)
     return;  // no curved_mesh_solver: nothing to wait for
-  const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(options_.timeout);
-  while (ros::ok() && ros::WallTime::now() < until)
-  {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      if (sheet_stamp_ > since)
-        return;
-    }
-    ros::WallDuration(0.01).sleep();
-  }
+  if (waitUntil([&] { return sheet_stamp_ > since; }))
+    return;
   ROS_WARN("gripper_example: the curved sheet did not follow the gripper to the end of its path within %g s; "
            "pressing the fold anyway",
            options_.timeout);
@@ -109,16 +101,14 @@ void GripperExample::awaitCurvedSheet(const ros::Time& since)
 
 core::Expected<PaperState> GripperExample::stateAfter(uint64_t revision)
 {
-  const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(options_.timeout);
-  while (ros::ok() && ros::WallTime::now() < until)
-  {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      if (have_state_ && state_.revision >= revision)
-        return state_;
-    }
-    ros::WallDuration(0.01).sleep();
-  }
+  PaperState state;
+  if (waitUntil([&] {
+        if (!have_state_ || state_.revision < revision)
+          return false;
+        state = state_;
+        return true;
+      }))
+    return state;
   return core::Expected<PaperState>::failure("no state of revision " + std::to_string(revision) + " on " +
                                              state_sub_.getTopic() + " within " + std::to_string(options_.timeout) +
                                              " s");
@@ -292,17 +282,10 @@ core::Status GripperExample::run()
 
   // Let the model catch up with the end of the trajectory before letting go.
   const core::Vec3 end = along(M_PI);
-  const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(options_.timeout);
-  bool arrived = false;
-  while (!arrived && ros::ok() && ros::WallTime::now() < until)
-  {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      arrived = grasped < static_cast<int>(state_.vertices_folded.size()) &&
-                (folded(state_, grasped) - end).norm() < tolerance;
-    }
-    ros::WallDuration(0.01).sleep();
-  }
+  const bool arrived = waitUntil([&] {
+    return grasped < static_cast<int>(state_.vertices_folded.size()) &&
+           (folded(state_, grasped) - end).norm() < tolerance;
+  });
   if (!arrived)
     return core::failure("the paper did not follow the gripper to the end of its path within " +
                          std::to_string(options_.timeout) + " s");

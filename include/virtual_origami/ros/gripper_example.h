@@ -57,6 +57,22 @@ private:
     return core::success();
   }
   core::Status callPin(int vertex, const std::string& frame, bool release);
+  /// Polls `ready` (called with the mutex held) until it holds, for at most the timeout.
+  template <class Ready>
+  bool waitUntil(Ready ready)
+  {
+    const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(options_.timeout);
+    while (ros::ok() && ros::WallTime::now() < until)
+    {
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (ready())
+          return true;
+      }
+      ros::WallDuration(0.01).sleep();
+    }
+    return false;
+  }
   core::Expected<PaperState> creaseMiddle(const core::Vec2& a, const core::Vec2& b);
   /// The curved mode's end: presses the middle line a→b into a crease and folds the half that
   /// holds `carried` onto the other, a valley of 180° (the carried half on top).
