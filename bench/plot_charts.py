@@ -311,11 +311,13 @@ def chart_curved_speed(tables):
     count with the floor, and RK4's stability map."""
     speed = rows("curved_speed.csv")
     if speed:
-        lines = ["| vertices | solves | converged | Newton iterations | factorisations | solves/s (wall) | "
-                 "solves per CPU second | tolerance |", "|---|---|---|---|---|---|---|---|"]
+        lines = ["| vertices | solves | converged | predicted | Newton iterations | factorisations | "
+                 "conjugate-gradient steps | solves/s (wall) | solves per CPU second | tolerance |",
+                 "|---|---|---|---|---|---|---|---|---|---|"]
         for r in speed:
-            lines.append(f"| {r['vertices']} | {r['solves']} | {r['converged']} | {r['iterations']} | "
-                         f"{r['factorizations']} | {fmt(num(r['solves_per_second']))} | "
+            lines.append(f"| {r['vertices']} | {r['solves']} | {r['converged']} | {r.get('predicted', '')} | "
+                         f"{r['iterations']} | {r['factorizations']} | {r.get('krylov_steps', '')} | "
+                         f"{fmt(num(r['solves_per_second']))} | "
                          f"{fmt(num(r['solves_per_cpu_second']))} | {r['tolerance']} |")
         tables["curved_speed"] = "\n".join(lines)
 

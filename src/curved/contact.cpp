@@ -225,6 +225,16 @@ LayerContact::LayerContact(const CurvedMesh& mesh, const Paper& paper, const Cur
       if (mesh.triangles[t].nodes[k] != e.nodes[0] && mesh.triangles[t].nodes[k] != e.nodes[1])
         open_side_[t][k] = 1;
   }
+  edge_face_.assign(mesh.edges.size(), -1);
+  edge_middle_.resize(mesh.edges.size());
+  for (size_t e = 0; e < mesh.edges.size(); ++e)
+  {
+    const MeshEdge& edge = mesh.edges[e];
+    edge_middle_[e] = 0.5 * (mesh.nodes[edge.nodes[0]].crease_pattern + mesh.nodes[edge.nodes[1]].crease_pattern);
+    const int t0 = edge.triangles[0], t1 = edge.triangles[1];
+    const int f0 = t0 >= 0 ? mesh.triangles[t0].face : -1, f1 = t1 >= 0 ? mesh.triangles[t1].face : -1;
+    edge_face_[e] = f0 < 0 ? f1 : (f1 < 0 || f1 == f0 ? f0 : -1);
+  }
   node_faces_.resize(mesh.nodes.size());
   for (size_t i = 0; i < mesh.nodes.size(); ++i)
     node_faces_[i] = mesh.facesOfNode(paper, static_cast<int>(i));
@@ -268,10 +278,16 @@ void LayerContact::findCandidates(const Positions& x)
 {
   // Every element pair whose boxes come within reach + edge margin + skin, less those the rules below never
   // watch whatever the shape (a node's own triangles, neighbours within the exclusion, edges
-  // sharing a node or near each other in one face): while no node moves farther than half
-  // the skin, every pair that comes within reach is among them.
+  // sharing a node): while no node moves farther than half the skin, every pair that comes
+  // within reach is among them. Nor are two parts of one face nearer on the paper than the
+  // farthest two boxes that gap can hold (√3 of it): to come within reach of each other the
+  // face would have to loop back on itself within about four mesh spacings, some 80° on each
+  // hinge, a bend its mesh does not resolve. On a flat or gently bent sheet those are nearly
+  // all the pairs the boxes find, and watching them made each update cost more than the
+  // forces.
   const double reach = thickness_ + range_;
   const double wide = reach + edge_margin_ + skin_;
+  const double one_face = std::sqrt(3.0) * wide;
   candidates_.clear();
   edge_candidates_.clear();
   const ElementGrid grid(mesh_, x, std::max(wide, mesh_.spacing), wide);
@@ -281,14 +297,20 @@ void LayerContact::findCandidates(const Positions& x)
   {
     const int node = static_cast<int>(i);
     const Vec3 p = x.col(node);
+    const Vec2& at = mesh_.nodes[node].crease_pattern;
     grid.near(p, p, stamp, node, [&](int t) {
       const auto& tri = mesh_.triangles[t].nodes;
       if (tri[0] == node || tri[1] == node || tri[2] == node)
         return;
+      // As for edges: a corner of the triangle near on the paper settles most visits.
+      if ((mesh_.nodes[tri[0]].crease_pattern - at).squaredNorm() < one_face * one_face &&
+          inFace(node, mesh_.triangles[t].face))
+        return;
       boundsOf(tri, x, lo, hi);
       if (boxGap(lo, hi, p, p) > wide)
         return;
-      if (exclusion_ > 0 && patternDistance(mesh_, t, mesh_.nodes[node].crease_pattern) < exclusion_)
+      const double apart = patternDistance(mesh_, t, mesh_.nodes[node].crease_pattern);
+      if (apart < exclusion_ || (apart < one_face && inFace(node, mesh_.triangles[t].face)))
         return;
       candidates_.push_back({ node, t });
     });
@@ -301,8 +323,14 @@ void LayerContact::findCandidates(const Positions& x)
   {
     const auto& na = mesh_.edges[ea].nodes;
     boundsOf(na, x, lo, hi);
+    const int face_a = edge_face_[ea];
+    const Vec2& middle_a = edge_middle_[ea];
     edges.near(lo, hi, edge_stamp, static_cast<int>(ea), [&](int eb) {
       if (eb <= static_cast<int>(ea))
+        return;
+      // Most visits are neighbours inside one face: their middles alone settle it, before
+      // any geometry (the segments are nearer than their middles).
+      if (face_a >= 0 && edge_face_[eb] == face_a && (edge_middle_[eb] - middle_a).squaredNorm() < one_face * one_face)
         return;
       const auto& nb = mesh_.edges[eb].nodes;
       if (nb[0] == na[0] || nb[0] == na[1] || nb[1] == na[0] || nb[1] == na[1])
@@ -318,7 +346,7 @@ void LayerContact::findCandidates(const Positions& x)
           same_face = same_face || (ta >= 0 && tb >= 0 && mesh_.triangles[ta].face == mesh_.triangles[tb].face);
       if (same_face &&
           segmentDistance2d(mesh_.nodes[na[0]].crease_pattern, mesh_.nodes[na[1]].crease_pattern,
-                            mesh_.nodes[nb[0]].crease_pattern, mesh_.nodes[nb[1]].crease_pattern) < mesh_.spacing)
+                            mesh_.nodes[nb[0]].crease_pattern, mesh_.nodes[nb[1]].crease_pattern) < one_face)
         return;
       edge_candidates_.push_back({ static_cast<int>(ea), eb });
     });

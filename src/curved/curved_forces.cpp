@@ -1,130 +1,156 @@
 #include "virtual_origami/curved/curved_forces.h"
 
 #include <cmath>
-
-#include <unsupported/Eigen/AutoDiff>
+#include <optional>
 
 namespace virtual_origami::core
 {
 namespace
 {
-/// Adds the transverse part of an edge's Hessian, w(1 − l0/l)(I − êêᵀ), which Gauss–Newton
-/// leaves out: positive when stretched, negative when compressed.
-void addTension(const StretchTerm& s, const Vec3& d, double length, const Assembly& out)
+/// Where each node of `term` sits in `nodes` (a node listed twice: its first place), or nothing
+/// when the term has a node outside them.
+std::optional<std::array<int, 3>> slotsIn(const std::array<int, 3>& nodes, const ShearTerm& term)
 {
-  if (!out.wantsHessian() || !(length > 0))
-    return;
-  const Vec3 u = d / length;
-  const Eigen::Matrix3d block = s.weight * (1.0 - s.rest / length) * (Eigen::Matrix3d::Identity() - u * u.transpose());
-  const int fi = (*out.free_index)[s.i], fj = (*out.free_index)[s.j];
-  if (fi >= 0)
-    out.addBlock(fi, fi, block);
-  if (fj >= 0)
-    out.addBlock(fj, fj, block);
-  if (fi >= 0 && fj >= 0)
+  std::array<int, 3> slots{};
+  const std::array<int, 3> term_nodes = { term.o, term.i, term.j };
+  for (int k = 0; k < 3; ++k)
   {
-    const Eigen::Matrix3d opposite = -block;
-    out.addBlock(fi, fj, opposite);
-    out.addBlock(fj, fi, opposite);
+    const auto at = std::find(nodes.begin(), nodes.end(), term_nodes[k]);
+    if (at == nodes.end())
+      return std::nullopt;
+    slots[k] = static_cast<int>(at - nodes.begin());
   }
-}
-}  // namespace
-
-namespace
-{
-double valueOf(double v) { return v; }
-template <class D>
-double valueOf(const Eigen::AutoDiffScalar<D>& v)
-{
-  return v.value();
+  return slots;
 }
 
-template <class S>
-using V3 = Eigen::Matrix<S, 3, 1>;
-
-template <class S>
-S cornerAngleT(const V3<S>& o, const V3<S>& i, const V3<S>& j, Eigen::Matrix<S, 3, 3>* grad)
+/// One wing's share of a hinge's curvature, the wing's gradient n/h·(−(1 − t), −t, 1) over
+/// (a, b, wing) differentiated, with n its front normal, `across` the unit direction from the
+/// hinge to it, h its distance and t where its foot divides a→b (Tamstorf & Grinspun 2013,
+/// "Discrete bending forces and their Jacobians"). One wing alone would also turn the sheet
+/// about the hinge, (across nᵀ − n acrossᵀ)/|e|² in its a, b blocks; the two wings' turns
+/// cancel, so each wing keeps only its symmetric part.
+struct WingCurvature
 {
-  using std::atan2;
-  const V3<S> u = i - o, v = j - o;
-  const S angle = atan2(u.cross(v).norm(), u.dot(v));
-  if (grad)
-  {
-    grad->setZero();
-    const S lu = u.norm(), lv = v.norm();
-    // Moving i towards j's side (in the triangle's plane, across u) closes the angle.
-    const V3<S> across_u = v - v.dot(u) / (lu * lu) * u;
-    const V3<S> across_v = u - u.dot(v) / (lv * lv) * v;
-    if (valueOf(across_u.norm()) > 1e-14 * valueOf(lv) && valueOf(across_v.norm()) > 1e-14 * valueOf(lu))
-    {
-      grad->col(1) = -across_u / (across_u.norm() * lu);
-      grad->col(2) = -across_v / (across_v.norm() * lv);
-      grad->col(0) = -grad->col(1) - grad->col(2);
-    }
-  }
-  return angle;
-}
+  Eigen::Matrix3d wing_wing, wing_a, wing_b, a_a, b_b, a_b;
+};
 
-template <class S>
-S hingeAngleT(const V3<S>& a, const V3<S>& b, const V3<S>& left, const V3<S>& right, Eigen::Matrix<S, 3, 4>* grad)
+WingCurvature wingCurvature(const Vec3& along, double le, const Vec3& n, const Vec3& across, double h, double t)
 {
-  using std::atan2;
-  const V3<S> e = b - a;
-  const S le = e.norm();
-  // Left triangle (a, b, left) and right triangle (b, a, right) are counter-clockwise in the
-  // crease pattern: their normals are the front normals, as in measureFoldAngle.
-  const V3<S> area_left = e.cross(left - a), area_right = (a - b).cross(right - b);
-  const S al = area_left.norm(), ar = area_right.norm();
-  const V3<S> n_left = area_left / al, n_right = area_right / ar;
-  const S angle = atan2(e.dot(n_right.cross(n_left)) / le, n_left.dot(n_right));
-  if (grad)
-  {
-    // Lifting a wing towards its front folds valley-wise: ∂φ/∂x = n / (distance to the hinge).
-    const V3<S> g_left = n_left * (le / al), g_right = n_right * (le / ar);
-    const S t_left = (left - a).dot(e) / (le * le), t_right = (right - a).dot(e) / (le * le);
-    grad->col(0) = -(1 - t_left) * g_left - (1 - t_right) * g_right;
-    grad->col(1) = -t_left * g_left - t_right * g_right;
-    grad->col(2) = g_left;
-    grad->col(3) = g_right;
-  }
-  return angle;
-}
-
-/// Second derivatives of a measure: forward-mode automatic differentiation of its analytic
-/// gradient, K nodes of 3 coordinates.
-template <int K, class Measure>
-Eigen::Matrix<double, 3 * K, 3 * K> curvatureOf(const std::array<Vec3, K>& points, Measure measure)
-{
-  using Ad = Eigen::AutoDiffScalar<Eigen::Matrix<double, 3 * K, 1>>;
-  std::array<V3<Ad>, K> p;
-  for (int k = 0; k < K; ++k)
-    for (int r = 0; r < 3; ++r)
-      p[k][r] = Ad(points[k][r], 3 * K, 3 * k + r);
-  Eigen::Matrix<Ad, 3, K> grad;
-  measure(p, &grad);
-  Eigen::Matrix<double, 3 * K, 3 * K> h;
-  for (int k = 0; k < K; ++k)
-    for (int r = 0; r < 3; ++r)
-      h.row(3 * k + r) = grad(r, k).derivatives().transpose();
-  return 0.5 * (h + h.transpose());
+  const Eigen::Matrix3d m = (across * n.transpose() + n * across.transpose()) / (h * h);
+  const Eigen::Matrix3d k = along * n.transpose() / (le * h);
+  const Eigen::Matrix3d k_sym = k + k.transpose();
+  const double s = h * h / (2 * le * le);
+  WingCurvature c;
+  c.wing_wing = -m;
+  c.wing_a = (1 - t) * m + k;
+  c.wing_b = t * m - k;
+  c.a_a = -((1 - t) * (1 - t) + s) * m - (1 - t) * k_sym;
+  c.b_b = -(t * t + s) * m + t * k_sym;
+  c.a_b = (s - t * (1 - t)) * m + (1 - t) * k - t * k.transpose();
+  return c;
 }
 }  // namespace
 
 double cornerAngle(const Vec3& o, const Vec3& i, const Vec3& j, Eigen::Matrix<double, 3, 3>* grad,
                    Eigen::Matrix<double, 9, 9>* curvature)
 {
-  if (curvature)
-    *curvature = curvatureOf<3>({ o, i, j }, [](const auto& p, auto* g) { return cornerAngleT(p[0], p[1], p[2], g); });
-  return cornerAngleT<double>(o, i, j, grad);
+  const Vec3 u = i - o, v = j - o;
+  const Vec3 area = u.cross(v);
+  const double angle = std::atan2(area.norm(), u.dot(v));
+  if (!grad && !curvature)
+    return angle;
+  const double lu = u.norm(), lv = v.norm();
+  // Moving i towards j's side (in the triangle's plane, across u) closes the angle.
+  const Vec3 across_u = v - v.dot(u) / (lu * lu) * u;
+  const Vec3 across_v = u - u.dot(v) / (lv * lv) * v;
+  const double across_u_norm = across_u.norm(), across_v_norm = across_v.norm();
+  // A degenerate corner has no direction to open in: no gradient, no curvature.
+  const bool spread = across_u_norm > 1e-14 * lv && across_v_norm > 1e-14 * lu;
+  if (grad)
+  {
+    grad->setZero();
+    if (spread)
+    {
+      grad->col(1) = -across_u / (across_u_norm * lu);
+      grad->col(2) = -across_v / (across_v_norm * lv);
+      grad->col(0) = -grad->col(1) - grad->col(2);
+    }
+  }
+  if (curvature && !spread)
+    curvature->setZero();
+  else if (curvature)
+  {
+    // θ(u, v): in the plane each side turns like a polar angle, (ûpᵀ + pûᵀ)/|u|² with p its
+    // unit direction across; out of the plane (along n) the angle opens by cot θ/|u|² for
+    // either side alone and closes by 1/|u × v| for both together.
+    const double area_norm = area.norm();
+    const Vec3 n = area / area_norm;
+    const Eigen::Matrix3d nn = n * n.transpose();
+    const double cot = u.dot(v) / area_norm;
+    const Vec3 du = u / lu, dv = v / lv;
+    const Vec3 pu = across_u / across_u_norm, pv = across_v / across_v_norm;
+    const Eigen::Matrix3d uu = (du * pu.transpose() + pu * du.transpose() + cot * nn) / (lu * lu);
+    const Eigen::Matrix3d vv = (dv * pv.transpose() + pv * dv.transpose() + cot * nn) / (lv * lv);
+    const Eigen::Matrix3d uv = -nn / area_norm;  // symmetric, as are uu and vv
+    auto block = [&](int r, int c) { return curvature->block<3, 3>(3 * r, 3 * c); };
+    block(1, 1) = uu;
+    block(2, 2) = vv;
+    block(1, 2) = uv;
+    block(2, 1) = uv;
+    block(0, 1) = block(1, 0) = -(uu + uv);
+    block(0, 2) = block(2, 0) = -(uv + vv);
+    block(0, 0) = uu + 2 * uv + vv;
+  }
+  return angle;
 }
 
 double hingeAngle(const Vec3& a, const Vec3& b, const Vec3& left, const Vec3& right, Eigen::Matrix<double, 3, 4>* grad,
                   Eigen::Matrix<double, 12, 12>* curvature)
 {
+  const Vec3 e = b - a;
+  const double le = e.norm();
+  // Left triangle (a, b, left) and right triangle (b, a, right) are counter-clockwise in the
+  // crease pattern: their normals are the front normals, as in measureFoldAngle.
+  const Vec3 area_left = e.cross(left - a), area_right = (a - b).cross(right - b);
+  const double al = area_left.norm(), ar = area_right.norm();
+  const Vec3 n_left = area_left / al, n_right = area_right / ar;
+  const double angle = std::atan2(e.dot(n_right.cross(n_left)) / le, n_left.dot(n_right));
+  if (!grad && !curvature)
+    return angle;
+  const double t_left = (left - a).dot(e) / (le * le), t_right = (right - a).dot(e) / (le * le);
+  if (grad)
+  {
+    // Lifting a wing towards its front folds valley-wise: ∂φ/∂x = n / (distance to the hinge).
+    const Vec3 g_left = n_left * (le / al), g_right = n_right * (le / ar);
+    grad->col(0) = -(1 - t_left) * g_left - (1 - t_right) * g_right;
+    grad->col(1) = -t_left * g_left - t_right * g_right;
+    grad->col(2) = g_left;
+    grad->col(3) = g_right;
+  }
   if (curvature)
-    *curvature = curvatureOf<4>({ a, b, left, right },
-                                [](const auto& p, auto* g) { return hingeAngleT(p[0], p[1], p[2], p[3], g); });
-  return hingeAngleT<double>(a, b, left, right, grad);
+  {
+    const Vec3 along = e / le;
+    const WingCurvature l = wingCurvature(along, le, n_left, n_left.cross(along), al / le, t_left);
+    const WingCurvature r = wingCurvature(along, le, n_right, along.cross(n_right), ar / le, t_right);
+    auto block = [&](int row, int column) { return curvature->block<3, 3>(3 * row, 3 * column); };
+    block(0, 0) = l.a_a + r.a_a;
+    block(1, 1) = l.b_b + r.b_b;
+    block(0, 1) = l.a_b + r.a_b;
+    block(1, 0) = block(0, 1).transpose();
+    block(2, 2) = l.wing_wing;
+    block(3, 3) = r.wing_wing;
+    block(2, 3).setZero();
+    block(3, 2).setZero();
+    block(2, 0) = l.wing_a;
+    block(0, 2) = l.wing_a.transpose();
+    block(2, 1) = l.wing_b;
+    block(1, 2) = l.wing_b.transpose();
+    block(3, 0) = r.wing_a;
+    block(0, 3) = r.wing_a.transpose();
+    block(3, 1) = r.wing_b;
+    block(1, 3) = r.wing_b.transpose();
+  }
+  return angle;
 }
 
 CurvedTerms curvedTerms(const CurvedMesh& mesh, const Paper& paper, const CurvedMaterial& material)
@@ -244,17 +270,54 @@ CurvedEnergy evaluateCurved(const CurvedTerms& terms, const Positions& x, const 
     Eigen::Matrix<double, 3, 2> grad;
     grad.col(1) = length > 0 ? Vec3(d / length) : Vec3::Zero();
     grad.col(0) = -grad.col(1);
-    energy.stretch += addTerm<2>({ s.i, s.j }, s.weight, length - s.rest, grad, out);
-    addTension(s, d, length, out);
+    // ∇²l = (I − êêᵀ)/l: the transverse stiffness w(1 − l0/l)(I − êêᵀ) that Gauss–Newton would
+    // leave out, positive when stretched, negative when compressed.
+    Eigen::Matrix<double, 6, 6> curvature;
+    if (out.wantsHessian())
+    {
+      Eigen::Matrix3d transverse = Eigen::Matrix3d::Zero();
+      if (length > 0)
+        transverse = (Eigen::Matrix3d::Identity() - grad.col(1) * grad.col(1).transpose()) / length;
+      curvature << transverse, -transverse, -transverse, transverse;
+    }
+    energy.stretch +=
+        addTerm<2>({ s.i, s.j }, s.weight, length - s.rest, grad, out, out.wantsHessian() ? &curvature : nullptr);
   }
-  for (const ShearTerm& s : terms.shear)
+  // The corners of one triangle follow each other (curvedTerms): their derivatives are summed
+  // and assembled once per triangle, a third of the sparse additions.
+  for (size_t t = 0; t < terms.shear.size();)
   {
-    Eigen::Matrix<double, 3, 3> grad;
-    Eigen::Matrix<double, 9, 9> curvature;
-    const double angle = cornerAngle(x.col(s.o), x.col(s.i), x.col(s.j), out.free_index ? &grad : nullptr,
-                                     out.wantsHessian() ? &curvature : nullptr);
-    energy.shear +=
-        addTerm<3>({ s.o, s.i, s.j }, s.weight, angle - s.rest, grad, out, out.wantsHessian() ? &curvature : nullptr);
+    const std::array<int, 3> nodes = { terms.shear[t].o, terms.shear[t].i, terms.shear[t].j };
+    Eigen::Matrix<double, 3, 3> gradient = Eigen::Matrix<double, 3, 3>::Zero();
+    Eigen::Matrix<double, 9, 9> hessian;
+    if (out.wantsHessian())
+      hessian.setZero();
+    for (; t < terms.shear.size(); ++t)
+    {
+      const ShearTerm& s = terms.shear[t];
+      const std::optional<std::array<int, 3>> slots = slotsIn(nodes, s);
+      if (!slots)
+        break;  // the next triangle (never the group's first term, which is over `nodes`)
+      Eigen::Matrix<double, 3, 3> grad;
+      Eigen::Matrix<double, 9, 9> curvature;
+      const double residual = cornerAngle(x.col(s.o), x.col(s.i), x.col(s.j), out.free_index ? &grad : nullptr,
+                                          out.wantsHessian() ? &curvature : nullptr) -
+                              s.rest;
+      energy.shear += 0.5 * s.weight * residual * residual;
+      if (!out.free_index)
+        continue;
+      for (int k = 0; k < 3; ++k)
+        gradient.col((*slots)[k]) += s.weight * residual * grad.col(k);
+      if (!out.wantsHessian())
+        continue;
+      for (int k = 0; k < 3; ++k)
+        for (int l = 0; l < 3; ++l)
+          hessian.block<3, 3>(3 * (*slots)[k], 3 * (*slots)[l]) +=
+              s.weight * (grad.col(k) * grad.col(l).transpose() + residual * curvature.block<3, 3>(3 * k, 3 * l));
+    }
+    addGradient<3>(nodes, gradient, out);
+    if (out.wantsHessian())
+      addHessian<3>(nodes, hessian, out);
   }
   for (const BendTerm& b : terms.bend)
   {

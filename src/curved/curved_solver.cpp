@@ -5,6 +5,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <Eigen/LU>
+#include <Eigen/QR>
+
 #include "virtual_origami/solvers/solve_budget.h"
 
 namespace virtual_origami::core
@@ -25,6 +28,54 @@ void moveFree(Positions& x, const Positions& from, const Eigen::VectorXd& step, 
   for (Eigen::Index v = 0; v < x.cols(); ++v)
     if (free_index[v] >= 0)
       x.col(v) = from.col(v) + alpha * step.segment<3>(3 * free_index[v]);
+}
+
+/// The rigid motions of the free nodes that leave every pinned node where it is and the
+/// energy as it is (all of them when the paper floats; with weight or a table, only those
+/// in the table's plane: shifts along x and y, turns about z), orthonormal columns over the
+/// free coordinates at `x`. Two pins leave the turn about their line: no force resists it,
+/// so a step's rounding along it is divided by nothing but the damping.
+Eigen::MatrixXd freeMotions(const Positions& x, const std::vector<int>& free_index, int free_count,
+                            bool in_plane_only)
+{
+  // Generators: translation t and rotation ω about the centroid c, u(p) = t + ω × (p − c).
+  const Vec3 centre = x.rowwise().mean();
+  std::vector<int> allowed = in_plane_only ? std::vector<int>{ 0, 1, 5 } : std::vector<int>{ 0, 1, 2, 3, 4, 5 };
+  const auto motion = [&](int generator, const Vec3& p) -> Vec3 {
+    if (generator < 3)
+      return Vec3::Unit(generator);
+    return Vec3::Unit(generator - 3).cross(p - centre);
+  };
+  std::vector<int> pinned;
+  for (size_t v = 0; v < free_index.size(); ++v)
+    if (free_index[v] < 0)
+      pinned.push_back(static_cast<int>(v));
+  const int m = static_cast<int>(allowed.size());
+  Eigen::MatrixXd at_pins(3 * pinned.size(), m);
+  for (size_t k = 0; k < pinned.size(); ++k)
+    for (int j = 0; j < m; ++j)
+      at_pins.block<3, 1>(3 * k, j) = motion(allowed[j], x.col(pinned[k]));
+  // Combinations of the generators that vanish at every pin.
+  Eigen::MatrixXd combos = Eigen::MatrixXd::Identity(m, m);
+  if (!pinned.empty())
+  {
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(at_pins);
+    lu.setThreshold(1e-9);
+    combos = lu.kernel();
+    if (lu.rank() == m)
+      return Eigen::MatrixXd(3 * free_count, 0);
+  }
+  Eigen::MatrixXd modes = Eigen::MatrixXd::Zero(3 * free_count, combos.cols());
+  for (size_t v = 0; v < free_index.size(); ++v)
+    if (const int f = free_index[v]; f >= 0)
+      for (int j = 0; j < m; ++j)
+      {
+        const Vec3 u = motion(allowed[j], x.col(v));
+        for (Eigen::Index c = 0; c < combos.cols(); ++c)
+          modes.block<3, 1>(3 * f, c) += combos(j, c) * u;
+      }
+  Eigen::HouseholderQR<Eigen::MatrixXd> qr(modes);
+  return qr.householderQ() * Eigen::MatrixXd::Identity(modes.rows(), modes.cols());
 }
 
 /// SolveLimits for the shared budget: the iteration cap is checked by the caller.
@@ -108,22 +159,157 @@ CurvedReport CurvedSolver::solve(Positions& x, const std::vector<CurvedPin>& pin
 {
   std::vector<char> fixed(mesh_.nodes.size(), 0);
   for (const CurvedPin& pin : pins)
-  {
     fixed[pin.node] = 1;
-    x.col(pin.node) = pin.position;
-  }
   int free_count = 0;
   const std::vector<int> free_index = freeIndices(fixed, mesh_.nodes.size(), &free_count);
-  const Positions start = x;
+  Positions start = x;
+  for (const CurvedPin& pin : pins)
+    start.col(pin.node) = pin.position;
+  const bool predicted = options_.method == CurvedMethod::Newton && predict(x, pins, free_index, free_count);
+  for (const CurvedPin& pin : pins)
+    x.col(pin.node) = pin.position;
   CurvedReport report =
       options_.method == CurvedMethod::Newton ? newton(x, free_index, free_count) : rk4(x, free_index, free_count);
+  report.predicted = predicted;
   if (report.diverged)
   {
     x = start;
     contact_.update(x);
   }
+  // The path so far, for the next solve's prediction: only balanced shapes count.
+  if (report.converged)
+  {
+    path_.push_back({ x, pins });
+    if (path_.size() > 4)
+      path_.erase(path_.begin());
+  }
+  else
+    path_.clear();
   report.contacts = contact_.watchedPairs();
   return report;
+}
+
+bool CurvedSolver::predict(Positions& x, const std::vector<CurvedPin>& pins, const std::vector<int>& free_index,
+                           int free_count)
+{
+  // A drag moves its pins a little at a time along a smooth path, and the balance moves
+  // smoothly with them: when the pins go on along the path of the last balances, the shape
+  // is carried on along its path too (the polynomial through the last two or three, in the
+  // pins' travel), and Newton starts with an error of the step's second or third order
+  // instead of its first (the pulled corner alone would stretch its edges by the whole step).
+  if (!options_.predict || path_.size() < 2 || x.cols() != path_.back().x.cols() || x != path_.back().x)
+    return false;
+  for (const Balance& b : path_)
+  {
+    if (b.pins.size() != pins.size())
+      return false;
+    for (size_t k = 0; k < pins.size(); ++k)
+      if (b.pins[k].node != pins[k].node)
+        return false;
+  }
+  const auto travel = [&](const std::vector<CurvedPin>& from, const std::vector<CurvedPin>& to) {
+    double squared = 0;
+    for (size_t k = 0; k < pins.size(); ++k)
+      squared += (to[k].position - from[k].position).squaredNorm();
+    return std::sqrt(squared);
+  };
+  // The pins' travel along the path: 0 at the oldest balance.
+  std::vector<double> at{ 0.0 };
+  for (size_t k = 1; k < path_.size(); ++k)
+    at.push_back(at.back() + travel(path_[k - 1].pins, path_[k].pins));
+  const double step = travel(path_.back().pins, pins);
+  if (!(step > 0))
+    return false;
+  // Lagrange's weights at travel `to` for the polynomial of `order` through the balances
+  // ending at `last`; empty when two of them are at one point.
+  const auto weights = [&](size_t order, size_t last, double to) {
+    std::vector<double> weight(path_.size(), 0.0);
+    for (size_t i = last - order; i <= last; ++i)
+    {
+      weight[i] = 1.0;
+      for (size_t j = last - order; j <= last; ++j)
+        if (j != i)
+        {
+          if (at[i] == at[j])
+            return std::vector<double>();
+          weight[i] *= (to - at[j]) / (at[i] - at[j]);
+        }
+    }
+    return weight;
+  };
+  // The order that would have foreseen the last balance best from those before it (where the
+  // path is erratic, near a snap, a higher order only amplifies the solves' own errors), as
+  // long as it carries the pins to within a tenth of their step of where they are now.
+  const size_t last = path_.size() - 1;
+  size_t order = 1;
+  double best = INFINITY;
+  for (size_t k = 0; k <= 2 && k + 1 <= last && last >= 2; ++k)
+  {
+    const std::vector<double> w = weights(k, last - 1, at[last]);
+    if (w.empty())
+      continue;
+    Positions hindcast = -path_[last].x;
+    for (size_t i = 0; i < last; ++i)
+      hindcast += w[i] * path_[i].x;
+    const double missed = hindcast.colwise().squaredNorm().maxCoeff();
+    if (missed < best)
+    {
+      best = missed;
+      order = k;
+    }
+  }
+  order = std::min(order, last);
+  std::vector<double> weight;
+  for (;; --order)
+  {
+    if (order == 0)
+      return false;
+    weight = weights(order, last, at[last] + step);
+    if (weight.empty())
+      continue;
+    double missed = 0;
+    for (size_t k = 0; k < pins.size(); ++k)
+    {
+      Vec3 guess = Vec3::Zero();
+      for (size_t i = 0; i <= last; ++i)
+        guess += weight[i] * path_[i].pins[k].position;
+      missed += (guess - pins[k].position).squaredNorm();
+    }
+    if (std::sqrt(missed) <= 0.1 * step)
+      break;
+  }
+  Positions motion = -x;
+  for (size_t i = 0; i <= last; ++i)
+    motion += weight[i] * path_[i].x;
+  // Not along a free rigid motion: no force sets the sheet's turn about two pins, so the
+  // path's drift there is rounding, and extrapolated it would grow with every solve.
+  const Eigen::MatrixXd free_motions = freeMotions(x, free_index, free_count, inPlaneOnly());
+  if (free_motions.cols() > 0)
+  {
+    Eigen::VectorXd free_motion(3 * free_count);
+    for (size_t v = 0; v < free_index.size(); ++v)
+      if (free_index[v] >= 0)
+        free_motion.segment<3>(3 * free_index[v]) = motion.col(v);
+    free_motion -= free_motions * (free_motions.transpose() * free_motion);
+    for (size_t v = 0; v < free_index.size(); ++v)
+      if (free_index[v] >= 0)
+        motion.col(v) = free_motion.segment<3>(3 * free_index[v]);
+  }
+  // In moves no longer than one Newton step may make, contact looking after each (as after
+  // each step): no node passes a layer unseen. A move that would carry a watched pair
+  // across is not made, and the prediction ends there.
+  const double longest = std::sqrt(motion.colwise().squaredNorm().maxCoeff());
+  const int moves = static_cast<int>(std::ceil(longest / (options_.max_step * contact_.range())));
+  for (int k = 0; k < moves; ++k)
+  {
+    contact_.update(x);
+    const double worst_gap = contact_.worstGap(x);
+    const Positions next = x + motion / moves;
+    if (contact_.worstGap(next) < std::min(0.0, worst_gap) - 0.5 * contact_.thickness())
+      break;
+    x = next;
+  }
+  return true;
 }
 
 CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_index, int free_count)
@@ -136,16 +322,22 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
   Positions trial = x;
   Eigen::VectorXd g(n);
   std::string stuck;
-  // A factorisation of an earlier Hessian (this solve's or the last one's, for the same free
-  // nodes) is a positive definite step matrix: its steps descend, and near balance they
-  // converge nearly as fast as Newton's for a fraction of the cost (no Hessian, no
-  // factorisation). It is used while the last step, fresh or not, cut the largest force by
-  // modified_newton_rate; where Newton itself crawls (far from balance, contact coming in)
-  // every step is fresh.
+  // Three kinds of step, cheapest first. A factorisation of an earlier Hessian (this solve's
+  // or an earlier one's, for the same free nodes) is a positive definite step matrix: its
+  // steps descend, and near balance they converge nearly as fast as Newton's for a fraction
+  // of the cost (no Hessian, no factorisation). When such a step falls short (cut back, or
+  // the force falling by less than modified_newton_rate), the exact Hessian's Newton step is
+  // found by conjugate gradients with that factorisation as preconditioner: a few
+  // back-substitutions where a new factorisation costs thirty. Only when that fails too
+  // (the Hessian no longer positive definite, or too far from the old one) is the Hessian
+  // factorised anew.
   const bool same_free = factor_free_ == free_index && factorization_.rows() == n;
   if (!same_free)
     factorization_.reset();
-  bool refresh = !factorization_.valid();
+  // A kept factorisation that needed many conjugate-gradient iterations last time is renewed
+  // now, and one whose own step fell short last time is not tried first.
+  bool refresh = !factorization_.valid() || renew_factorization_;
+  bool krylov = !stale_steps_help_;
   double last_force = INFINITY;
   // Levenberg–Marquardt damping: falls while full steps succeed (towards Newton's quadratic
   // convergence), rises when they are cut back. A solve starts from where the last one left
@@ -161,15 +353,22 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
     double e = energy(x, { &free_index, &g, nullptr }, &report.energy, &report.contact_energy);
     if (stopBeforeStep(g, e, force_scale, options_.tolerance, budget, "non-finite energy; rolled back", report))
       break;
-    if (!(options_.modified_newton_rate > 0) ||
-        (report.iterations > 1 && !(report.max_force <= options_.modified_newton_rate * last_force)))
+    if (!(options_.modified_newton_rate > 0))
       refresh = true;
+    else if (report.iterations > 1 && !(report.max_force <= options_.modified_newton_rate * last_force))
+      krylov = true;
     last_force = report.max_force;
     const double worst_gap = contact_.worstGap(x);
-    // Armijo's line search along `step`, no watched pair crossing over (by more than half the
-    // thickness, which the penalty then pushes back: a penalty alone can be outweighed by a
-    // large step). Returns the step length taken, 0 when none lowers the energy.
-    const auto search = [&](Eigen::VectorXd& step) {
+    const Eigen::MatrixXd free_motions =
+        freeMotions(x, free_index, free_count, inPlaneOnly());
+    // Armijo's line search along `step`, at most `tries` halvings, no watched pair crossing
+    // over (by more than half the thickness, which the penalty then pushes back: a penalty
+    // alone can be outweighed by a large step). Returns the step length taken, 0 when none
+    // lowers the energy.
+    const auto search = [&](Eigen::VectorXd& step, int tries) {
+      // No force resists a free rigid motion: its part of the step is rounding over damping.
+      if (free_motions.cols() > 0)
+        step -= free_motions * (free_motions.transpose() * step);
       double longest = 0.0;
       for (int i = 0; i < free_count; ++i)
         longest = std::max(longest, step.segment<3>(3 * i).norm());
@@ -181,7 +380,7 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
       if (!(slope < 0))
         return 0.0;
       double alpha = 1.0;
-      for (int k = 0; k < 30; ++k, alpha *= 0.5)
+      for (int k = 0; k < tries; ++k, alpha *= 0.5)
       {
         moveFree(trial, x, step, alpha, free_index);
         if (contact_.worstGap(trial) < std::min(0.0, worst_gap) - 0.5 * contact_.thickness())
@@ -194,32 +393,60 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
       }
       return 0.0;
     };
-    if (!refresh)
+    if (!refresh && !krylov)
     {
+      // The old factorisation's step: a full one, or close; else on to the exact Hessian.
       Eigen::VectorXd step = factorization_.solve(-g);
-      const double alpha = search(step);
-      refresh = alpha < 1.0;
+      const double alpha = search(step, 2);
+      stale_steps_help_ = alpha == 1.0;
+      if (alpha == 1.0)
+        continue;
+      krylov = true;
       if (alpha > 0)
         continue;
     }
-    // A fresh exact Hessian, factorised.
-    refresh = false;
     e = assembleHessian(x, free_index, free_count, g);
     if (mu < 0)
       mu = options_.damping * g.norm() / mesh_.spacing;
+    if (!refresh)
+    {
+      // The preconditioner is stale when conjugate gradients cannot cut the force tenfold: the
+      // step they found is taken, and the next one factorises.
+      Eigen::VectorXd step;
+      int iterations = 0;
+      const double cut = conjugateGradients(g, mu, free_motions, step, &iterations);
+      renew_factorization_ = iterations > options_.krylov_iterations / 2;
+      if (cut > 0)
+      {
+        ++report.krylov_steps;
+        const double alpha = search(step, 30);
+        if (alpha > 0)
+        {
+          mu = alpha == 1.0 ? std::max(mu / 4, 1e-14 * material_.stretch) : mu * 4;
+          refresh = cut < 10;
+          continue;
+        }
+      }
+    }
+    // The exact Hessian, factorised. It may be indefinite away from balance: the damping
+    // rises until the shifted matrix is positive definite and its step lowers the energy.
+    refresh = false;
+    krylov = false;
     double last_alpha = 0;
-    // The Hessian is exact and may be indefinite away from balance: the damping rises until
-    // the shifted matrix is positive definite and its step lowers the energy.
     for (int attempt = 0; attempt < 30 && last_alpha == 0; ++attempt)
     {
       if (attempt > 0)
         mu *= 10;
       ++report.factorizations;
       if (!factorization_.factorize(hessian_, mu))
+      {
         continue;
+      }
+      renew_factorization_ = false;
+      stale_steps_help_ = true;
       factor_free_ = free_index;
       Eigen::VectorXd step = factorization_.solve(-g);
-      last_alpha = search(step);
+      last_alpha = search(step, 30);
     }
     if (last_alpha == 0)
     {
@@ -237,6 +464,57 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
     report.message = msg.str();
   }
   return report;
+}
+
+double CurvedSolver::conjugateGradients(const Eigen::VectorXd& g, double mu, const Eigen::MatrixXd& free_motions,
+                                        Eigen::VectorXd& step, int* iterations) const
+{
+  // (H + μI)·step = −g by preconditioned conjugate gradients, the kept factorisation as the
+  // preconditioner, within the complement of the free rigid motions (H is singular on them).
+  // Stops where the linear model leaves half the tolerance (a tenth of the largest force when
+  // that is below it already, a thousandth when far above), at negative curvature (Steihaug: the step so far, or the
+  // preconditioned force when there is none, still descends), or after krylov_iterations;
+  // every iterate lowers the quadratic model, so each is a descent step.
+  const auto project = [&](Eigen::VectorXd& v) {
+    if (free_motions.cols() > 0)
+      v -= free_motions * (free_motions.transpose() * v);
+  };
+  Eigen::VectorXd r = -g;
+  project(r);
+  const double start = largestNodeForce(r);
+  const double scale = material_.stretch * mesh_.spacing;
+  const double tolerance = options_.tolerance * scale;
+  const double goal = std::max(1e-3 * start, start > tolerance ? 0.5 * tolerance : 0.1 * start);
+  step = Eigen::VectorXd::Zero(g.size());
+  Eigen::VectorXd z = factorization_.solve(r);
+  project(z);
+  Eigen::VectorXd d = z;
+  double rz = r.dot(z);
+  double left = start;
+  for (int k = 0; k < options_.krylov_iterations && left > goal; ++k)
+  {
+    *iterations = k + 1;
+    const Eigen::VectorXd hd = hessian_ * d + mu * d;
+    const double curvature = d.dot(hd);
+    if (!(curvature > 0) || !(rz > 0))
+    {
+      if (k == 0)
+        step = d;
+      return std::isfinite(curvature) && rz > 0 ? 1.0 : 0.0;
+    }
+    const double a = rz / curvature;
+    step += a * d;
+    r -= a * hd;
+    left = largestNodeForce(r);
+    if (left <= goal)
+      break;
+    z = factorization_.solve(r);
+    project(z);
+    const double rz_next = r.dot(z);
+    d = z + (rz_next / rz) * d;
+    rz = rz_next;
+  }
+  return std::isfinite(left) && left > 0 ? start / left : (left == 0 ? INFINITY : 0.0);
 }
 
 double CurvedSolver::assembleHessian(const Positions& x, const std::vector<int>& free_index, int free_count,

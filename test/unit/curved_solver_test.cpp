@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "test_models.h"
 #include "virtual_origami/core/geometry.h"
@@ -64,6 +65,78 @@ CornerLift cornerLift(double spacing, double lift)
     scene.pins.push_back({ scene.mesh.vertex_nodes[v], scene.paper.vertices[v].folded });
   scene.pins.push_back({ scene.mesh.vertex_nodes[0], scene.paper.vertices[0].folded + lift * Vec3::UnitZ() });
   return scene;
+}
+
+/// A sheet in a random place: rotated about a random axis and moved.
+struct RandomPlacement
+{
+  Eigen::Matrix3d rotation;
+  Vec3 offset;
+  Vec3 operator()(const Vec3& p) const { return rotation * p + offset; }
+};
+
+RandomPlacement randomPlacement(std::mt19937& random)
+{
+  std::uniform_real_distribution<double> unit(-1, 1);
+  const Vec3 axis = Vec3(unit(random), unit(random), unit(random)).normalized();
+  return { Eigen::AngleAxisd(M_PI * unit(random), axis).toRotationMatrix(),
+           Vec3(unit(random), unit(random), unit(random)) };
+}
+
+/// The largest difference between a column of `curvature` and the central difference of
+/// `gradient` (points → 3 × K) along that coordinate, relative to the curvature's size.
+template <int K, class Gradient>
+double curvatureError(const std::array<Vec3, K>& points, const Eigen::Matrix<double, 3 * K, 3 * K>& curvature,
+                      Gradient gradient)
+{
+  const double step = 1e-6;
+  double worst = 0;
+  for (int c = 0; c < 3 * K; ++c)
+  {
+    std::array<Vec3, K> plus = points, minus = points;
+    plus[c / 3][c % 3] += step;
+    minus[c / 3][c % 3] -= step;
+    const Eigen::Matrix<double, 3, K> difference = (gradient(plus) - gradient(minus)) / (2 * step);
+    const Eigen::Map<const Eigen::Matrix<double, 3 * K, 1>> column(difference.data());
+    worst = std::max(worst, (curvature.col(c) - column).norm());
+  }
+  return worst / curvature.norm();
+}
+
+/// Corner angle `angle` between sides of lengths `to_i` and `to_j`, placed at random.
+std::array<Vec3, 3> corner(double angle, double to_i, double to_j, const RandomPlacement& place)
+{
+  return { place(Vec3::Zero()), place(to_i * Vec3::UnitX()), place(to_j * Vec3(std::cos(angle), std::sin(angle), 0)) };
+}
+
+double cornerCurvatureError(const std::array<Vec3, 3>& p, Eigen::Matrix<double, 9, 9>* curvature)
+{
+  cornerAngle(p[0], p[1], p[2], nullptr, curvature);
+  return curvatureError<3>(p, *curvature, [](const std::array<Vec3, 3>& q) {
+    Eigen::Matrix<double, 3, 3> grad;
+    cornerAngle(q[0], q[1], q[2], &grad);
+    return grad;
+  });
+}
+
+/// A hinge a→b of length `length` along x, its left wing at (t_left·length, h_left) in the
+/// crease pattern and the right wing at (t_right·length, −h_right) turned by `fold` about
+/// a→b (positive: up towards the front, a valley), placed at random.
+std::array<Vec3, 4> hinge(double fold, double length, double t_left, double h_left, double t_right, double h_right,
+                          const RandomPlacement& place)
+{
+  return { place(Vec3::Zero()), place(length * Vec3::UnitX()), place(Vec3(t_left * length, h_left, 0)),
+           place(Vec3(t_right * length, -h_right * std::cos(fold), h_right * std::sin(fold))) };
+}
+
+double hingeCurvatureError(const std::array<Vec3, 4>& p, Eigen::Matrix<double, 12, 12>* curvature)
+{
+  hingeAngle(p[0], p[1], p[2], p[3], nullptr, curvature);
+  return curvatureError<4>(p, *curvature, [](const std::array<Vec3, 4>& q) {
+    Eigen::Matrix<double, 3, 4> grad;
+    hingeAngle(q[0], q[1], q[2], q[3], &grad);
+    return grad;
+  });
 }
 }  // namespace
 
@@ -179,6 +252,52 @@ TEST(CurvedSolver, NewtonAndRk4ReachTheSameBalance)
   EXPECT_NEAR(rn.energy.total(), rr.energy.total(), 1e-6 * rn.energy.total());
 }
 
+TEST(CurvedSolver, PredictedDragWithKrylovStepsReachesThePlainNewtonBalances)
+{
+  // The same drag solved twice: with the default steps (the shape carried on along the drag,
+  // conjugate gradients on the kept factorisation) and with plain Newton (a fresh Hessian and
+  // factorisation each iteration, no prediction). Every step balances in both, to the same
+  // energy, and each run's final shape is a balance by the other solver's own measure.
+  const SeedScene scene = *seedScene(1, 1.0, 0.5e-3);
+  SeedSceneOptions fast;
+  fast.steps = 12;
+  fast.until = 0.6;
+  fast.mesh.spacing = 0.1;
+  fast.contact.thickness = 0.25e-3;
+  SeedSceneOptions plain = fast;
+  plain.solve.predict = false;
+  plain.solve.krylov_iterations = 0;
+  plain.solve.modified_newton_rate = 0;
+  const SeedSceneRun a = *runSeedScene(scene, fast);
+  const SeedSceneRun b = *runSeedScene(scene, plain);
+  ASSERT_EQ(a.steps.size(), b.steps.size());
+  int predicted = 0, krylov = 0, plain_krylov = 0;
+  for (size_t k = 0; k < a.steps.size(); ++k)
+  {
+    const CurvedReport& ra = a.steps[k].report;
+    const CurvedReport& rb = b.steps[k].report;
+    ASSERT_TRUE(ra.converged) << k << ": " << ra.message;
+    ASSERT_TRUE(rb.converged) << k << ": " << rb.message;
+    EXPECT_FALSE(rb.predicted);
+    predicted += ra.predicted;
+    krylov += ra.krylov_steps;
+    plain_krylov += rb.krylov_steps;
+    const double ea = ra.energy.total() + ra.contact_energy, eb = rb.energy.total() + rb.contact_energy;
+    EXPECT_NEAR(ea, eb, 1e-6 * std::max(ea, eb)) << k;
+  }
+  // Not the first two (no path yet), nor where no extrapolation would have foreseen the last
+  // balance better than standing still; the most of the rest.
+  EXPECT_GE(predicted, static_cast<int>(a.steps.size()) / 2);
+  EXPECT_GT(krylov, 0);
+  EXPECT_EQ(plain_krylov, 0);
+  const int fixed = a.mesh.vertex_nodes[scene.fixed], pulled = a.mesh.vertex_nodes[scene.pulled];
+  const std::vector<CurvedPin> pins = { { fixed, scene.paper.vertices[scene.fixed].folded },
+                                        { pulled, scene.pullAt(fast.until) } };
+  CurvedSolver check(b.mesh, scene.paper, fast.material, fast.contact, plain.solve);
+  EXPECT_LE(check.maxForce(a.positions, pins), 1e-8);
+  EXPECT_LE(check.maxForce(b.positions, pins), 1e-8);
+}
+
 TEST(CurvedSolver, PinsAreHeldExactly)
 {
   CornerLift scene = cornerLift(0.2, 0.3);
@@ -286,6 +405,72 @@ TEST(CurvedForces, GradientsMatchFiniteDifferences)
     evaluateCurved(terms, minus, { &free_index, &gm, nullptr });
     const Eigen::VectorXd column = (gp - gm) / (2 * step);
     EXPECT_LT((Eigen::VectorXd(h.col(i)) - column).norm(), 1e-5 * (1 + column.norm())) << i;
+  }
+}
+
+TEST(CurvedForces, CornerAngleCurvatureMatchesFiniteDifferencesOfItsGradient)
+{
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> side(0.2, 2.0);
+  // Acute to strongly obtuse corners, sides of unequal length, anywhere in space.
+  for (const double degrees : { 5.0, 30.0, 60.0, 90.0, 120.0, 150.0, 175.0 })
+    for (int sample = 0; sample < 5; ++sample)
+    {
+      const double angle = degrees * kDeg;
+      const std::array<Vec3, 3> p = corner(angle, side(random), side(random), randomPlacement(random));
+      Eigen::Matrix<double, 9, 9> curvature;
+      ASSERT_NEAR(cornerAngle(p[0], p[1], p[2]), angle, 1e-12);
+      EXPECT_LT(cornerCurvatureError(p, &curvature), 1e-5) << degrees << "° sample " << sample;
+      EXPECT_LT((curvature - curvature.transpose()).norm(), 1e-12 * curvature.norm()) << degrees;
+    }
+  // Random triangles.
+  std::uniform_real_distribution<double> unit(-1, 1);
+  for (int sample = 0; sample < 50; ++sample)
+  {
+    const std::array<Vec3, 3> p = { Vec3(unit(random), unit(random), unit(random)),
+                                    Vec3(unit(random), unit(random), unit(random)),
+                                    Vec3(unit(random), unit(random), unit(random)) };
+    if ((p[1] - p[0]).cross(p[2] - p[0]).norm() < 0.05)
+      continue;
+    Eigen::Matrix<double, 9, 9> curvature;
+    EXPECT_LT(cornerCurvatureError(p, &curvature), 1e-5) << "random " << sample;
+  }
+  // A degenerate corner has no gradient and so no curvature.
+  Eigen::Matrix<double, 9, 9> curvature;
+  cornerAngle(Vec3::Zero(), Vec3::UnitX(), 2 * Vec3::UnitX(), nullptr, &curvature);
+  EXPECT_EQ(curvature, (Eigen::Matrix<double, 9, 9>::Zero()));
+}
+
+TEST(CurvedForces, HingeAngleCurvatureMatchesFiniteDifferencesOfItsGradient)
+{
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> length(0.3, 2.0), along(-0.3, 1.3), height(0.1, 1.5);
+  // Flat, nearly flat, valley and mountain folds up to nearly folded flat; the wings' feet
+  // anywhere along the hinge or beyond its ends.
+  for (const double degrees :
+       { 0.0, 1e-3, -1e-3, 20.0, -20.0, 90.0, -90.0, 135.0, -135.0, 170.0, -170.0, 178.0, -178.0 })
+    for (int sample = 0; sample < 5; ++sample)
+    {
+      const double fold = degrees * kDeg;
+      const std::array<Vec3, 4> p = hinge(fold, length(random), along(random), height(random), along(random),
+                                          height(random), randomPlacement(random));
+      Eigen::Matrix<double, 12, 12> curvature;
+      ASSERT_NEAR(hingeAngle(p[0], p[1], p[2], p[3]), fold, 1e-12);
+      EXPECT_LT(hingeCurvatureError(p, &curvature), 1e-5) << degrees << "° sample " << sample;
+      EXPECT_LT((curvature - curvature.transpose()).norm(), 1e-12 * curvature.norm()) << degrees;
+    }
+  // Random hinges.
+  std::uniform_real_distribution<double> unit(-1, 1);
+  for (int sample = 0; sample < 50; ++sample)
+  {
+    std::array<Vec3, 4> p;
+    for (Vec3& q : p)
+      q = Vec3(unit(random), unit(random), unit(random));
+    const Vec3 e = p[1] - p[0];
+    if (e.cross(p[2] - p[0]).norm() < 0.05 || e.cross(p[3] - p[0]).norm() < 0.05)
+      continue;
+    Eigen::Matrix<double, 12, 12> curvature;
+    EXPECT_LT(hingeCurvatureError(p, &curvature), 1e-5) << "random " << sample;
   }
 }
 

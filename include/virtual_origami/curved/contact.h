@@ -4,6 +4,7 @@
 // for layers that start coincident (a flat fold) it comes from the model's layer order.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <map>
 #include <utility>
@@ -27,6 +28,8 @@ struct ContactOptions
   /// 0 (the default) leaves alone only the triangles around the node itself: a node's
   /// projection falls inside a neighbouring triangle only where the sheet folds past 90°
   /// between them, and near the hinge of a 180° fold that is just what must be kept apart.
+  /// Within one face, pairs nearer than √3 × the search's width (thickness + range + edge
+  /// margin + skin: about 4.5 spacings) are always left alone: a face does not fold.
   double exclusion = 0.0;
   /// A node just beyond the sheet's edge still keeps to its side of the edge's triangle, up
   /// to this far out (0: half a mesh spacing): a layer lying flush with another's edge would
@@ -81,6 +84,11 @@ private:
   /// Rebuilds the candidate pairs from a grid, at `x`.
   void findCandidates(const Positions& x);
   int sideFor(int node, int triangle, double signed_distance) const;
+  /// Whether `node` lies in paper face `face` (on its inside or its boundary).
+  bool inFace(int node, int face) const
+  {
+    return std::find(node_faces_[node].begin(), node_faces_[node].end(), face) != node_faces_[node].end();
+  }
   int edgeSideFor(int a, int b, double signed_distance, const Vec3& normal, const Positions& x) const;
 
   const CurvedMesh& mesh_;
@@ -94,6 +102,8 @@ private:
   Positions candidates_at_;
   std::vector<std::array<char, 3>> open_side_;  // per triangle: the side opposite corner k is the sheet's edge
   std::vector<std::vector<int>> node_faces_;
+  std::vector<int> edge_face_;     // per mesh edge, the paper face it lies inside (−1 on a crease)
+  std::vector<Vec2> edge_middle_;  // per mesh edge, its middle in the crease pattern
   std::vector<Pair> pairs_;
   std::map<std::pair<int, int>, int> sides_;  // (node, paper face) → side, while near
   std::vector<EdgePair> edge_pairs_;

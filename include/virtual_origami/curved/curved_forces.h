@@ -141,6 +141,28 @@ struct Assembly
   }
 };
 
+/// Adds a gradient, one column per node of `nodes`, to `out` (held nodes dropped).
+template <int K>
+void addGradient(const std::array<int, K>& nodes, const Eigen::Matrix<double, 3, K>& gradient, const Assembly& out)
+{
+  if (out.gradient)
+    for (int k = 0; k < K; ++k)
+      if (const int f = (*out.free_index)[nodes[k]]; f >= 0)
+        out.gradient->segment<3>(3 * f) += gradient.col(k);
+}
+
+/// Adds a Hessian over `nodes` (3K × 3K, node by node) to `out` (held nodes dropped).
+template <int K>
+void addHessian(const std::array<int, K>& nodes, const Eigen::Matrix<double, 3 * K, 3 * K>& hessian,
+                const Assembly& out)
+{
+  for (int k = 0; k < K; ++k)
+    if (const int fk = (*out.free_index)[nodes[k]]; fk >= 0)
+      for (int l = 0; l < K; ++l)
+        if (const int fl = (*out.free_index)[nodes[l]]; fl >= 0)
+          out.addBlock(fk, fl, hessian.template block<3, 3>(3 * k, 3 * l));
+}
+
 /// Adds ½·w·r² to the returned energy and its derivatives to `out`, for a measure with
 /// residual r and gradient `grad` (one column per node of `nodes`). With the measure's second
 /// derivatives `curvature` (3K × 3K), the matrix is the term's exact Hessian w(∇g∇gᵀ + r∇²g),
@@ -151,21 +173,14 @@ template <int K>
 double addTerm(const std::array<int, K>& nodes, double weight, double residual, const Eigen::Matrix<double, 3, K>& grad,
                const Assembly& out, const Eigen::Matrix<double, 3 * K, 3 * K>* curvature = nullptr)
 {
-  if (out.gradient)
-    for (int k = 0; k < K; ++k)
-      if (const int f = (*out.free_index)[nodes[k]]; f >= 0)
-        out.gradient->segment<3>(3 * f) += weight * residual * grad.col(k);
+  addGradient<K>(nodes, weight * residual * grad, out);
   if (out.wantsHessian())
   {
     const Eigen::Map<const Eigen::Matrix<double, 3 * K, 1>> g(grad.data());
     Eigen::Matrix<double, 3 * K, 3 * K> h = weight * g * g.transpose();
     if (curvature)
       h += weight * residual * *curvature;
-    for (int k = 0; k < K; ++k)
-      if (const int fk = (*out.free_index)[nodes[k]]; fk >= 0)
-        for (int l = 0; l < K; ++l)
-          if (const int fl = (*out.free_index)[nodes[l]]; fl >= 0)
-            out.addBlock(fk, fl, h.template block<3, 3>(3 * k, 3 * l));
+    addHessian<K>(nodes, h, out);
   }
   return 0.5 * weight * residual * residual;
 }

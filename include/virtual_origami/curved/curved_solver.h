@@ -44,6 +44,12 @@ struct CurvedSolveOptions
   /// Newton keeps stepping with an earlier factorisation (no new Hessian) while each step
   /// cuts the largest force by at least this factor; 0: a fresh Hessian every iteration.
   double modified_newton_rate = 0.5;
+  /// Newton: conjugate-gradient iterations for the exact Hessian's step, preconditioned by
+  /// the kept factorisation, before factorising anew.
+  int krylov_iterations = 12;
+  /// Newton: when the pins move on along the path of the last balanced solves, start from
+  /// the shape carried on along its path; false: start from the given shape.
+  bool predict = true;
   /// RK4: the step (0: half the stability limit of the stiffest mode) and the
   /// mass-proportional damping rate (0: twice the first bending mode's frequency).
   double time_step = 0.0;
@@ -56,10 +62,12 @@ struct CurvedReport
   bool diverged = false;   // non-finite or exploding: the positions were rolled back
   int iterations = 0;      // Newton iterations or RK4 steps
   int factorizations = 0;  // Newton: sparse Cholesky factorisations (the rest reused one)
+  int krylov_steps = 0;    // Newton: exact Hessian steps by preconditioned conjugate gradients
   double max_force = 0.0;  // largest force on a free node, / (stretch × spacing)
   CurvedEnergy energy;
   double contact_energy = 0.0;
   int contacts = 0;        // watched node–triangle pairs at the end
+  bool predicted = false;  // Newton started from the shape carried on along the drag
   double time_step = 0.0;  // RK4
   double seconds = 0.0;
   std::string message;
@@ -97,7 +105,20 @@ public:
   double maxForce(const Positions& x, const std::vector<CurvedPin>& pins);
 
 private:
+  /// Carries `x` (the last balance) on along the path of the last two solves, when the pins
+  /// continue it; false when they do not (x untouched).
+  bool predict(Positions& x, const std::vector<CurvedPin>& pins, const std::vector<int>& free_index, int free_count);
+  /// Weight or a table: only motions in the table's plane leave the energy as it is.
+  bool inPlaneOnly() const
+  {
+    return surroundings_.gravity != 0 || surroundings_.table;
+  }
   CurvedReport newton(Positions& x, const std::vector<int>& free_index, int free_count);
+  /// The step of hessian_ + μI against gradient g by conjugate gradients preconditioned by the
+  /// kept factorisation, orthogonal to `free_motions`. Returns the factor by which the linear
+  /// model cuts the largest force (1 at negative curvature before any step, 0 on failure).
+  double conjugateGradients(const Eigen::VectorXd& g, double mu, const Eigen::MatrixXd& free_motions,
+                            Eigen::VectorXd& step, int* iterations) const;
   CurvedReport rk4(Positions& x, const std::vector<int>& free_index, int free_count);
   /// Energy, gradient (into g) and Hessian (into hessian_) at x.
   double assembleHessian(const Positions& x, const std::vector<int>& free_index, int free_count, Eigen::VectorXd& g);
@@ -115,8 +136,17 @@ private:
   SpdFactorization factorization_;
   std::vector<int> factor_free_;
   double damping_mu_ = -1.0;       // Newton's Levenberg–Marquardt shift where the last solve left it
+  bool renew_factorization_ = false;  // conjugate gradients needed many iterations with it
+  bool stale_steps_help_ = true;      // its own step was a full one when last tried
   std::vector<int> pattern_free_;  // the free nodes hessian_'s pattern is for
   std::vector<std::array<int, 4>> pattern_groups_;
+  /// The last three balanced shapes and their pins, oldest first.
+  struct Balance
+  {
+    Positions x;
+    std::vector<CurvedPin> pins;
+  };
+  std::vector<Balance> path_;
 };
 
 }  // namespace virtual_origami::core
