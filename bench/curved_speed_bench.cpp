@@ -99,12 +99,14 @@ double rk4Bytes(const CurvedTerms& terms, size_t vertices)
 
 /// (b) Time per step against vertex count: one Newton iteration (contact, gradient, Hessian
 /// assembly, factorisation, solve, line search: the difference of budgets of 2 and 1
-/// iterations, so setup and the symbolic analysis cancel) and one RK4 step (budgets of 3 and
-/// 1), each from rest with the corner pulled a tenth of a mesh spacing; beside them one CHOLMOD
+/// iterations, so setup and the symbolic analysis cancel) and one RK4 step (budgets of 11 and
+/// 1, over 10: one contact search more or less in two steps made the difference of 2 and 1
+/// noise at 100,000 vertices), each from rest with the corner pulled a tenth of a mesh spacing; beside them one CHOLMOD
 /// factorisation of the same Hessian (its analysis done first) and the RK4 step's bytes over
 /// the triad bandwidth.
 void scaling(const std::string& dir)
 {
+  constexpr int kRk4Steps = 10;
   double check = 0;
   const double bandwidth = virtual_origami::bench::triadBandwidth(&check);
   std::printf("triad bandwidth %.2f GB/s\n", bandwidth / 1e9);
@@ -135,7 +137,7 @@ void scaling(const std::string& dir)
     const auto n1 = run(CurvedMethod::Newton, 1, &f1);
     const auto n2 = run(CurvedMethod::Newton, 2, &f2);
     const auto r1 = run(CurvedMethod::Rk4, 1, nullptr);
-    const auto r3 = run(CurvedMethod::Rk4, 3, nullptr);
+    const auto r3 = run(CurvedMethod::Rk4, 1 + kRk4Steps, nullptr);
 
     // The floor of an implicit step: one numeric factorisation of the Hessian at the start.
     std::vector<int> free_index(sheet.mesh.nodes.size());
@@ -162,7 +164,7 @@ void scaling(const std::string& dir)
 
     const double bytes = rk4Bytes(terms, sheet.mesh.nodes.size());
     const double newton = n2.first - n1.first, newton_cpu = n2.second - n1.second;
-    const double rk4 = (r3.first - r1.first) / 2, rk4_cpu = (r3.second - r1.second) / 2;
+    const double rk4 = (r3.first - r1.first) / kRk4Steps, rk4_cpu = (r3.second - r1.second) / kRk4Steps;
     csv << sheet.mesh.nodes.size() << ',' << newton << ',' << newton_cpu << ',' << f2 - f1 << ',' << factor << ','
         << factor_cpu << ',' << rk4 << ',' << rk4_cpu << ',' << bytes / bandwidth << ',' << bytes << ',' << bandwidth << '\n';
     std::printf("  %zu vertices: newton iteration %.1f ms (cpu %.1f, %d factorisations), one factorisation %.1f ms, "

@@ -338,6 +338,7 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
   // now, and one whose own step fell short last time is not tried first.
   bool refresh = !factorization_.valid() || renew_factorization_;
   bool krylov = !stale_steps_help_;
+  bool refresh_in_solve = false;  // a factorisation made in this solve
   double last_force = INFINITY;
   // Levenberg–Marquardt damping: falls while full steps succeed (towards Newton's quadratic
   // convergence), rises when they are cut back. A solve starts from where the last one left
@@ -430,18 +431,25 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
     }
     // The exact Hessian, factorised. It may be indefinite away from balance: the damping
     // rises until the shifted matrix is positive definite and its step lowers the energy.
+    // A factorisation renewed for the conjugate gradients' sake (not because Newton's own
+    // steps fail) starts at the last one's shift: below it the matrix is seldom positive
+    // definite, and each failed try costs as much as the factorisation itself (a third of
+    // the factorisations of a drag failed so). The damping of the steps stays where the line
+    // search has it.
+    const bool renewing = renew_factorization_ && !refresh_in_solve;
+    double shift = renewing ? std::max(mu, factor_shift_) : mu;
     refresh = false;
+    refresh_in_solve = true;
     krylov = false;
     double last_alpha = 0;
     for (int attempt = 0; attempt < 30 && last_alpha == 0; ++attempt)
     {
       if (attempt > 0)
-        mu *= 10;
+        shift *= 10;
       ++report.factorizations;
-      if (!factorization_.factorize(hessian_, mu))
-      {
+      if (!factorization_.factorize(hessian_, shift))
         continue;
-      }
+      factor_shift_ = shift;
       renew_factorization_ = false;
       stale_steps_help_ = true;
       factor_free_ = free_index;
@@ -453,6 +461,8 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
       stuck = "no step lowers the energy any further";
       break;
     }
+    if (!renewing)
+      mu = shift;
     mu = last_alpha == 1.0 ? std::max(mu / 4, 1e-14 * material_.stretch) : mu * 4;
   }
   report.seconds = budget.seconds();

@@ -136,6 +136,7 @@ private:
   SpdFactorization factorization_;
   std::vector<int> factor_free_;
   double damping_mu_ = -1.0;       // Newton's Levenberg–Marquardt shift where the last solve left it
+  double factor_shift_ = 0.0;      // the shift of the kept factorisation
   bool renew_factorization_ = false;  // conjugate gradients needed many iterations with it
   bool stale_steps_help_ = true;      // its own step was a full one when last tried
   std::vector<int> pattern_free_;  // the free nodes hessian_'s pattern is for
