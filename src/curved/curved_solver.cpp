@@ -328,9 +328,10 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
   // of the cost (no Hessian, no factorisation). When such a step falls short (cut back, or
   // the force falling by less than modified_newton_rate), the exact Hessian's Newton step is
   // found by conjugate gradients with that factorisation as preconditioner: a few
-  // back-substitutions where a new factorisation costs thirty. Only when that fails too
-  // (the Hessian no longer positive definite, or too far from the old one) is the Hessian
-  // factorised anew.
+  // back-substitutions where a new factorisation costs ten. Only when that fails too (the
+  // Hessian no longer positive definite, or too far from the old one to cut the force
+  // tenfold) is the Hessian factorised anew, and at the next solve when they needed more
+  // than half their iterations.
   const bool same_free = factor_free_ == free_index && factorization_.rows() == n;
   if (!same_free)
     factorization_.reset();
@@ -360,8 +361,7 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
       krylov = true;
     last_force = report.max_force;
     const double worst_gap = contact_.worstGap(x);
-    const Eigen::MatrixXd free_motions =
-        freeMotions(x, free_index, free_count, inPlaneOnly());
+    const Eigen::MatrixXd free_motions = freeMotions(x, free_index, free_count, inPlaneOnly());
     // Armijo's line search along `step`, at most `tries` halvings, no watched pair crossing
     // over (by more than half the thickness, which the penalty then pushes back: a penalty
     // alone can be outweighed by a large step). Returns the step length taken, 0 when none
