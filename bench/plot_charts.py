@@ -315,8 +315,8 @@ def chart_curved_speed(tables):
                  "conjugate-gradient steps | solves/s (wall) | solves per CPU second | tolerance |",
                  "|---|---|---|---|---|---|---|---|---|---|"]
         for r in speed:
-            lines.append(f"| {r['vertices']} | {r['solves']} | {r['converged']} | {r.get('predicted', '')} | "
-                         f"{r['iterations']} | {r['factorizations']} | {r.get('krylov_steps', '')} | "
+            lines.append(f"| {r['vertices']} | {r['solves']} | {r['converged']} | {r['predicted']} | "
+                         f"{r['iterations']} | {r['factorizations']} | {r['krylov_steps']} | "
                          f"{fmt(num(r['solves_per_second']))} | "
                          f"{fmt(num(r['solves_per_cpu_second']))} | {r['tolerance']} |")
         tables["curved_speed"] = "\n".join(lines)

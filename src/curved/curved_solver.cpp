@@ -78,6 +78,13 @@ Eigen::MatrixXd freeMotions(const Positions& x, const std::vector<int>& free_ind
   return qr.householderQ() * Eigen::MatrixXd::Identity(modes.rows(), modes.cols());
 }
 
+/// `v` less its part along the free rigid motions (orthonormal columns of `free_motions`).
+void removeFreeMotions(const Eigen::MatrixXd& free_motions, Eigen::VectorXd& v)
+{
+  if (free_motions.cols() > 0)
+    v -= free_motions * (free_motions.transpose() * v);
+}
+
 /// SolveLimits for the shared budget: the iteration cap is checked by the caller.
 SolveLimits budgetLimits(const CurvedSolveOptions& options, int max_iterations)
 {
@@ -290,7 +297,7 @@ bool CurvedSolver::predict(Positions& x, const std::vector<CurvedPin>& pins, con
     for (size_t v = 0; v < free_index.size(); ++v)
       if (free_index[v] >= 0)
         free_motion.segment<3>(3 * free_index[v]) = motion.col(v);
-    free_motion -= free_motions * (free_motions.transpose() * free_motion);
+    removeFreeMotions(free_motions, free_motion);
     for (size_t v = 0; v < free_index.size(); ++v)
       if (free_index[v] >= 0)
         motion.col(v) = free_motion.segment<3>(3 * free_index[v]);
@@ -368,8 +375,7 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
     // lowers the energy.
     const auto search = [&](Eigen::VectorXd& step, int tries) {
       // No force resists a free rigid motion: its part of the step is rounding over damping.
-      if (free_motions.cols() > 0)
-        step -= free_motions * (free_motions.transpose() * step);
+      removeFreeMotions(free_motions, step);
       double longest = 0.0;
       for (int i = 0; i < free_count; ++i)
         longest = std::max(longest, step.segment<3>(3 * i).norm());
@@ -485,19 +491,15 @@ double CurvedSolver::conjugateGradients(const Eigen::VectorXd& g, double mu, con
   // that is below it already, a thousandth when far above), at negative curvature (Steihaug: the step so far, or the
   // preconditioned force when there is none, still descends), or after krylov_iterations;
   // every iterate lowers the quadratic model, so each is a descent step.
-  const auto project = [&](Eigen::VectorXd& v) {
-    if (free_motions.cols() > 0)
-      v -= free_motions * (free_motions.transpose() * v);
-  };
   Eigen::VectorXd r = -g;
-  project(r);
+  removeFreeMotions(free_motions, r);
   const double start = largestNodeForce(r);
   const double scale = material_.stretch * mesh_.spacing;
   const double tolerance = options_.tolerance * scale;
   const double goal = std::max(1e-3 * start, start > tolerance ? 0.5 * tolerance : 0.1 * start);
   step = Eigen::VectorXd::Zero(g.size());
   Eigen::VectorXd z = factorization_.solve(r);
-  project(z);
+  removeFreeMotions(free_motions, z);
   Eigen::VectorXd d = z;
   double rz = r.dot(z);
   double left = start;
@@ -519,7 +521,7 @@ double CurvedSolver::conjugateGradients(const Eigen::VectorXd& g, double mu, con
     if (left <= goal)
       break;
     z = factorization_.solve(r);
-    project(z);
+    removeFreeMotions(free_motions, z);
     const double rz_next = r.dot(z);
     d = z + (rz_next / rz) * d;
     rz = rz_next;
