@@ -237,7 +237,7 @@ Eigen::SparseMatrix<double> blockPattern(int free_count, const std::vector<int>&
   for (const auto& group : groups)
     for (int a : group)
       for (int b : group)
-        if (a >= 0 && b >= 0 && a != b && free_index[a] >= 0 && free_index[b] >= 0)
+        if (a >= 0 && b >= 0 && free_index[a] > free_index[b] && free_index[b] >= 0)
           rows[free_index[b]].push_back(free_index[a]);
   size_t blocks = 0;
   for (auto& r : rows)

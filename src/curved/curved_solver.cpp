@@ -358,8 +358,13 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
   while (true)
   {
     contact_.update(x);
+    // A solve that will start with the exact Hessian (no kept factorisation, or one whose own
+    // steps fell short last time) assembles it with the first gradient: the shape a pull
+    // starts from is seldom balanced already.
+    const bool hessian_now = report.iterations == 0 && (refresh || krylov);
     g.setZero();
-    double e = energy(x, { &free_index, &g, nullptr }, &report.energy, &report.contact_energy);
+    double e = hessian_now ? assembleHessian(x, free_index, free_count, g, &report.energy, &report.contact_energy) :
+                             energy(x, { &free_index, &g, nullptr }, &report.energy, &report.contact_energy);
     if (stopBeforeStep(g, e, force_scale, options_.tolerance, budget, "non-finite energy; rolled back", report))
       break;
     if (!(options_.modified_newton_rate > 0))
@@ -412,7 +417,8 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
       if (alpha > 0)
         continue;
     }
-    e = assembleHessian(x, free_index, free_count, g);
+    if (!hessian_now)
+      e = assembleHessian(x, free_index, free_count, g);
     if (mu < 0)
       mu = options_.damping * g.norm() / mesh_.spacing;
     if (!refresh)
@@ -436,7 +442,9 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
       }
     }
     // The exact Hessian, factorised. It may be indefinite away from balance: the damping
-    // rises until the shifted matrix is positive definite and its step lowers the energy.
+    // rises until the shifted matrix is positive definite and its step lowers the energy, a
+    // hundredfold per try: a failed try costs a whole factorisation (the soft modes it fails on
+    // come last in the ordering), and the shifts needed past a snap are 10³–10⁷ times the last.
     // A factorisation renewed for the conjugate gradients' sake (not because Newton's own
     // steps fail) starts at the last one's shift: below it the matrix is seldom positive
     // definite, and each failed try costs as much as the factorisation itself (a third of
@@ -451,7 +459,7 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
     for (int attempt = 0; attempt < 30 && last_alpha == 0; ++attempt)
     {
       if (attempt > 0)
-        shift *= 10;
+        shift *= 100;
       ++report.factorizations;
       if (!factorization_.factorize(hessian_, shift))
         continue;
@@ -506,7 +514,7 @@ double CurvedSolver::conjugateGradients(const Eigen::VectorXd& g, double mu, con
   for (int k = 0; k < options_.krylov_iterations && left > goal; ++k)
   {
     *iterations = k + 1;
-    const Eigen::VectorXd hd = hessian_ * d + mu * d;
+    const Eigen::VectorXd hd = hessian_.selfadjointView<Eigen::Lower>() * d + mu * d;
     const double curvature = d.dot(hd);
     if (!(curvature > 0) || !(rz > 0))
     {
@@ -530,7 +538,7 @@ double CurvedSolver::conjugateGradients(const Eigen::VectorXd& g, double mu, con
 }
 
 double CurvedSolver::assembleHessian(const Positions& x, const std::vector<int>& free_index, int free_count,
-                                     Eigen::VectorXd& g)
+                                     Eigen::VectorXd& g, CurvedEnergy* parts, double* contact)
 {
   // The pattern covers the terms and every contact pair seen so far for these free nodes, so
   // it (and the factorisation's analysis) stays put while contacts come and go.
@@ -545,7 +553,7 @@ double CurvedSolver::assembleHessian(const Positions& x, const std::vector<int>&
     hessian_.coeffs().setZero();
     g.setZero();
     BlockHessian blocks{ &hessian_ };
-    const double e = energy(x, { &free_index, &g, nullptr, &blocks });
+    const double e = energy(x, { &free_index, &g, nullptr, &blocks }, parts, contact);
     if (blocks.missing == 0)
       return e;
     if (round > 0)

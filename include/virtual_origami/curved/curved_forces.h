@@ -73,9 +73,10 @@ struct CurvedEnergy
   double total() const { return stretch + shear + bend; }
 };
 
-/// A Hessian assembled straight into a sparse matrix (no triplets to sort): its pattern holds
-/// full 3 × 3 blocks (blockPattern), and a block the pattern lacks is counted in `missing`
-/// (the caller then grows the pattern and assembles again).
+/// A Hessian assembled straight into a sparse matrix (no triplets to sort): its lower
+/// triangle of 3 × 3 blocks (blockPattern; the Cholesky factorisation reads no more, and
+/// products go through selfadjointView<Lower>), and a block the pattern lacks is counted in
+/// `missing` (the caller then grows the pattern and assembles again).
 struct BlockHessian
 {
   Eigen::SparseMatrix<double>* matrix = nullptr;
@@ -110,8 +111,9 @@ struct BlockHessian
   }
 };
 
-/// The pattern of full 3 × 3 blocks over `free_count` free nodes coupling every two free nodes
-/// of each group (and each node with itself): zero values, ready for BlockHessian.
+/// The pattern of 3 × 3 blocks over `free_count` free nodes coupling every two free nodes of
+/// each group (and each node with itself), lower block triangle only: zero values, ready for
+/// BlockHessian.
 Eigen::SparseMatrix<double> blockPattern(int free_count, const std::vector<int>& free_index,
                                          const std::vector<std::array<int, 4>>& groups);
 
@@ -159,7 +161,7 @@ void addHessian(const std::array<int, K>& nodes, const Eigen::Matrix<double, 3 *
   for (int k = 0; k < K; ++k)
     if (const int fk = (*out.free_index)[nodes[k]]; fk >= 0)
       for (int l = 0; l < K; ++l)
-        if (const int fl = (*out.free_index)[nodes[l]]; fl >= 0)
+        if (const int fl = (*out.free_index)[nodes[l]]; fl >= 0 && (fk >= fl || !out.blocks))
           out.addBlock(fk, fl, hessian.template block<3, 3>(3 * k, 3 * l));
 }
 

@@ -121,7 +121,8 @@ private:
                             Eigen::VectorXd& step, int* iterations) const;
   CurvedReport rk4(Positions& x, const std::vector<int>& free_index, int free_count);
   /// Energy, gradient (into g) and Hessian (into hessian_) at x.
-  double assembleHessian(const Positions& x, const std::vector<int>& free_index, int free_count, Eigen::VectorXd& g);
+  double assembleHessian(const Positions& x, const std::vector<int>& free_index, int free_count, Eigen::VectorXd& g,
+                         CurvedEnergy* parts = nullptr, double* contact = nullptr);
   double energy(const Positions& x, const Assembly& out, CurvedEnergy* parts = nullptr,
                 double* contact = nullptr) const;
 
