@@ -1,6 +1,7 @@
 #include "virtual_origami/curved/curved_solver.h"
 
 #include <algorithm>
+#include <random>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -77,6 +78,12 @@ Eigen::MatrixXd freeMotions(const Positions& x, const std::vector<int>& free_ind
   Eigen::HouseholderQR<Eigen::MatrixXd> qr(modes);
   return qr.householderQ() * Eigen::MatrixXd::Identity(modes.rows(), modes.cols());
 }
+
+/// Negative curvature of the energy (per unit move, over the stretch stiffness) smaller than
+/// this is rounding: the free turn about two pins, a sheet lying flat.
+constexpr double kNegligibleCurvature = 1e-11;
+/// Conjugate-gradient iterations spent looking for a way down from a balance.
+constexpr int kSaddleIterations = 6;
 
 /// `v` less its part along the free rigid motions (orthonormal columns of `free_motions`).
 void removeFreeMotions(const Eigen::MatrixXd& free_motions, Eigen::VectorXd& v)
@@ -177,6 +184,23 @@ CurvedReport CurvedSolver::solve(Positions& x, const std::vector<CurvedPin>& pin
     x.col(pin.node) = pin.position;
   CurvedReport report =
       options_.method == CurvedMethod::Newton ? newton(x, free_index, free_count) : rk4(x, free_index, free_count);
+  // Newton converges to any balance, a saddle too (a sheet pressed flat in its plane, a curl
+  // carried on past where it buckles): where the solve met negative curvature, the balance is
+  // tested, and a saddle is left downhill and the solve goes on (twice at most).
+  for (int left = 0; left < 2 && report.converged && options_.method == CurvedMethod::Newton &&
+                     options_.leave_saddles && negative_curvature_;
+       ++left)
+  {
+    if (!leaveSaddle(x, free_index, free_count))
+      break;
+    const CurvedReport before = report;
+    report = newton(x, free_index, free_count);
+    report.iterations += before.iterations;
+    report.factorizations += before.factorizations;
+    report.krylov_steps += before.krylov_steps;
+    report.saddles_left = before.saddles_left + 1;
+    path_.clear();  // another branch: the last balances no longer foretell this one
+  }
   report.predicted = predicted;
   if (report.diverged)
   {
@@ -355,6 +379,7 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
   double& mu = damping_mu_;
   if (!same_free)
     mu = -1.0;
+  negative_curvature_ = false;
   while (true)
   {
     contact_.update(x);
@@ -462,7 +487,12 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
         shift *= 100;
       ++report.factorizations;
       if (!factorization_.factorize(hessian_, shift))
+      {
+        // Curvature below −shift somewhere; above kNegligibleCurvature it is the free turn's
+        // rounding, not a saddle.
+        negative_curvature_ = negative_curvature_ || shift >= kNegligibleCurvature * material_.stretch;
         continue;
+      }
       factor_shift_ = shift;
       renew_factorization_ = false;
       stale_steps_help_ = true;
@@ -488,6 +518,75 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
     report.message = msg.str();
   }
   return report;
+}
+
+bool CurvedSolver::leaveSaddle(Positions& x, const std::vector<int>& free_index, int free_count)
+{
+  if (!factorization_.valid() || factor_free_ != free_index)
+    return false;
+  contact_.update(x);
+  Eigen::VectorXd g(3 * free_count);
+  const double e = assembleHessian(x, free_index, free_count, g);
+  const Eigen::MatrixXd free_motions = freeMotions(x, free_index, free_count, inPlaneOnly());
+  // Conjugate gradients on H·u = r for a random r: the kept factorisation (positive definite)
+  // magnifies the soft modes, the unstable one among them, so a search direction with
+  // negative curvature turns up within a few iterations when there is one.
+  std::mt19937 random(saddle_seed_++);
+  std::normal_distribution<double> normal;
+  Eigen::VectorXd r(g.size());
+  for (Eigen::Index i = 0; i < r.size(); ++i)
+    r[i] = normal(random);
+  removeFreeMotions(free_motions, r);
+  Eigen::VectorXd z = factorization_.solve(r);
+  removeFreeMotions(free_motions, z);
+  Eigen::VectorXd d = z, downhill;
+  double rz = r.dot(z);
+  for (int k = 0; k < kSaddleIterations && downhill.size() == 0; ++k)
+  {
+    const Eigen::VectorXd hd = hessian_.selfadjointView<Eigen::Lower>() * d;
+    const double curvature = d.dot(hd);
+    if (!std::isfinite(curvature) || !(rz > 0))
+      return false;
+    if (curvature < -kNegligibleCurvature * material_.stretch * d.squaredNorm())
+    {
+      downhill = d;
+      break;
+    }
+    r -= (rz / curvature) * hd;
+    z = factorization_.solve(r);
+    removeFreeMotions(free_motions, z);
+    const double rz_next = r.dot(z);
+    d = z + (rz_next / rz) * d;
+    rz = rz_next;
+  }
+  if (downhill.size() == 0)
+    return false;
+  // Along it either way (the energy is even in the move to second order), from a Newton
+  // step's longest move down by halves, to the lower energy; no watched pair crossing over.
+  double longest = 0.0;
+  for (int i = 0; i < free_count; ++i)
+    longest = std::max(longest, downhill.segment<3>(3 * i).norm());
+  downhill *= options_.max_step * contact_.range() / longest;
+  const double worst_gap = contact_.worstGap(x);
+  Positions trial = x, best = x;
+  double lowest = e;
+  for (int k = 0; k < 12 && lowest == e; ++k, downhill *= 0.5)
+    for (const double side : { 1.0, -1.0 })
+    {
+      moveFree(trial, x, downhill, side, free_index);
+      if (contact_.worstGap(trial) < std::min(0.0, worst_gap) - 0.5 * contact_.thickness())
+        continue;
+      const double moved = energy(trial, {});
+      if (moved < lowest)
+      {
+        lowest = moved;
+        best = trial;
+      }
+    }
+  if (!(lowest < e))
+    return false;
+  x = best;
+  return true;
 }
 
 double CurvedSolver::conjugateGradients(const Eigen::VectorXd& g, double mu, const Eigen::MatrixXd& free_motions,

@@ -309,6 +309,44 @@ TEST(CurvedSolver, PinsAreHeldExactly)
       EXPECT_EQ(x(r, pin.node), pin.position[r]);
 }
 
+TEST(CurvedSolver, ASheetPressedInItsPlaneBucklesInsteadOfStayingFlat)
+{
+  // Two opposite corners pushed together along the diagonal by 2 %, from the flat sheet: the
+  // flat, compressed sheet is a balance (nothing pushes out of the plane), but a saddle, as
+  // thin paper buckles at a strain of about q / (k·L²) = 1e-6.
+  Paper paper = Paper::square(1.0);
+  BubbleMeshOptions mesh_options;
+  mesh_options.spacing = 0.1;
+  const Expected<CurvedMesh> mesh = bubbleMesh(paper, mesh_options);
+  ASSERT_TRUE(mesh.ok()) << mesh.message();
+  const Vec3 a = paper.vertices[0].folded, c = paper.vertices[2].folded;
+  const std::vector<CurvedPin> pins = { { mesh->vertex_nodes[0], a + 0.01 * (c - a) },
+                                        { mesh->vertex_nodes[2], c + 0.01 * (a - c) } };
+  const auto height = [](const Positions& x) { return x.row(2).cwiseAbs().maxCoeff(); };
+
+  CurvedSolveOptions stay;
+  stay.leave_saddles = false;
+  CurvedSolver flat_solver(*mesh, paper, {}, {}, stay);
+  Positions flat = placeNodes(*mesh, paper);
+  const CurvedReport at_saddle = flat_solver.solve(flat, pins);
+  ASSERT_TRUE(at_saddle.converged) << at_saddle.message;
+  EXPECT_EQ(height(flat), 0.0);  // Newton alone: the flat saddle
+  EXPECT_EQ(at_saddle.saddles_left, 0);
+
+  CurvedSolver solver(*mesh, paper);
+  Positions x = placeNodes(*mesh, paper);
+  const CurvedReport report = solver.solve(x, pins);
+  ASSERT_TRUE(report.converged) << report.message;
+  EXPECT_GE(report.saddles_left, 1);
+  EXPECT_GT(height(x), 0.05);  // buckled out of the plane
+  // Downhill of the saddle: most of the compression's energy is gone, and what is left is a
+  // balance (the same tolerance as the flat one).
+  EXPECT_LT(report.energy.total() + report.contact_energy, 0.5 * (at_saddle.energy.total() + at_saddle.contact_energy));
+  EXPECT_LE(solver.maxForce(x, pins), stay.tolerance);
+  for (const CurvedPin& pin : pins)
+    EXPECT_EQ(x.col(pin.node), pin.position);
+}
+
 TEST(CurvedSolver, Rk4DivergenceIsDetectedAndRolledBack)
 {
   CornerLift scene = cornerLift(0.25, 0.2);

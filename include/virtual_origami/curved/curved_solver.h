@@ -50,6 +50,10 @@ struct CurvedSolveOptions
   /// Newton: when the pins move on along the path of the last balanced solves, start from
   /// the shape carried on along its path; false: start from the given shape.
   bool predict = true;
+  /// Newton: a balance reached where the Hessian showed negative curvature (a factorisation
+  /// of it failed at a shift that is not rounding) is tested for a direction that lowers the
+  /// energy, and left along it: paper at a saddle buckles or snaps, it does not stay there.
+  bool leave_saddles = true;
   /// RK4: the step (0: half the stability limit of the stiffest mode) and the
   /// mass-proportional damping rate (0: twice the first bending mode's frequency).
   double time_step = 0.0;
@@ -68,6 +72,7 @@ struct CurvedReport
   double contact_energy = 0.0;
   int contacts = 0;        // watched node–triangle pairs at the end
   bool predicted = false;  // Newton started from the shape carried on along the drag
+  int saddles_left = 0;    // Newton: balances that were saddles, left along negative curvature
   double time_step = 0.0;  // RK4
   double seconds = 0.0;
   std::string message;
@@ -119,6 +124,10 @@ private:
   /// model cuts the largest force (1 at negative curvature before any step, 0 on failure).
   double conjugateGradients(const Eigen::VectorXd& g, double mu, const Eigen::MatrixXd& free_motions,
                             Eigen::VectorXd& step, int* iterations) const;
+  /// At a balance `x`: a direction of negative curvature of the Hessian there (conjugate
+  /// gradients from a random start, the kept factorisation as preconditioner), and a move
+  /// along it that lowers the energy. False, `x` untouched, when none is found.
+  bool leaveSaddle(Positions& x, const std::vector<int>& free_index, int free_count);
   CurvedReport rk4(Positions& x, const std::vector<int>& free_index, int free_count);
   /// Energy, gradient (into g) and Hessian (into hessian_) at x.
   double assembleHessian(const Positions& x, const std::vector<int>& free_index, int free_count, Eigen::VectorXd& g,
@@ -140,6 +149,8 @@ private:
   double factor_shift_ = 0.0;      // the shift of the kept factorisation
   bool renew_factorization_ = false;  // conjugate gradients needed many iterations with it
   bool stale_steps_help_ = true;      // its own step was a full one when last tried
+  bool negative_curvature_ = false;   // the last Newton solve met it (see leave_saddles)
+  unsigned saddle_seed_ = 1;          // the random starts of leaveSaddle, reproducible
   std::vector<int> pattern_free_;  // the free nodes hessian_'s pattern is for
   std::vector<std::array<int, 4>> pattern_groups_;
   /// The last three balanced shapes and their pins, oldest first.
