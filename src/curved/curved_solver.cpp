@@ -1,8 +1,8 @@
 #include "virtual_origami/curved/curved_solver.h"
 
 #include <algorithm>
-#include <random>
 #include <cmath>
+#include <random>
 #include <sstream>
 #include <stdexcept>
 
