@@ -452,7 +452,7 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
       // step they found is taken, and the next one factorises.
       Eigen::VectorXd step;
       int iterations = 0;
-      const double cut = conjugateGradients(g, mu, free_motions, step, &iterations);
+      const double cut = conjugateGradients(g, mu, free_motions, options_.krylov_iterations, step, &iterations);
       renew_factorization_ = iterations > options_.krylov_iterations / 2;
       if (cut > 0)
       {
@@ -471,10 +471,8 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
     // hundredfold per try: a failed try costs a whole factorisation (the soft modes it fails on
     // come last in the ordering), and the shifts needed past a snap are 10³–10⁷ times the last.
     // A factorisation renewed for the conjugate gradients' sake (not because Newton's own
-    // steps fail) starts at the last one's shift: below it the matrix is seldom positive
-    // definite, and each failed try costs as much as the factorisation itself (a third of
-    // the factorisations of a drag failed so). The damping of the steps stays where the line
-    // search has it.
+    // steps fail) starts at the last one's shift, below which the matrix is seldom positive
+    // definite; the damping of the steps stays where the line search has it.
     const bool renewing = renew_factorization_ && !refresh_in_solve;
     double shift = renewing ? std::max(mu, factor_shift_) : mu;
     refresh = false;
@@ -536,30 +534,11 @@ bool CurvedSolver::leaveSaddle(Positions& x, const std::vector<int>& free_index,
   Eigen::VectorXd r(g.size());
   for (Eigen::Index i = 0; i < r.size(); ++i)
     r[i] = normal(random);
-  removeFreeMotions(free_motions, r);
-  Eigen::VectorXd z = factorization_.solve(r);
-  removeFreeMotions(free_motions, z);
-  Eigen::VectorXd d = z, downhill;
-  double rz = r.dot(z);
-  for (int k = 0; k < kSaddleIterations && downhill.size() == 0; ++k)
-  {
-    const Eigen::VectorXd hd = hessian_.selfadjointView<Eigen::Lower>() * d;
-    const double curvature = d.dot(hd);
-    if (!std::isfinite(curvature) || !(rz > 0))
-      return false;
-    if (curvature < -kNegligibleCurvature * material_.stretch * d.squaredNorm())
-    {
-      downhill = d;
-      break;
-    }
-    r -= (rz / curvature) * hd;
-    z = factorization_.solve(r);
-    removeFreeMotions(free_motions, z);
-    const double rz_next = r.dot(z);
-    d = z + (rz_next / rz) * d;
-    rz = rz_next;
-  }
-  if (downhill.size() == 0)
+  Eigen::VectorXd step, downhill;
+  int iterations = 0;
+  conjugateGradients(r, 0.0, free_motions, kSaddleIterations, step, &iterations, &downhill);
+  if (downhill.size() == 0 || !(downhill.dot(hessian_.selfadjointView<Eigen::Lower>() * downhill) <
+                                -kNegligibleCurvature * material_.stretch * downhill.squaredNorm()))
     return false;
   // Along it either way (the energy is even in the move to second order), from a Newton
   // step's longest move down by halves, to the lower energy; no watched pair crossing over.
@@ -590,7 +569,8 @@ bool CurvedSolver::leaveSaddle(Positions& x, const std::vector<int>& free_index,
 }
 
 double CurvedSolver::conjugateGradients(const Eigen::VectorXd& g, double mu, const Eigen::MatrixXd& free_motions,
-                                        Eigen::VectorXd& step, int* iterations) const
+                                        int max_iterations, Eigen::VectorXd& step, int* iterations,
+                                        Eigen::VectorXd* negative) const
 {
   // (H + μI)·step = −g by preconditioned conjugate gradients, the kept factorisation as the
   // preconditioner, within the complement of the free rigid motions (H is singular on them).
@@ -598,30 +578,35 @@ double CurvedSolver::conjugateGradients(const Eigen::VectorXd& g, double mu, con
   // that is below it already, a hundredth when far above: there the model is only good for a
   // step, and a tighter solve spent up to krylov_iterations back-substitutions on each), at
   // negative curvature (Steihaug: the step so far, or the preconditioned force when there is
-  // none, still descends), or after krylov_iterations; every iterate lowers the quadratic
-  // model, so each is a descent step.
+  // none, still descends), or after max_iterations; every iterate lowers the quadratic
+  // model, so each is a descent step. Looking for negative curvature (`negative` given: the
+  // direction that has it, when one turns up) there is no goal: every iteration runs.
   Eigen::VectorXd r = -g;
   removeFreeMotions(free_motions, r);
   const double start = largestNodeForce(r);
   const double scale = material_.stretch * mesh_.spacing;
   const double tolerance = options_.tolerance * scale;
-  const double goal = std::max(1e-2 * start, start > tolerance ? 0.5 * tolerance : 0.1 * start);
+  const double goal =
+      negative ? 0.0 : std::max(1e-2 * start, start > tolerance ? 0.5 * tolerance : 0.1 * start);
   step = Eigen::VectorXd::Zero(g.size());
   Eigen::VectorXd z = factorization_.solve(r);
   removeFreeMotions(free_motions, z);
   Eigen::VectorXd d = z;
   double rz = r.dot(z);
   double left = start;
-  for (int k = 0; k < options_.krylov_iterations && left > goal; ++k)
+  for (int k = 0; k < max_iterations && left > goal; ++k)
   {
     *iterations = k + 1;
     const Eigen::VectorXd hd = hessian_.selfadjointView<Eigen::Lower>() * d + mu * d;
     const double curvature = d.dot(hd);
     if (!(curvature > 0) || !(rz > 0))
     {
+      const bool found = std::isfinite(curvature) && rz > 0;
       if (k == 0)
         step = d;
-      return std::isfinite(curvature) && rz > 0 ? 1.0 : 0.0;
+      if (negative && found)
+        *negative = d;
+      return found ? 1.0 : 0.0;
     }
     const double a = rz / curvature;
     step += a * d;

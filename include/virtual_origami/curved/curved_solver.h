@@ -120,10 +120,13 @@ private:
   }
   CurvedReport newton(Positions& x, const std::vector<int>& free_index, int free_count);
   /// The step of hessian_ + μI against gradient g by conjugate gradients preconditioned by the
-  /// kept factorisation, orthogonal to `free_motions`. Returns the factor by which the linear
-  /// model cuts the largest force (1 at negative curvature before any step, 0 on failure).
+  /// kept factorisation, orthogonal to `free_motions`, in at most `max_iterations`. Returns
+  /// the factor by which the linear model cuts the largest force (1 at negative curvature, 0
+  /// on failure); with `negative`, runs every iteration and gives the direction of negative
+  /// curvature it stopped at.
   double conjugateGradients(const Eigen::VectorXd& g, double mu, const Eigen::MatrixXd& free_motions,
-                            Eigen::VectorXd& step, int* iterations) const;
+                            int max_iterations, Eigen::VectorXd& step, int* iterations,
+                            Eigen::VectorXd* negative = nullptr) const;
   /// At a balance `x`: a direction of negative curvature of the Hessian there (conjugate
   /// gradients from a random start, the kept factorisation as preconditioner), and a move
   /// along it that lowers the energy. False, `x` untouched, when none is found.
