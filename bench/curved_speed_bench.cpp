@@ -1,5 +1,5 @@
 // Speed of the curved-paper solvers (issue 4's target, issue 8's charts): (a) static solves per
-// second of small pulls on a 10,000-vertex sheet; (b) time per step against vertex count up to
+// second of small pulls on a 10,000-vertex sheet and on smaller ones; (b) time per step against vertex count up to
 // 100,000 vertices, one Newton iteration and one RK4 step, beside the machine's floor measured
 // in the same run (memory traffic of an explicit step over the triad bandwidth, one sparse
 // Cholesky factorisation for an implicit one); (c) the RK4 stability map, step × stiffness,
@@ -50,17 +50,15 @@ struct PulledSheet
   void pullTo(double s) { pins[1].position = scene.pullAt(s); }
 };
 
-/// (a) The 10,000-vertex sheet dragged along scene 1's pull from rest: each solve moves the
-/// corner by a small step (1/2000 of the pull, about a tenth of a mesh spacing) and solves to
-/// the solver's default tolerance from the last balance; 200 of them (a tenth of the pull: the
-/// sheet buckles off the flat, snaps twice and settles into its curl), unless a minute runs out
-/// first. A fixed drag, not a fixed time: its start and snaps are its slowest solves.
-void smallPulls(const std::string& dir)
+/// (a) A sheet of n × n vertices dragged along scene 1's pull from rest: each solve moves the
+/// corner by a small step (1/2000 of the pull: a tenth of a mesh spacing at 10,000 vertices)
+/// and solves to the solver's default tolerance from the last balance; 200 of them (a tenth of
+/// the pull: the sheet buckles off the flat, snaps twice and settles into its curl), unless a
+/// minute runs out first. A fixed drag, not a fixed time: its start and snaps are its slowest
+/// solves. One row of curved_speed.csv.
+void dragSheet(int n, std::ostream& csv)
 {
-  std::ofstream csv(dir + "/curved_speed.csv");
-  csv << "vertices,solves,converged,iterations,factorizations,krylov_steps,predicted,seconds,cpu_seconds,"
-         "solves_per_second,solves_per_cpu_second,median_solve_cpu_ms,slow_solves,slow_cpu_seconds,pull_step,tolerance,max_force\n";
-  PulledSheet sheet(100);
+  PulledSheet sheet(n);
   CurvedSolver solver(sheet.mesh, sheet.scene.paper);
   Positions x = sheet.rest;
   double s = 0;
@@ -98,13 +96,25 @@ void smallPulls(const std::string& dir)
     }
   csv << sheet.mesh.nodes.size() << ',' << solves << ',' << converged << ',' << iterations << ',' << factorizations
       << ',' << krylov << ',' << predicted << ',' << seconds << ',' << cpu << ',' << solves / seconds << ','
-      << solves / cpu << ',' << median * 1e3 << ',' << slow << ',' << slow_cpu << ',' << step << ',' << solver.options().tolerance << ',' << worst
-      << '\n';
-  std::printf("10k sheet: %d small pulls (%d converged, %d predicted, %d iterations, %d factorisations, %d "
+      << solves / cpu << ',' << median * 1e3 << ',' << slow << ',' << slow_cpu << ',' << step << ','
+      << solver.options().tolerance << ',' << worst << '\n';
+  std::printf("%zu vertices: %d small pulls (%d converged, %d predicted, %d iterations, %d factorisations, %d "
               "conjugate-gradient steps) in %.2f s (cpu %.2f s): %.2f solves/s (%.2f per cpu second), median "
               "solve %.1f ms of cpu\n",
-              solves, converged, predicted, iterations, factorizations, krylov, seconds, cpu, solves / seconds,
-              solves / cpu, median * 1e3);
+              sheet.mesh.nodes.size(), solves, converged, predicted, iterations, factorizations, krylov, seconds, cpu,
+              solves / seconds, solves / cpu, median * 1e3);
+}
+
+/// (a) The drag on the 10,000-vertex sheet of the target, and on smaller sheets: how large a
+/// sheet one core drags at 30 solves per second.
+void smallPulls(const std::string& dir)
+{
+  std::ofstream csv(dir + "/curved_speed.csv");
+  csv << "vertices,solves,converged,iterations,factorizations,krylov_steps,predicted,seconds,cpu_seconds,"
+         "solves_per_second,solves_per_cpu_second,median_solve_cpu_ms,slow_solves,slow_cpu_seconds,pull_step,"
+         "tolerance,max_force\n";
+  for (int n : { 32, 45, 55, 71, 100 })
+    dragSheet(n, csv);
 }
 
 /// Bytes an RK4 step must move at least: four force evaluations, each reading the term lists
