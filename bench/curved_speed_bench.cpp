@@ -1,19 +1,21 @@
 // Speed of the curved-paper solvers (issue 4's target, issue 8's charts): (a) static solves per
-// second of small pulls on a 10,000-vertex sheet and on smaller ones; (b) time per step against vertex count up to
-// 100,000 vertices, one Newton iteration and one RK4 step, beside the machine's floor measured
-// in the same run (memory traffic of an explicit step over the triad bandwidth, one sparse
-// Cholesky factorisation for an implicit one); (c) the RK4 stability map, step × stiffness,
+// second of small pulls on a 10,000-vertex sheet and on smaller ones, and against the tolerance
+// on a 2,025-vertex one; (b) time per step against vertex count up to 100,000 vertices, one
+// Newton iteration and one RK4 step, beside the machine's floor measured in the same run
+// (memory traffic of an explicit step over the triad bandwidth, one sparse Cholesky
+// factorisation for an implicit one); (c) the RK4 stability map, step × stiffness,
 // against the predicted limit. Wall time and process CPU time both: the machine is shared, and
 // the charts use CPU time (one core: make bench caps CHOLMOD's OpenMP loops to one thread).
 //
-//   curved_speed_bench [out_dir] [pulls|stability|scaling]   writes curved_speed.csv,
-//   curved_stability.csv, curved_scaling.csv (all three, or the one part named)
+//   curved_speed_bench [out_dir] [pulls|stability|scaling]   writes curved_speed.csv and
+//   curved_drag_accuracy.csv, curved_stability.csv, curved_scaling.csv (all, or the part named)
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -52,21 +54,26 @@ struct PulledSheet
 
 /// (a) A sheet of n × n vertices dragged along scene 1's pull from rest: each solve moves the
 /// corner by a small step (1/2000 of the pull: a tenth of a mesh spacing at 10,000 vertices)
-/// and solves to the solver's default tolerance from the last balance; 200 of them (a tenth of
+/// and solves to `tolerance` from the last balance; 200 of them (a tenth of
 /// the pull: the sheet buckles off the flat, snaps twice and settles into its curl), unless a
 /// minute runs out first. A fixed drag, not a fixed time: its start and snaps are its slowest
-/// solves. One row of curved_speed.csv.
-void dragSheet(int n, std::ostream& csv)
+/// solves. One row of curved_speed.csv. With `accuracy`, every twentieth balance is also solved
+/// on to 1e-11 from where the drag left it (by a solver of its own, outside the timing), and the
+/// largest distance of a node between the two, over the sheet's side, is the drag's error
+/// there: one row of curved_drag_accuracy.csv.
+void dragSheet(int n, double tolerance, std::ostream& csv, std::ostream* accuracy = nullptr)
 {
   PulledSheet sheet(n);
   CurvedSolver solver(sheet.mesh, sheet.scene.paper);
+  solver.options().tolerance = tolerance;
   Positions x = sheet.rest;
+  std::vector<double> errors;
   double s = 0;
   const double step = 5e-4;
   int solves = 0, converged = 0, iterations = 0, factorizations = 0, krylov = 0, predicted = 0;
   double worst = 0;
   std::vector<double> solve_cpu;  // per solve: the drag's snaps are a few long ones among many short
-  const double start = now(), cpu_start = cpuNow();
+  const double start = now();
   while (solves < 200 && now() - start < 60)
   {
     sheet.pullTo(s += step);
@@ -74,6 +81,15 @@ void dragSheet(int n, std::ostream& csv)
     const CurvedReport r = solver.solve(x, sheet.pins);
     solve_cpu.push_back(cpuNow() - solve_start);
     ++solves;
+    if (accuracy && solves % 20 == 0 && r.converged)
+    {
+      CurvedSolver exact(sheet.mesh, sheet.scene.paper);
+      exact.options().tolerance = 1e-11;
+      exact.options().predict = false;
+      Positions balance = x;
+      if (exact.solve(balance, sheet.pins).converged)
+        errors.push_back(std::sqrt((balance - x).colwise().squaredNorm().maxCoeff()) / sheet.scene.paper.scale());
+    }
     converged += r.converged;
     iterations += r.iterations;
     factorizations += r.factorizations;
@@ -81,7 +97,10 @@ void dragSheet(int n, std::ostream& csv)
     predicted += r.predicted;
     worst = std::max(worst, r.max_force);
   }
-  const double seconds = now() - start, cpu = cpuNow() - cpu_start;
+  const double seconds = now() - start;
+  double cpu = 0;  // the drag's solves alone (without the accuracy check's)
+  for (double c : solve_cpu)
+    cpu += c;
   std::vector<double> sorted = solve_cpu;
   std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
   const double median = sorted[sorted.size() / 2];
@@ -98,11 +117,19 @@ void dragSheet(int n, std::ostream& csv)
       << ',' << krylov << ',' << predicted << ',' << seconds << ',' << cpu << ',' << solves / seconds << ','
       << solves / cpu << ',' << median * 1e3 << ',' << slow << ',' << slow_cpu << ',' << step << ','
       << solver.options().tolerance << ',' << worst << '\n';
-  std::printf("%zu vertices: %d small pulls (%d converged, %d predicted, %d iterations, %d factorisations, %d "
-              "conjugate-gradient steps) in %.2f s (cpu %.2f s): %.2f solves/s (%.2f per cpu second), median "
-              "solve %.1f ms of cpu\n",
-              sheet.mesh.nodes.size(), solves, converged, predicted, iterations, factorizations, krylov, seconds, cpu,
-              solves / seconds, solves / cpu, median * 1e3);
+  if (accuracy && !errors.empty())
+  {
+    std::vector<double> sorted_errors = errors;
+    std::sort(sorted_errors.begin(), sorted_errors.end());
+    *accuracy << sheet.mesh.nodes.size() << ',' << tolerance << ',' << solves << ',' << converged << ',' << cpu << ','
+              << solves / cpu << ',' << errors.size() << ',' << sorted_errors[sorted_errors.size() / 2] << ','
+              << sorted_errors.back() << '\n';
+  }
+  std::printf("%zu vertices, tolerance %g: %d small pulls (%d converged, %d predicted, %d iterations, %d "
+              "factorisations, %d conjugate-gradient steps) in %.2f s (cpu %.2f s): %.2f solves/s (%.2f per cpu "
+              "second), median solve %.1f ms of cpu\n",
+              sheet.mesh.nodes.size(), tolerance, solves, converged, predicted, iterations, factorizations, krylov,
+              seconds, cpu, solves / seconds, solves / cpu, median * 1e3);
 }
 
 /// (a) The drag on the 10,000-vertex sheet of the target, and on smaller sheets: how large a
@@ -113,8 +140,16 @@ void smallPulls(const std::string& dir)
   csv << "vertices,solves,converged,iterations,factorizations,krylov_steps,predicted,seconds,cpu_seconds,"
          "solves_per_second,solves_per_cpu_second,median_solve_cpu_ms,slow_solves,slow_cpu_seconds,pull_step,"
          "tolerance,max_force\n";
+  const double tolerance = CurvedSolveOptions().tolerance;
   for (int n : { 32, 45, 55, 71, 100 })
-    dragSheet(n, csv);
+    dragSheet(n, tolerance, csv);
+  // Speed against accuracy: the same drag on the 2,025-vertex sheet at other tolerances (the
+  // rows of curved_speed.csv at the default are left as they are).
+  std::ofstream accuracy(dir + "/curved_drag_accuracy.csv");
+  accuracy << "vertices,tolerance,solves,converged,cpu_seconds,solves_per_cpu_second,checked,median_error,max_error\n";
+  std::ostringstream ignored;
+  for (double t : { 1e-4, 1e-6, 1e-8, 1e-10 })
+    dragSheet(45, t, ignored, &accuracy);
 }
 
 /// Bytes an RK4 step must move at least: four force evaluations, each reading the term lists

@@ -335,6 +335,30 @@ def chart_curved_speed(tables):
         ax.set_title("Curved paper dragged by a corner: solves per second against sheet size")
         save(fig, "curved_speed.png")
 
+    acc = rows("curved_drag_accuracy.csv")
+    if acc:
+        fig, ax = plt.subplots(figsize=(7, 4.5))
+        errors = [num(r["median_error"]) for r in acc]
+        rates = [num(r["solves_per_cpu_second"]) for r in acc]
+        ax.semilogx(errors, rates, "o-", c="C0", label=f"newton, {acc[0]['vertices']} vertices")
+        for r, e, q in zip(acc, errors, rates):
+            ax.annotate(f"tolerance {r['tolerance']}", (e, q), textcoords="offset points", xytext=(6, 6), fontsize=8)
+        ax.set_ylim(0, max(rates) * 1.25)
+        ax.set_xlabel("median error of a balance (largest node distance to the exact one) / side")
+        ax.set_ylabel("small pulls per CPU second (one core)")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+        ax.set_title("Curved paper dragged by a corner: speed against accuracy")
+        save(fig, "curved_drag_accuracy.png")
+        lines = ["| vertices | tolerance | solves | converged | solves per CPU second | balances checked | "
+                 "median error / side | largest error / side |",
+                 "|---|---|---|---|---|---|---|---|"]
+        for r in acc:
+            lines.append(f"| {r['vertices']} | {r['tolerance']} | {r['solves']} | {r['converged']} | "
+                         f"{fmt(num(r['solves_per_cpu_second']))} | {r['checked']} | {fmt(num(r['median_error']))} | "
+                         f"{fmt(num(r['max_error']))} |")
+        tables["curved_drag_accuracy"] = "\n".join(lines)
+
     data = rows("curved_scaling.csv")
     if data:
         v = [num(r["vertices"]) for r in data]
@@ -516,6 +540,17 @@ def conclusions(tables):
         square = [m for m in (rows("meshers.csv") or []) if m["pattern"] == "square" and m["mesher"] == "bubble"
                   and num(m["spacing"]) == 0.1]
         out.append(f"- {crossing(sp, square[0]['nodes'] if square else None)}")
+    acc = rows("curved_drag_accuracy.csv")
+    if acc:
+        by_rate = sorted(acc, key=lambda r: num(r["solves_per_cpu_second"]))
+        slow, fast = by_rate[0], by_rate[-1]
+        out.append(f"- Speed against accuracy of the drag ({acc[0]['vertices']} vertices): tolerances from "
+                   f"{min(num(r['tolerance']) for r in acc):g} to {max(num(r['tolerance']) for r in acc):g} span only "
+                   f"{nice(num(slow['solves_per_cpu_second']))}–{nice(num(fast['solves_per_cpu_second']))} solves per CPU "
+                   f"second (fastest at {fast['tolerance']}, median error {nice(num(fast['median_error']))} of the side), "
+                   f"while the median error spans {nice(min(num(r['median_error']) for r in acc))}–"
+                   f"{nice(max(num(r['median_error']) for r in acc))}: a looser tolerance buys little speed "
+                   "(docs/CURVED.md, Speed against sheet size and tolerance); the default 1e-8 stays.")
     ms = rows("meshers.csv")
     if ms:
         def share(m):
