@@ -185,11 +185,15 @@ CurvedReport CurvedSolver::solve(Positions& x, const std::vector<CurvedPin>& pin
   CurvedReport report =
       options_.method == CurvedMethod::Newton ? newton(x, free_index, free_count) : rk4(x, free_index, free_count);
   // Newton converges to any balance, a saddle too (a sheet pressed flat in its plane, a curl
-  // carried on past where it buckles): where the solve met negative curvature, the balance is
-  // tested, and a saddle is left downhill and the solve goes on (twice at most).
-  for (int left = 0; left < 2 && report.converged && options_.method == CurvedMethod::Newton &&
-                     options_.leave_saddles && negative_curvature_;
-       ++left)
+  // carried on past where it buckles): where the solve met negative curvature (or, with
+  // check_stability, where the Hessian at the balance is not positive definite), the balance
+  // is tested, and a saddle is left downhill and the solve goes on (twice at most).
+  const auto unstable = [&] {
+    if (!report.converged || options_.method != CurvedMethod::Newton || !options_.leave_saddles)
+      return false;
+    return negative_curvature_ || (options_.check_stability && unstableAt(x, free_index, free_count));
+  };
+  for (int left = 0; left < 2 && unstable(); ++left)
   {
     if (!leaveSaddle(x, free_index, free_count))
       break;
@@ -516,6 +520,30 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
     report.message = msg.str();
   }
   return report;
+}
+
+bool CurvedSolver::unstableAt(const Positions& x, const std::vector<int>& free_index, int free_count)
+{
+  contact_.update(x);
+  Eigen::VectorXd g(3 * free_count);
+  assembleHessian(x, free_index, free_count, g);
+  // On failure the shift rises a hundredfold until the factorisation succeeds: leaving the
+  // saddle needs it as the preconditioner of its search, and the next solve as its own.
+  double shift = kNegligibleCurvature * material_.stretch;
+  bool unstable = false;
+  for (int attempt = 0; attempt < 12; ++attempt, shift *= 100)
+  {
+    if (factorization_.factorize(hessian_, shift))
+    {
+      factor_free_ = free_index;
+      factor_shift_ = shift;
+      renew_factorization_ = false;
+      stale_steps_help_ = true;
+      return unstable;
+    }
+    unstable = true;
+  }
+  return true;
 }
 
 bool CurvedSolver::leaveSaddle(Positions& x, const std::vector<int>& free_index, int free_count)

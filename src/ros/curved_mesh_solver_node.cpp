@@ -31,6 +31,7 @@ core::CurvedSolveOptions solveOptions(const CurvedMeshSolverConfig& config)
   options.tolerance = config.tolerance;
   options.max_iterations = config.max_iterations;
   options.max_seconds = config.max_seconds;
+  options.check_stability = config.check_stability;
   return options;
 }
 }  // namespace

@@ -2,6 +2,7 @@
 // small steps, Newton against the seed's RK4, divergence, pins and the model choice.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -345,6 +346,58 @@ TEST(CurvedSolver, ASheetPressedInItsPlaneBucklesInsteadOfStayingFlat)
   EXPECT_LE(solver.maxForce(x, pins), stay.tolerance);
   for (const CurvedPin& pin : pins)
     EXPECT_EQ(x.col(pin.node), pin.position);
+}
+
+TEST(CurvedSolver, ADragCheckedForStabilityLeavesEachBranchWhereItLosesStability)
+{
+  // Seed scene 1's corner dragged off the flat sheet in small pulls: a few pulls in, the sheet
+  // buckles out of its plane. Each balance is re-solved to 1e-11 by a fresh solver (no
+  // prediction, saddles left): a balance that is a true minimum stays where it is, a saddle is
+  // left. Without the stability check the drag carries on along the flat branch for some pulls
+  // after it has lost stability (the kept factorisation still serves, so none fails); with it,
+  // every balance it returns is a minimum.
+  const SeedScene scene = *seedScene(1);
+  BubbleMeshOptions mesh_options;
+  mesh_options.spacing = 0.07;
+  const Expected<CurvedMesh> mesh = bubbleMesh(scene.paper, mesh_options);
+  ASSERT_TRUE(mesh.ok()) << mesh.message();
+  const double thickness = LayerContact(*mesh, scene.paper, {}).thickness();
+  // Per pull: whether the fresh solve found a saddle, and how far it moved the sheet.
+  const auto drag = [&](bool check, std::vector<int>& saddles, std::vector<double>& moved) {
+    CurvedSolveOptions options;
+    options.check_stability = check;
+    CurvedSolver solver(*mesh, scene.paper, {}, {}, options);
+    Positions x = placeNodes(*mesh, scene.paper);
+    std::vector<CurvedPin> pins = { { mesh->vertex_nodes[scene.fixed], scene.paper.vertices[scene.fixed].folded },
+                                    { mesh->vertex_nodes[scene.pulled], scene.paper.vertices[scene.pulled].folded } };
+    for (int k = 1; k <= 15; ++k)
+    {
+      pins[1].position = scene.pullAt(5e-4 * k);
+      const CurvedReport report = solver.solve(x, pins);
+      ASSERT_TRUE(report.converged) << "pull " << k << ": " << report.message;
+      CurvedSolveOptions exact;
+      exact.tolerance = 1e-11;
+      exact.predict = false;
+      Positions balance = x;
+      const CurvedReport resolved = CurvedSolver(*mesh, scene.paper, {}, {}, exact).solve(balance, pins);
+      ASSERT_TRUE(resolved.converged) << "pull " << k << ": " << resolved.message;
+      saddles.push_back(resolved.saddles_left);
+      moved.push_back(std::sqrt((balance - x).colwise().squaredNorm().maxCoeff()));
+    }
+  };
+  std::vector<int> saddles, unchecked_saddles;
+  std::vector<double> moved, unchecked_moved;
+  drag(true, saddles, moved);
+  drag(false, unchecked_saddles, unchecked_moved);
+  for (size_t k = 0; k < saddles.size(); ++k)
+  {
+    EXPECT_EQ(saddles[k], 0) << "pull " << k + 1;
+    EXPECT_LT(moved[k], 0.5 * thickness) << "pull " << k + 1;
+  }
+  // The test's power: unchecked, some balance is a saddle that the fresh solve leaves, by more
+  // than a layer's thickness.
+  EXPECT_GT(*std::max_element(unchecked_saddles.begin(), unchecked_saddles.end()), 0);
+  EXPECT_GT(*std::max_element(unchecked_moved.begin(), unchecked_moved.end()), thickness);
 }
 
 TEST(CurvedSolver, Rk4DivergenceIsDetectedAndRolledBack)

@@ -54,6 +54,13 @@ struct CurvedSolveOptions
   /// of it failed at a shift that is not rounding) is tested for a direction that lowers the
   /// energy, and left along it: paper at a saddle buckles or snaps, it does not stay there.
   bool leave_saddles = true;
+  /// Newton, with leave_saddles: every balance is also tested directly, by a factorisation of
+  /// the Hessian there shifted by the curvature counted as rounding, and left when that fails.
+  /// Without the test a drag can stay on a branch for many pulls after it has lost stability
+  /// (no factorisation fails while the kept one serves); with it, the sheet snaps within a
+  /// pull or two. Costs a factorisation per solve (about twice the time of a drag's solve);
+  /// the factorisation then serves the next solve.
+  bool check_stability = false;
   /// RK4: the step (0: half the stability limit of the stiffest mode) and the
   /// mass-proportional damping rate (0: twice the first bending mode's frequency).
   double time_step = 0.0;
@@ -131,6 +138,10 @@ private:
   /// gradients from a random start, the kept factorisation as preconditioner), and a move
   /// along it that lowers the energy. False, `x` untouched, when none is found.
   bool leaveSaddle(Positions& x, const std::vector<int>& free_index, int free_count);
+  /// Whether the Hessian at balance `x`, shifted by the curvature counted as rounding, fails
+  /// to factorise (negative curvature: a saddle to leave). On success the factorisation is
+  /// kept for the next solve.
+  bool unstableAt(const Positions& x, const std::vector<int>& free_index, int free_count);
   CurvedReport rk4(Positions& x, const std::vector<int>& free_index, int free_count);
   /// Energy, gradient (into g) and Hessian (into hessian_) at x.
   double assembleHessian(const Positions& x, const std::vector<int>& free_index, int free_count, Eigen::VectorXd& g,
