@@ -58,8 +58,8 @@ struct CurvedSolveOptions
   /// the Hessian there shifted by the curvature counted as rounding, and left when that fails.
   /// Without the test a drag can stay on a branch for many pulls after it has lost stability
   /// (no factorisation fails while the kept one serves); with it, the sheet snaps within a
-  /// pull or two. Costs a factorisation per solve (about twice the time of a drag's solve);
-  /// the factorisation then serves the next solve.
+  /// pull or two. Costs a factorisation per solve, which on meshes of thousands of vertices
+  /// about doubles a drag's solves; the factorisation then serves the next solve.
   bool check_stability = false;
   /// RK4: the step (0: half the stability limit of the stiffest mode) and the
   /// mass-proportional damping rate (0: twice the first bending mode's frequency).
