@@ -190,7 +190,9 @@ TEST(SeedScenes, Scene3PullsAFoldedLayerOverWithoutCrossingIt)
   const Expected<SeedScene> scene = seedScene(3, 1.0, 2e-3);
   for (size_t e = 0; e < scene->paper.edges.size(); ++e)
     if (scene->paper.edges[e].isCrease() && std::abs(scene->paper.edges[e].fold_angle) > 3)
+    {
       EXPECT_GT(std::abs(run.steps.back().metrics.crease_angles[e]), 150 * kDeg) << e;
+    }
 }
 
 TEST(TriangleCrossings, FindsTwoTrianglesThatPierceEachOtherAndNotTouchingOnes)
@@ -437,7 +439,9 @@ TEST(CurvedSolver, NewtonRollsBackANonFiniteStart)
   EXPECT_TRUE(std::isnan(x(0, free_node)));
   for (Eigen::Index v = 0; v < x.cols(); ++v)
     if (v != free_node && scene.mesh.nodes[v].paper_vertex < 0)
+    {
       EXPECT_EQ(x.col(v), given.col(v));
+    }
 }
 
 TEST(CurvedForces, CreasesCarryNoBendingAndFacesDo)
