@@ -391,6 +391,8 @@ TEST(CurvedSolver, ADragCheckedForStabilityLeavesEachBranchWhereItLosesStability
   std::vector<double> moved, unchecked_moved;
   drag(true, saddles, moved);
   drag(false, unchecked_saddles, unchecked_moved);
+  ASSERT_EQ(saddles.size(), 15u);
+  ASSERT_EQ(unchecked_saddles.size(), 15u);
   for (size_t k = 0; k < saddles.size(); ++k)
   {
     EXPECT_EQ(saddles[k], 0) << "pull " << k + 1;
