@@ -67,6 +67,17 @@ def save(fig, name):
     plt.close(fig)
 
 
+def finish(fig, ax, xlabel, ylabel, title, name):
+    """The close of a one-panel chart: axis labels, a grid on both scales, the legend, the title,
+    and the PNG."""
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    ax.set_title(title)
+    save(fig, name)
+
+
 def chart_error_time(tables):
     data = rows("error_time.csv")
     if not data:
@@ -182,12 +193,9 @@ def chart_scaling(tables):
           if math.isfinite(num(r["newton_iteration_seconds"]))]
     ax.loglog([p[0] for p in nv], [p[1] for p in nv], "o-", c="C0", label="newton: one iteration")
     ax.loglog(v, [num(r["ldlt_seconds"]) for r in data], "--", c="C0", label="floor: one SimplicialLDLT")
-    ax.set_xlabel("vertices (grid sheet of square faces)")
-    ax.set_ylabel("seconds")
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8)
-    ax.set_title("Time per step against vertex count (triad %.1f GB/s)" % (bandwidth / 1e9))
-    save(fig, "scaling.png")
+    finish(fig, ax, "vertices (grid sheet of square faces)",
+           "seconds",
+           "Time per step against vertex count (triad %.1f GB/s)" % (bandwidth / 1e9), "scaling.png")
 
     lines = [f"Triad bandwidth: {fmt(bandwidth / 1e9)} GB/s.", "",
              "| vertices | explicit step | its floor | ratio | newton iteration | one LDLT | ratio |",
@@ -230,12 +238,9 @@ def chart_curved(tables):
     ax.step([p[0] for p in front], [p[1] for p in front], "k--", where="post", lw=1, label="Pareto front")
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("wall time per solve [s]")
-    ax.set_ylabel("max residual force at the end")
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8)
-    ax.set_title("Curved paper: seed RK4 against implicit Newton (scene/nodes)")
-    save(fig, "curved_error_time.png")
+    finish(fig, ax, "wall time per solve [s]",
+           "max residual force at the end",
+           "Curved paper: seed RK4 against implicit Newton (scene/nodes)", "curved_error_time.png")
     lines = ["| scene | nodes | newton time | newton residual | rk4 time | rk4 residual | rk4 time / newton |",
              "|---|---|---|---|---|---|---|"]
     for r in steps:
@@ -328,12 +333,9 @@ def chart_curved_speed(tables):
         ax.loglog(v, [1000 / num(r["median_solve_cpu_ms"]) for r in speed], "s--", c="C0", alpha=0.6,
                   label="newton: 1 / median solve (the drag without its snaps)")
         ax.axhline(30, c="k", lw=1, ls=":", label="target: 30 per second at 10,000 vertices")
-        ax.set_xlabel("vertices (grid sheet, seed scene 1's pull, 200 pulls of 1/2000)")
-        ax.set_ylabel("static solves per CPU second (one core)")
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8)
-        ax.set_title("Curved paper dragged by a corner: solves per second against sheet size")
-        save(fig, "curved_speed.png")
+        finish(fig, ax, "vertices (grid sheet, seed scene 1's pull, 200 pulls of 1/2000)",
+               "static solves per CPU second (one core)",
+               "Curved paper dragged by a corner: solves per second against sheet size", "curved_speed.png")
 
     acc = rows("curved_drag_accuracy.csv")
     if acc:
@@ -344,12 +346,9 @@ def chart_curved_speed(tables):
         for r, e, q in zip(acc, errors, rates):
             ax.annotate(f"tolerance {r['tolerance']}", (e, q), textcoords="offset points", xytext=(6, 6), fontsize=8)
         ax.set_ylim(0, max(rates) * 1.25)
-        ax.set_xlabel("median error of a balance (largest node distance to the exact one) / side")
-        ax.set_ylabel("small pulls per CPU second (one core)")
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8)
-        ax.set_title("Curved paper dragged by a corner: speed against accuracy")
-        save(fig, "curved_drag_accuracy.png")
+        finish(fig, ax, "median error of a balance (largest node distance to the exact one) / side",
+               "small pulls per CPU second (one core)",
+               "Curved paper dragged by a corner: speed against accuracy", "curved_drag_accuracy.png")
         lines = ["| vertices | tolerance | solves | converged | solves per CPU second | balances checked | "
                  "median error / side | largest error / side |",
                  "|---|---|---|---|---|---|---|---|"]
@@ -371,13 +370,9 @@ def chart_curved_speed(tables):
         ax.loglog(v, [num(r["rk4_step_cpu_seconds"]) for r in data], "o-", c="C3", label="rk4: one step")
         ax.loglog(v, [num(r["rk4_floor_seconds"]) for r in data], "--", c="C3",
                   label="floor: bytes per step / triad bandwidth")
-        ax.set_xlabel("vertices (grid sheet, seed scene 1's pull)")
-        ax.set_ylabel("CPU seconds (one core)")
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8)
-        ax.set_title("Curved paper: time per step against vertex count (triad %.1f GB/s)"
-                     % (num(data[0]["triad_bytes_per_second"]) / 1e9))
-        save(fig, "curved_scaling.png")
+        finish(fig, ax, "vertices (grid sheet, seed scene 1's pull)", "CPU seconds (one core)",
+               "Curved paper: time per step against vertex count (triad %.1f GB/s)"
+               % (num(data[0]["triad_bytes_per_second"]) / 1e9), "curved_scaling.png")
         lines = ["CPU time of one core (wall time in brackets, shared machine).", "",
                  "| vertices | newton iteration | one CHOLMOD factorisation | ratio | rk4 step | its floor | ratio |",
                  "|---|---|---|---|---|---|---|"]
