@@ -30,140 +30,261 @@ const char* kindName(Operation::Kind kind)
   return "unknown";
 }
 
-Session::Session(Paper initial) { history_.paper = std::move(initial); }
-
-Session::Session(History history) : history_(std::move(history)) {}
-
-void Session::commit(Paper next, Operation operation)
+size_t approximateBytes(const Paper& paper)
 {
-  history_.undo.push_back(std::move(history_.paper));
-  history_.redo.clear();
-  history_.paper = std::move(next);
-  preview_.reset();
-  operation.revision = ++history_.revision;
-  history_.log.push_back(std::move(operation));
+  size_t bytes = sizeof(Paper) + paper.vertices.size() * sizeof(Vertex) + paper.edges.size() * sizeof(Edge) +
+                 paper.face_orders.size() * sizeof(FaceOrder) + paper.faces.size() * sizeof(Face);
+  for (const Face& face : paper.faces)
+    bytes += (face.vertices.size() + face.edges.size()) * sizeof(int);
+  return bytes;
 }
 
-void Session::step(std::vector<Paper>& from, std::vector<Paper>& to, Operation::Kind kind)
+namespace
 {
-  to.push_back(std::move(history_.paper));
-  history_.paper = std::move(from.back());
-  from.pop_back();
-  preview_.reset();
-  Operation op;
-  op.kind = kind;
-  op.revision = ++history_.revision;
-  history_.log.push_back(op);
+Change makeChange(uint64_t base_revision, Operation::Kind kind, std::optional<Paper> next)
+{
+  Change change;
+  change.operation.kind = kind;
+  change.operation.revision = base_revision + 1;
+  change.base_revision = base_revision;
+  change.next = std::move(next);
+  return change;
 }
+}  // namespace
 
-Expected<CreaseResult> Session::crease(const CreaseRequest& request)
+Expected<Computed<CreaseResult>> computeCrease(Workspace workspace, const CreaseRequest& request)
 {
-  Paper next = history_.paper;
-  Expected<CreaseResult> result = core::crease(next, request, snap_settings_);
-  if (result)
-  {
-    Operation op;
-    op.kind = Operation::Kind::Crease;
-    op.crease = request;
-    commit(std::move(next), op);
-  }
-  return result;
-}
-
-Expected<RotateResult> Session::rotate(const RotateRequest& request, bool commit_it)
-{
-  Paper next = history_.paper;
-  Expected<RotateResult> result = core::rotate(next, request, solver_.get(), held_);
+  Expected<CreaseResult> result = core::crease(workspace.paper, request, workspace.snap);
   if (!result)
-    return result;
-  for (int v : held_)
-    if (v >= 0 && v < static_cast<int>(next.vertices.size()) &&
-        (next.vertices[v].folded - history_.paper.vertices[v].folded).norm() > 1e-9 * next.scale())
-      return Expected<RotateResult>::failure("vertex " + std::to_string(v) +
-                                             " is pinned and the rotation would move it; release it first");
-  if (!commit_it)
-  {
-    preview_ = std::move(next);
-    return result;
-  }
-  Operation op;
-  op.kind = Operation::Kind::Rotate;
-  op.rotate = request;
-  op.rotate.face = result->face;
-  op.rotate.axis_edge = result->axis_edge;
-  commit(std::move(next), op);
-  return result;
+    return Expected<Computed<CreaseResult>>::failure(result.message());
+  Change change = makeChange(workspace.revision, Operation::Kind::Crease, std::move(workspace.paper));
+  change.operation.crease = request;
+  return Computed<CreaseResult>{ std::move(*result), std::move(change) };
 }
 
-Expected<SquashResult> Session::squash()
+Expected<Computed<RotateResult>> computeRotate(Workspace workspace, const RotateRequest& request)
 {
-  Paper next = history_.paper;
-  Expected<SquashResult> result = core::squash(next, solver_.get());
-  if (result)
-  {
-    Operation op;
-    op.kind = Operation::Kind::Squash;
-    commit(std::move(next), op);
-  }
-  return result;
+  std::vector<std::pair<int, Vec3>> held_at;
+  for (int v : workspace.held)
+    if (v >= 0 && v < static_cast<int>(workspace.paper.vertices.size()))
+      held_at.emplace_back(v, workspace.paper.vertices[v].folded);
+  Expected<RotateResult> result = core::rotate(workspace.paper, request, workspace.solver.get(), workspace.held);
+  if (!result)
+    return Expected<Computed<RotateResult>>::failure(result.message());
+  for (const auto& [v, at] : held_at)
+    if ((workspace.paper.vertices[v].folded - at).norm() > 1e-9 * workspace.paper.scale())
+      return Expected<Computed<RotateResult>>::failure("vertex " + std::to_string(v) +
+                                                       " is pinned and the rotation would move it; release it first");
+  Change change = makeChange(workspace.revision, Operation::Kind::Rotate, std::move(workspace.paper));
+  change.operation.rotate = request;
+  change.operation.rotate.face = result->face;
+  change.operation.rotate.axis_edge = result->axis_edge;
+  return Computed<RotateResult>{ std::move(*result), std::move(change) };
 }
 
-Status Session::undo()
+Expected<Computed<SquashResult>> computeSquash(Workspace workspace)
 {
-  if (history_.undo.empty())
-    return failure("nothing to undo");
-  step(history_.undo, history_.redo, Operation::Kind::Undo);
-  return success();
+  Expected<SquashResult> result = core::squash(workspace.paper, workspace.solver.get());
+  if (!result)
+    return Expected<Computed<SquashResult>>::failure(result.message());
+  return Computed<SquashResult>{ std::move(*result),
+                                 makeChange(workspace.revision, Operation::Kind::Squash, std::move(workspace.paper)) };
 }
 
-Status Session::redo()
+Expected<Computed<PullResult>> computePull(Workspace workspace, const std::vector<PullTarget>& targets)
 {
-  if (history_.redo.empty())
-    return failure("nothing to redo");
-  step(history_.redo, history_.undo, Operation::Kind::Redo);
-  return success();
+  // A pull of nothing would make a new revision of the same state.
+  if (targets.empty())
+    return Expected<Computed<PullResult>>::failure("pull needs at least one vertex to pull");
+  Expected<PullResult> result = core::pull(workspace.paper, targets, workspace.solver.get(), workspace.held);
+  if (!result)
+    return Expected<Computed<PullResult>>::failure(result.message());
+  Change change = makeChange(workspace.revision, Operation::Kind::Pull, std::move(workspace.paper));
+  change.operation.pull = targets;
+  return Computed<PullResult>{ std::move(*result), std::move(change) };
 }
 
-Status Session::reset(double size)
+Expected<Change> computeReset(uint64_t base_revision, double size)
 {
   // Tolerances are relative to the sheet's scale and its area is size²: keep both far from
   // overflow and underflow (a size of 1e308 made an infinite area, found by fuzzing).
   if (!(size >= kMinSheetSize && size <= kMaxSheetSize))
-    return failure("the sheet size must be a number between 1e-6 and 1e6 m");
-  Operation op;
-  op.kind = Operation::Kind::Reset;
-  op.size = size;
-  commit(Paper::square(size), op);
+    return Expected<Change>::failure("the sheet size must be a number between 1e-6 and 1e6 m");
+  Change change = makeChange(base_revision, Operation::Kind::Reset, Paper::square(size));
+  change.operation.size = size;
+  return change;
+}
+
+Expected<Change> computeLoad(uint64_t base_revision, Paper paper, const std::string& path)
+{
+  const double side = std::sqrt(paper.sheet_area);
+  if (!(side >= kMinSheetSize && side <= kMaxSheetSize))
+    return Expected<Change>::failure("the model in " + path + " is not a sheet between 1e-6 and 1e6 m across");
+  const ValidityReport report = checkValidity(paper, { 1e-4, 1e-6, 1e-12 });
+  if (!report.ok())
+    return Expected<Change>::failure("the model in " + path + " is not valid: " + report.problems.front());
+  Change change = makeChange(base_revision, Operation::Kind::Load, std::move(paper));
+  change.operation.path = path;
+  return change;
+}
+
+Session::Session(Paper initial) { history_.paper = std::move(initial); }
+
+Session::Session(History history) : history_(std::move(history))
+{
+  for (const Paper& p : history_.undo)
+    history_bytes_ += approximateBytes(p);
+  for (const Paper& p : history_.redo)
+    history_bytes_ += approximateBytes(p);
+}
+
+Workspace Session::workspace() const
+{
+  return Workspace{ history_.paper, history_.revision, solver_, snap_settings_, held_ };
+}
+
+Expected<Change> Session::prepareUndo() const
+{
+  if (history_.undo.empty())
+    return Expected<Change>::failure(forgotten_ > 0 ? "nothing more to undo (older states were forgotten to stay "
+                                                      "within the history's memory limit)" :
+                                                      "nothing to undo");
+  return makeChange(history_.revision, Operation::Kind::Undo, std::nullopt);
+}
+
+Expected<Change> Session::prepareRedo() const
+{
+  if (history_.redo.empty())
+    return Expected<Change>::failure("nothing to redo");
+  return makeChange(history_.revision, Operation::Kind::Redo, std::nullopt);
+}
+
+Status Session::commit(Change change)
+{
+  if (change.base_revision != history_.revision)
+    return failure("the model changed (revision " + std::to_string(change.base_revision) + " to " +
+                   std::to_string(history_.revision) + ") while this was computed; try again");
+  const Operation::Kind kind = change.operation.kind;
+  if (kind == Operation::Kind::Undo || kind == Operation::Kind::Redo)
+  {
+    std::vector<Paper>& from = kind == Operation::Kind::Undo ? history_.undo : history_.redo;
+    std::vector<Paper>& to = kind == Operation::Kind::Undo ? history_.redo : history_.undo;
+    if (from.empty())
+      return failure(std::string("nothing to ") + kindName(kind));
+    history_bytes_ += approximateBytes(history_.paper);
+    history_bytes_ -= approximateBytes(from.back());
+    to.push_back(std::move(history_.paper));
+    history_.paper = std::move(from.back());
+    from.pop_back();
+  }
+  else
+  {
+    if (!change.next)
+      return failure(std::string("a ") + kindName(kind) + " without the state it makes");
+    for (const Paper& p : history_.redo)
+      history_bytes_ -= approximateBytes(p);
+    history_.redo.clear();
+    history_bytes_ += approximateBytes(history_.paper);
+    history_.undo.push_back(std::move(history_.paper));
+    history_.paper = std::move(*change.next);
+  }
+  preview_.reset();
+  change.operation.revision = ++history_.revision;
+  history_.log.push_back(std::move(change.operation));
+  // Undo and redo only move states between the two stacks: trimming then would forget states
+  // a user is stepping through.
+  if (kind != Operation::Kind::Undo && kind != Operation::Kind::Redo)
+    trimHistory();
   return success();
+}
+
+bool Session::setPreview(Change change)
+{
+  if (change.base_revision != history_.revision || !change.next)
+    return false;
+  preview_ = std::move(change.next);
+  return true;
+}
+
+void Session::setHistoryLimit(size_t bytes)
+{
+  history_limit_ = bytes;
+  trimHistory();
+}
+
+void Session::trimHistory()
+{
+  // Redo states are the newest undone ones: the oldest undo states go first.
+  size_t drop = 0;
+  while (history_limit_ > 0 && drop < history_.undo.size() && history_bytes_ > history_limit_)
+    history_bytes_ -= approximateBytes(history_.undo[drop++]);
+  if (drop == 0)
+    return;
+  history_.undo.erase(history_.undo.begin(), history_.undo.begin() + static_cast<std::ptrdiff_t>(drop));
+  forgotten_ += drop;
+}
+
+Expected<CreaseResult> Session::crease(const CreaseRequest& request)
+{
+  auto computed = computeCrease(workspace(), request);
+  if (!computed)
+    return Expected<CreaseResult>::failure(computed.message());
+  commit(std::move(computed->change));
+  return std::move(computed->result);
+}
+
+Expected<RotateResult> Session::rotate(const RotateRequest& request, bool commit_it)
+{
+  auto computed = computeRotate(workspace(), request);
+  if (!computed)
+    return Expected<RotateResult>::failure(computed.message());
+  if (commit_it)
+    commit(std::move(computed->change));
+  else
+    setPreview(std::move(computed->change));
+  return std::move(computed->result);
+}
+
+Expected<SquashResult> Session::squash()
+{
+  auto computed = computeSquash(workspace());
+  if (!computed)
+    return Expected<SquashResult>::failure(computed.message());
+  commit(std::move(computed->change));
+  return std::move(computed->result);
+}
+
+Status Session::undo()
+{
+  const Expected<Change> change = prepareUndo();
+  return change ? commit(*change) : failure(change.message());
+}
+
+Status Session::redo()
+{
+  const Expected<Change> change = prepareRedo();
+  return change ? commit(*change) : failure(change.message());
+}
+
+Status Session::reset(double size)
+{
+  Expected<Change> change = computeReset(history_.revision, size);
+  return change ? commit(std::move(*change)) : failure(change.message());
 }
 
 Status Session::load(Paper paper, const std::string& path)
 {
-  const double side = std::sqrt(paper.sheet_area);
-  if (!(side >= kMinSheetSize && side <= kMaxSheetSize))
-    return failure("the model in " + path + " is not a sheet between 1e-6 and 1e6 m across");
-  const ValidityReport report = checkValidity(paper, { 1e-4, 1e-6, 1e-12 });
-  if (!report.ok())
-    return failure("the model in " + path + " is not valid: " + report.problems.front());
-  Operation op;
-  op.kind = Operation::Kind::Load;
-  op.path = path;
-  commit(std::move(paper), op);
-  return success();
+  Expected<Change> change = computeLoad(history_.revision, std::move(paper), path);
+  return change ? commit(std::move(*change)) : failure(change.message());
 }
 
 Expected<PullResult> Session::pull(const std::vector<PullTarget>& targets)
 {
-  Paper next = history_.paper;
-  Expected<PullResult> result = core::pull(next, targets, solver_.get(), held_);
-  if (result)
-  {
-    Operation op;
-    op.kind = Operation::Kind::Pull;
-    op.pull = targets;
-    commit(std::move(next), op);
-  }
-  return result;
+  auto computed = computePull(workspace(), targets);
+  if (!computed)
+    return Expected<PullResult>::failure(computed.message());
+  commit(std::move(computed->change));
+  return std::move(computed->result);
 }
 
 Status Session::apply(const Operation& operation)

@@ -159,3 +159,79 @@ TEST(Session, InvariantsHoldAfterThousandsOfRandomCreasesAndRotations)
   RecordProperty("rotations", rotations);
   RecordProperty("refused", refused);
 }
+
+TEST(Session, AChangeComputedFromAnOlderRevisionIsRefused)
+{
+  Session session;
+  CreaseRequest diagonal;
+  diagonal.start = p3(0, 0);
+  diagonal.end = p3(1, 1);
+  auto first = computeCrease(session.workspace(), diagonal);
+  ASSERT_TRUE(first) << first.message();
+  CreaseRequest other;
+  other.start = p3(0, 1);
+  other.end = p3(1, 0);
+  auto second = computeCrease(session.workspace(), other);  // from the same revision
+  ASSERT_TRUE(second) << second.message();
+  EXPECT_EQ(first->change.operation.revision, 1u);
+  ASSERT_TRUE(session.commit(std::move(first->change)));
+  const Paper after_first = session.paper();
+  const Status stale = session.commit(std::move(second->change));
+  EXPECT_FALSE(stale);
+  EXPECT_FALSE(stale.message().empty());
+  EXPECT_EQ(session.revision(), 1u);
+  EXPECT_EQ(session.log().size(), 1u);
+  EXPECT_TRUE(session.paper() == after_first);
+  // A preview computed before a commit is not shown after it.
+  auto preview = computeCrease(session.workspace(), other);
+  ASSERT_TRUE(preview);
+  ASSERT_TRUE(session.undo());
+  EXPECT_FALSE(session.setPreview(std::move(preview->change)));
+  EXPECT_FALSE(session.preview().has_value());
+}
+
+TEST(Session, APullOfNothingIsRefused)
+{
+  Session session;
+  EXPECT_FALSE(session.pull({}));
+  EXPECT_EQ(session.revision(), 0u);
+  EXPECT_TRUE(session.log().empty());
+}
+
+TEST(Session, TheHistoryStaysWithinItsMemoryLimitOldestFirst)
+{
+  Session session;
+  std::vector<Paper> states{ session.paper() };
+  for (int i = 1; i <= 8; ++i)
+  {
+    CreaseRequest line;
+    line.start = p3(i / 9.0, -0.1);
+    line.end = p3(i / 9.0, 1.1);
+    ASSERT_TRUE(session.crease(line));
+    states.push_back(session.paper());
+  }
+  size_t all = 0;
+  for (size_t i = 0; i + 1 < states.size(); ++i)
+    all += approximateBytes(states[i]);
+  EXPECT_EQ(session.historyBytes(), all);
+  // Room for the three newest undo states only.
+  const size_t three = approximateBytes(states[5]) + approximateBytes(states[6]) + approximateBytes(states[7]);
+  session.setHistoryLimit(three);
+  EXPECT_EQ(session.forgottenStates(), 5u);
+  EXPECT_LE(session.historyBytes(), three);
+  for (int back = 7; back >= 5; --back)
+  {
+    ASSERT_TRUE(session.undo());
+    EXPECT_TRUE(session.paper() == states[back]);
+  }
+  const Status none = session.undo();
+  EXPECT_FALSE(none);
+  EXPECT_NE(none.message().find("memory"), std::string::npos) << none.message();
+  // Redo still reaches the newest state, and the log keeps every operation.
+  for (int forward = 6; forward <= 8; ++forward)
+  {
+    ASSERT_TRUE(session.redo());
+    EXPECT_TRUE(session.paper() == states[forward]);
+  }
+  EXPECT_EQ(session.log().size(), 8u + 3u + 3u);
+}

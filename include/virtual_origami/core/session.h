@@ -56,6 +56,46 @@ struct History
   std::vector<Operation> log;
 };
 
+/// A change computed away from the session, committed only onto the revision it started from:
+/// a node computes solver-bound changes outside its lock and journals them before committing.
+struct Change
+{
+  Operation operation;        // with the revision it will produce
+  std::optional<Paper> next;  // the state it makes; none for undo and redo
+  uint64_t base_revision = 0;
+};
+
+/// A computed operation: what it reports and the change it makes.
+template <class Result>
+struct Computed
+{
+  Result result;
+  Change change;
+};
+
+/// What computing an operation needs, copied out of a session (so that the computation may
+/// run while the session serves others).
+struct Workspace
+{
+  Paper paper;
+  uint64_t revision = 0;
+  std::shared_ptr<ShapeSolver> solver;
+  SnapSettings snap;
+  std::vector<int> held;
+};
+
+/// The operations as functions of a workspace; none touches a session. A rotation's change is
+/// its preview too.
+Expected<Computed<CreaseResult>> computeCrease(Workspace workspace, const CreaseRequest& request);
+Expected<Computed<RotateResult>> computeRotate(Workspace workspace, const RotateRequest& request);
+Expected<Computed<SquashResult>> computeSquash(Workspace workspace);
+Expected<Computed<PullResult>> computePull(Workspace workspace, const std::vector<PullTarget>& targets);
+Expected<Change> computeReset(uint64_t base_revision, double size);
+Expected<Change> computeLoad(uint64_t base_revision, Paper paper, const std::string& path);
+
+/// Approximate heap bytes a paper holds (the history's memory is counted with it).
+size_t approximateBytes(const Paper& paper);
+
 /// Every change is a transaction: it succeeds fully and gets a new revision and a history
 /// entry, or fails with a message and leaves the paper and the revision as they were.
 class Session
@@ -95,15 +135,35 @@ public:
   /// Applies a logged operation again (its parameters as logged).
   Status apply(const Operation& operation);
 
+  /// A copy of what computing an operation needs.
+  Workspace workspace() const;
+  Expected<Change> prepareUndo() const;
+  Expected<Change> prepareRedo() const;
+  /// Commits a computed change; refused (nothing changed) when the session has moved on from
+  /// the revision the change was computed from.
+  Status commit(Change change);
+  /// Shows a computed rotation as the preview, unless the session has moved on since.
+  bool setPreview(Change change);
+
+  /// Undo states beyond this many bytes (with the current state's) are forgotten, oldest first;
+  /// 0: no limit. The operation log and the journal keep every operation all the same.
+  void setHistoryLimit(size_t bytes);
+  /// Bytes the undo and redo states hold, and how many undo states the limit has dropped.
+  size_t historyBytes() const { return history_bytes_; }
+  size_t forgottenStates() const { return forgotten_; }
+
 private:
-  void commit(Paper next, Operation operation);
-  void step(std::vector<Paper>& from, std::vector<Paper>& to, Operation::Kind kind);
+  void trimHistory();
+
 
   History history_;
   std::optional<Paper> preview_;
   std::shared_ptr<ShapeSolver> solver_;
   SnapSettings snap_settings_;
   std::vector<int> held_;
+  size_t history_limit_ = 0;
+  size_t history_bytes_ = 0;  // of history_.undo and history_.redo
+  size_t forgotten_ = 0;
 };
 
 }  // namespace virtual_origami::core
