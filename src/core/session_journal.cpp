@@ -294,6 +294,10 @@ std::string readEvent(const std::string& line, bool torn, History& history)
   return "";
 }
 
+/// One line of the journal. A string that is not UTF-8 (a loaded file's name) makes dump()
+/// throw; its bad bytes are replaced instead, the event is worth more than the exact name.
+std::string journalLine(const json& j) { return j.dump(-1, ' ', false, json::error_handler_t::replace) + '\n'; }
+
 /// Writes all of `data`, going on after short writes and signals; false with `error` set if not.
 bool writeAll(int fd, const std::string& data, int& error)
 {
@@ -384,7 +388,7 @@ Status SessionJournal::start(const std::string& path, const Session& session, co
                { "log", log } };
   if (!run_id.empty())
     header["run_id"] = run_id;
-  const std::string line = header.dump() + '\n';
+  const std::string line = journalLine(header);
 
   // The new journal is written beside the old one and renamed over it: a crash while the
   // header is written (it holds the whole history) must not leave a truncated journal and
@@ -453,7 +457,7 @@ Status SessionJournal::append(const Operation& op, const Paper* state_after)
   json event{ { "operation", operationToJson(op) } };
   if (!step)
     event["paper"] = paperToJson(*state_after);
-  const Status written = writeEvent(event.dump() + '\n');
+  const Status written = writeEvent(journalLine(event));
   if (!written)
     return written;
   if (op.kind == Operation::Kind::Undo)

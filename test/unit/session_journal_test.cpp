@@ -609,3 +609,19 @@ TEST(SessionJournal, ABadHeaderRecoversNothing)
   EXPECT_FALSE(recoverJournal(path).ok());
   std::filesystem::remove(path);
 }
+
+TEST(SessionJournal, ALoadedFileNameThatIsNotUtf8IsJournaledNotThrown)
+{
+  const std::string path = tempPath("utf8");
+  SessionJournal journal;
+  Session session;
+  ASSERT_TRUE(journal.start(path, session).ok());
+  ASSERT_TRUE(session.load(Paper::square(1.0), "/tmp/\xff\xfe.fold").ok());
+  const Status recorded = journal.record(session);  // nlohmann's dump() threw on the name
+  ASSERT_TRUE(recorded.ok()) << recorded.message();
+  const Expected<JournalRecovery> read = recoverJournal(path);
+  ASSERT_TRUE(read.ok()) << read.message();
+  EXPECT_TRUE(read->dropped.empty());
+  EXPECT_TRUE(read->history.paper == session.paper());
+  std::filesystem::remove(path);
+}
