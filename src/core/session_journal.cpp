@@ -1,12 +1,20 @@
 #include "virtual_origami/core/session_journal.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <limits>
-#include <sstream>
 #include <stdexcept>
 #include <type_traits>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -215,7 +223,7 @@ Status readPapers(const json& list, std::vector<Paper>& papers)
 
 Status readHeader(const json& j, History& history)
 {
-  if (j.value("journal", "") != "virtual_origami session")
+  if (!j.is_object() || j.value("journal", "") != "virtual_origami session")
     return failure("not a virtual_origami journal header");
   try
   {
@@ -241,6 +249,89 @@ Status readHeader(const json& j, History& history)
 }
 
 bool stepsThroughHistory(Operation::Kind kind) { return kind == Operation::Kind::Undo || kind == Operation::Kind::Redo; }
+
+/// Why `line`, an event after the header, cannot go on `history`; empty when it can, and then
+/// `history` has it. `torn`: the line lacks its newline.
+std::string readEvent(const std::string& line, bool torn, History& history)
+{
+  if (torn)
+    return "torn (a write cut short)";
+  const json j = json::parse(line, nullptr, false);
+  if (j.is_discarded())
+    return line.empty() ? "empty" : "not JSON";
+  if (!j.is_object() || !j.contains("operation"))
+    return "no operation";
+  Expected<Operation> op = operationFromJson(j["operation"]);
+  if (!op)
+    return op.message();
+  // The session numbers every commit, undo and redo one past the last (session.cpp), and the
+  // header's revision is the last of its log: a gap or repeat means lost or replayed events.
+  if (history.revision == std::numeric_limits<uint64_t>::max() || op->revision != history.revision + 1)
+    return "revision " + std::to_string(op->revision) + " does not follow revision " + std::to_string(history.revision);
+  if (stepsThroughHistory(op->kind))
+  {
+    auto& from = op->kind == Operation::Kind::Undo ? history.undo : history.redo;
+    auto& to = op->kind == Operation::Kind::Undo ? history.redo : history.undo;
+    if (from.empty())
+      return std::string("nothing to ") + kindName(op->kind);
+    to.push_back(std::move(history.paper));
+    history.paper = std::move(from.back());
+    from.pop_back();
+  }
+  else
+  {
+    if (!j.contains("paper"))
+      return "a commit without its state";
+    Expected<Paper> paper = paperFromJson(j["paper"]);
+    if (!paper)
+      return paper.message();
+    history.undo.push_back(std::move(history.paper));
+    history.redo.clear();
+    history.paper = std::move(*paper);
+  }
+  history.revision = op->revision;
+  history.log.push_back(std::move(*op));
+  return "";
+}
+
+/// One line of the journal. A string that is not UTF-8 (a loaded file's name) makes dump()
+/// throw; its bad bytes are replaced instead, the event is worth more than the exact name.
+std::string journalLine(const json& j) { return j.dump(-1, ' ', false, json::error_handler_t::replace) + '\n'; }
+
+/// Writes all of `data`, going on after short writes and signals; false with `error` set if not.
+bool writeAll(int fd, const std::string& data, int& error)
+{
+  for (size_t done = 0; done < data.size();)
+  {
+    const ssize_t n = ::write(fd, data.data() + done, data.size() - done);
+    if (n < 0 && errno == EINTR)
+      continue;
+    if (n <= 0)
+    {
+      error = n < 0 ? errno : EIO;
+      return false;
+    }
+    done += static_cast<size_t>(n);
+  }
+  return true;
+}
+
+/// A rename is on disk only once the folder holding it is synced.
+bool syncFolderOf(const std::string& path, int& error)
+{
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  const int fd = ::open(folder.empty() ? "." : folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0)
+  {
+    error = errno;
+    return false;
+  }
+  // Some file systems cannot sync a folder (EINVAL); theirs is as durable as it gets.
+  const bool synced = ::fsync(fd) == 0 || errno == EINVAL;
+  error = errno;
+  ::close(fd);
+  return synced;
+}
 }  // namespace
 
 std::string formatPaperJson(const Paper& paper) { return paperToJson(paper).dump(); }
@@ -253,18 +344,32 @@ Expected<Paper> parsePaperJson(const std::string& text)
   return paperFromJson(j);
 }
 
-Status SessionJournal::start(const std::string& path, const Session& session)
+SessionJournal::Descriptor& SessionJournal::Descriptor::operator=(Descriptor&& other) noexcept
 {
-  out_.close();
-  out_.clear();
-  // The new journal is written beside the old one and renamed over it: a crash while the
-  // header is written (it holds the whole history) must not leave a truncated journal and
-  // lose the session. paper_model starts one on every (re)start. Found by killing it -9.
-  const std::string temporary = path + ".tmp";
-  out_.open(temporary, std::ios::out | std::ios::trunc);
-  if (!out_)
-    return failure("cannot write the journal " + temporary + ": " + std::strerror(errno));
-  path_ = temporary;
+  if (this != &other)
+  {
+    reset();
+    fd_ = other.release();
+  }
+  return *this;
+}
+
+int SessionJournal::Descriptor::release() { return std::exchange(fd_, -1); }
+
+void SessionJournal::Descriptor::reset()
+{
+  if (fd_ >= 0)
+    ::close(fd_);
+  fd_ = -1;
+}
+
+Status SessionJournal::start(const std::string& path, const Session& session, const std::string& run_id)
+{
+  file_.reset();
+  healthy_ = false;
+  // Kept even when starting fails: the next append starts again at the same place.
+  path_ = path;
+  run_id_ = run_id;
   // The header holds the whole history so far; events follow it.
   const History& h = session.history();
   json undo = json::array(), redo = json::array(), log = json::array();
@@ -274,122 +379,290 @@ Status SessionJournal::start(const std::string& path, const Session& session)
     redo.push_back(paperToJson(p));
   for (const Operation& op : h.log)
     log.push_back(operationToJson(op));
-  recorded_ = h.log.size();
-  const Status written = writeLine(json{ { "journal", "virtual_origami session" },
-                                         { "version", 1 },
-                                         { "paper", paperToJson(h.paper) },
-                                         { "revision", h.revision },
-                                         { "undo", undo },
-                                         { "redo", redo },
-                                         { "log", log } }
-                                       .dump());
-  out_.close();
-  if (!written || !out_ || std::rename(temporary.c_str(), path.c_str()) != 0)
+  json header{ { "journal", "virtual_origami session" },
+               { "version", 1 },
+               { "paper", paperToJson(h.paper) },
+               { "revision", h.revision },
+               { "undo", undo },
+               { "redo", redo },
+               { "log", log } };
+  if (!run_id.empty())
+    header["run_id"] = run_id;
+  const std::string line = journalLine(header);
+
+  // The new journal is written beside the old one and renamed over it: a crash while the
+  // header is written (it holds the whole history) must not leave a truncated journal and
+  // lose the session. paper_model starts one on every (re)start. Found by killing it -9.
+  // The name is new each time and opened exclusively without following links, so neither
+  // a stale file nor a link planted at that name is written through.
+  std::string temporary;
+  Descriptor file;
+  int error = 0;
+  for (unsigned attempt = 0; file.get() < 0 && attempt < 1000; ++attempt)
   {
-    const std::string reason = written ? std::strerror(errno) : written.message();
-    std::remove(temporary.c_str());
-    return failure("cannot write the journal " + path + ": " + reason);
+    temporary = path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(attempt);
+    const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+    error = errno;
+    file = Descriptor(fd);
+    if (fd < 0 && error != EEXIST)
+      break;
   }
-  path_ = path;
-  out_.clear();
-  out_.open(path, std::ios::out | std::ios::app);
-  if (!out_)
-    return failure("cannot append to the journal " + path + ": " + std::strerror(errno));
+  if (file.get() < 0)
+    return fail("cannot write the journal " + path + ": cannot create " + temporary + ": " + std::strerror(error));
+  const auto discard = [&](const std::string& what, int why) {
+    ::unlink(temporary.c_str());
+    return fail("cannot write the journal " + path + ": " + what + ": " + std::strerror(why));
+  };
+  if (!writeAll(file.get(), line, error))
+    return discard("writing " + temporary, error);
+  // Synced before the rename: a rename that reaches the disk before the data would leave an
+  // empty journal after a power cut.
+  if (::fsync(file.get()) != 0)
+    return discard("syncing " + temporary, errno);
+  if (::rename(temporary.c_str(), path.c_str()) != 0)
+    return discard("renaming " + temporary + " over it", errno);
+  if (!syncFolderOf(path, error))
+    return fail("cannot write the journal " + path + ": syncing its folder: " + std::strerror(error));
+
+  // The descriptor now names the journal itself; events are written after the header.
+  file_ = std::move(file);
+  written_ = line.size();
+  recorded_ = h.log.size();
+  revision_ = h.revision;
+  undo_depth_ = h.undo.size();
+  redo_depth_ = h.redo.size();
+  failure_.clear();
+  healthy_ = true;
   return success();
+}
+
+Status SessionJournal::append(const Operation& op, const Paper* state_after)
+{
+  if (!healthy_)
+    return failure("the journal " + path_ + " takes no event until it is started again: " +
+                   (failure_.empty() ? std::string("it was never started") : failure_));
+  // The journal refuses what its reader would drop, so that what it acknowledged is read back.
+  const bool step = stepsThroughHistory(op.kind);
+  if (step != (state_after == nullptr))
+    return failure(std::string("a journaled ") + kindName(op.kind) +
+                   (step ? " carries no state" : " must carry the state it makes"));
+  if (op.revision != revision_ + 1 || revision_ == std::numeric_limits<uint64_t>::max())
+    return failure("a journaled " + std::string(kindName(op.kind)) + " has revision " + std::to_string(op.revision) +
+                   "; the journal is at revision " + std::to_string(revision_));
+  if (op.kind == Operation::Kind::Undo && undo_depth_ == 0)
+    return failure("the journal has nothing to undo");
+  if (op.kind == Operation::Kind::Redo && redo_depth_ == 0)
+    return failure("the journal has nothing to redo");
+
+  json event{ { "operation", operationToJson(op) } };
+  if (!step)
+    event["paper"] = paperToJson(*state_after);
+  const Status written = writeEvent(journalLine(event));
+  if (!written)
+    return written;
+  if (op.kind == Operation::Kind::Undo)
+  {
+    --undo_depth_;
+    ++redo_depth_;
+  }
+  else if (op.kind == Operation::Kind::Redo)
+  {
+    --redo_depth_;
+    ++undo_depth_;
+  }
+  else
+  {
+    ++undo_depth_;
+    redo_depth_ = 0;
+  }
+  revision_ = op.revision;
+  ++recorded_;
+  return success();
+}
+
+Status SessionJournal::append(const Session& before, const Operation& op, const Paper* state_after)
+{
+  if (path_.empty())
+    return failure("the journal was never started");
+  if (!healthy_ || !inStepWith(before))
+  {
+    // Starting again replaces the file, torn line and all, by the session as it is.
+    const Status started = start(path_, before, run_id_);
+    if (!started)
+      return started;
+  }
+  return append(op, state_after);
 }
 
 Status SessionJournal::record(const Session& session)
 {
+  if (path_.empty())
+    return failure("the journal was never started");
   const History& h = session.history();
-  for (; recorded_ < h.log.size(); ++recorded_)
+  if (!healthy_ || !canCatchUp(h))
+    return start(path_, session, run_id_);
+  while (recorded_ < h.log.size())
   {
     const Operation& op = h.log[recorded_];
-    json event{ { "operation", operationToJson(op) } };
-    // Only the newest commit's state is at hand; replay needs every commit's, so the
-    // journal must be recorded after each operation (the node does).
-    if (!stepsThroughHistory(op.kind))
-    {
-      if (recorded_ + 1 != h.log.size())
-        return failure("the journal fell behind the session: record after every operation");
-      event["paper"] = paperToJson(h.paper);
-    }
-    const Status written = writeLine(event.dump());
-    if (!written)
-      return written;
+    // Only the newest commit's state is at hand (canCatchUp saw that any commit is the last).
+    const Status appended = append(op, stepsThroughHistory(op.kind) ? nullptr : &h.paper);
+    if (!appended)
+      return appended;
   }
   return success();
 }
 
-Status SessionJournal::writeLine(const std::string& line)
+bool SessionJournal::inStepWith(const Session& session) const
 {
-  out_ << line << '\n';
-  out_.flush();
-  if (!out_)
-    return failure("cannot write the journal " + path_ + ": " + std::strerror(errno));
+  const History& h = session.history();
+  return revision_ == h.revision && recorded_ == h.log.size() && undo_depth_ == h.undo.size() &&
+         redo_depth_ == h.redo.size();
+}
+
+bool SessionJournal::canCatchUp(const History& h) const
+{
+  if (recorded_ > h.log.size())
+    return false;
+  uint64_t revision = revision_;
+  size_t undo = undo_depth_, redo = redo_depth_;
+  for (size_t i = recorded_; i < h.log.size(); ++i)
+  {
+    const Operation& op = h.log[i];
+    if (op.revision != revision + 1)
+      return false;
+    revision = op.revision;
+    if (op.kind == Operation::Kind::Undo || op.kind == Operation::Kind::Redo)
+    {
+      size_t& from = op.kind == Operation::Kind::Undo ? undo : redo;
+      size_t& to = op.kind == Operation::Kind::Undo ? redo : undo;
+      if (from == 0)
+        return false;
+      --from;
+      ++to;
+    }
+    else
+    {
+      if (i + 1 != h.log.size())
+        return false;  // an earlier commit's state is gone: only the whole history will do
+      ++undo;
+      redo = 0;
+    }
+  }
+  return revision == h.revision && undo == h.undo.size() && redo == h.redo.size();
+}
+
+Status SessionJournal::writeEvent(const std::string& line)
+{
+  int error = 0;
+  if (!writeAll(file_.get(), line, error))
+    return fail("cannot write the journal " + path_ + ": " + std::strerror(error));
+  if (sync_ && ::fsync(file_.get()) != 0)
+    return fail("cannot sync the journal " + path_ + ": " + std::strerror(errno));
+  written_ += line.size();
   return success();
+}
+
+Status SessionJournal::fail(const std::string& message)
+{
+  // Cut a torn line off if the disk still lets us; if it does not, the file is closed so
+  // nothing is ever appended after it, and the reader drops it.
+  if (healthy_ && file_.get() >= 0 && ::ftruncate(file_.get(), static_cast<off_t>(written_)) == 0 && sync_)
+    ::fsync(file_.get());
+  file_.reset();
+  healthy_ = false;
+  failure_ = message;
+  return failure(message);
+}
+
+Expected<JournalRecovery> recoverJournal(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    return Expected<JournalRecovery>::failure("cannot open the journal " + path + ": " + std::strerror(errno));
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad())
+    return Expected<JournalRecovery>::failure("cannot read the journal " + path + ": " + std::strerror(errno));
+  // Every line the journal writes ends in a newline; the last without one was cut short by
+  // a crash or a failed write and never acknowledged.
+  std::vector<std::string> lines;
+  bool last_is_torn = false;
+  for (size_t begin = 0; begin < text.size();)
+  {
+    const size_t end = text.find('\n', begin);
+    if (end == std::string::npos)
+    {
+      lines.push_back(text.substr(begin));
+      last_is_torn = true;
+      break;
+    }
+    lines.push_back(text.substr(begin, end - begin));
+    begin = end + 1;
+  }
+  if (lines.empty())
+    return Expected<JournalRecovery>::failure("the journal " + path + " is empty");
+
+  JournalRecovery recovery;
+  History& history = recovery.history;
+  {
+    const auto fail = [&](const std::string& why) {
+      return Expected<JournalRecovery>::failure("journal " + path + " line 1: " + why);
+    };
+    const json header = json::parse(lines[0], nullptr, false);
+    if (header.is_discarded())
+      return fail("not JSON");
+    const Status read = readHeader(header, history);
+    if (!read)
+      return fail(read.message());
+    if (header.contains("run_id"))
+    {
+      if (!header["run_id"].is_string())
+        return fail("run_id is not a string");
+      recovery.run_id = header["run_id"].get<std::string>();
+    }
+  }
+  recovery.lines_read = 1;
+
+  for (size_t i = 1; i < lines.size(); ++i)
+  {
+    const std::string why = readEvent(lines[i], i + 1 == lines.size() && last_is_torn, history);
+    if (!why.empty())
+    {
+      const size_t first = i + 1, last = lines.size(), count = last - first + 1;
+      recovery.dropped.push_back("line " + std::to_string(first) + ": " + why + "; dropped " +
+                                 (count == 1 ? "line " + std::to_string(first)
+                                             : "lines " + std::to_string(first) + "\u2013" + std::to_string(last)) +
+                                 " (" + std::to_string(count) + (count == 1 ? " line)" : " lines)"));
+      break;
+    }
+    ++recovery.lines_read;
+  }
+  return recovery;
 }
 
 Expected<History> readJournal(const std::string& path)
 {
-  std::ifstream in(path);
-  if (!in)
-    return Expected<History>::failure("cannot open the journal " + path + ": " + std::strerror(errno));
-  std::vector<std::string> lines;
-  for (std::string line; std::getline(in, line);)
-    if (!line.empty())
-      lines.push_back(line);
-  if (lines.empty())
-    return Expected<History>::failure("the journal " + path + " is empty");
-  History history;
-  for (size_t i = 0; i < lines.size(); ++i)
-  {
-    const auto fail = [&](const std::string& why) {
-      return Expected<History>::failure("journal " + path + " line " + std::to_string(i + 1) + ": " + why);
-    };
-    const json j = json::parse(lines[i], nullptr, false);
-    if (j.is_discarded())
-    {
-      if (i + 1 == lines.size() && i > 0)
-        break;  // torn by a crash mid-write: everything before it stands
-      return fail("not JSON");
-    }
-    if (i == 0)
-    {
-      const Status header = readHeader(j, history);
-      if (!header)
-        return fail(header.message());
-      continue;
-    }
-    if (!j.contains("operation"))
-      return fail("no operation");
-    const Expected<Operation> op = operationFromJson(j["operation"]);
-    if (!op)
-      return fail(op.message());
-    if (op->kind == Operation::Kind::Undo || op->kind == Operation::Kind::Redo)
-    {
-      auto& from = op->kind == Operation::Kind::Undo ? history.undo : history.redo;
-      auto& to = op->kind == Operation::Kind::Undo ? history.redo : history.undo;
-      if (from.empty())
-        return fail(std::string("nothing to ") + kindName(op->kind));
-      to.push_back(std::move(history.paper));
-      history.paper = std::move(from.back());
-      from.pop_back();
-    }
-    else
-    {
-      if (!j.contains("paper"))
-        return fail("a commit without its state");
-      Expected<Paper> paper = paperFromJson(j["paper"]);
-      if (!paper)
-        return fail(paper.message());
-      history.undo.push_back(std::move(history.paper));
-      history.redo.clear();
-      history.paper = std::move(*paper);
-    }
-    history.revision = op->revision;
-    history.log.push_back(*op);
-  }
-  return history;
+  Expected<JournalRecovery> recovery = recoverJournal(path);
+  if (!recovery)
+    return Expected<History>::failure(recovery.message());
+  return std::move(recovery->history);
+}
+
+std::string keepAsideName(const std::string& path)
+{
+  timespec now{};
+  ::clock_gettime(CLOCK_REALTIME, &now);
+  tm utc{};
+  ::gmtime_r(&now.tv_sec, &utc);
+  char stamp[40];
+  const size_t length = std::strftime(stamp, sizeof(stamp), "%Y%m%dT%H%M%S", &utc);
+  std::snprintf(stamp + length, sizeof(stamp) - length, ".%09ld", static_cast<long>(now.tv_nsec));
+  const std::string base = path + "." + stamp + "." + std::to_string(::getpid());
+  // The clock may be coarse or stepped back: count on until the name is free.
+  std::string name = base + ".old";
+  struct stat existing;
+  for (unsigned n = 1; ::lstat(name.c_str(), &existing) == 0; ++n)
+    name = base + "." + std::to_string(n) + ".old";
+  return name;
 }
 
 }  // namespace virtual_origami::core

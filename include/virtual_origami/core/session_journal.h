@@ -1,9 +1,10 @@
 // A session's history on disk, so that nothing a user did is lost when a node restarts or
-// crashes: one JSON line per event, appended and flushed as it happens.
+// crashes: one JSON line per event, written and synced to disk before it is acknowledged.
 #pragma once
 
-#include <fstream>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "virtual_origami/core/result.h"
 #include "virtual_origami/core/session.h"
@@ -16,26 +17,96 @@ Expected<Paper> parsePaperJson(const std::string& text);
 
 /// Appends a session's events to a file: a header line with the whole history so far, then
 /// for each operation logged after it a commit (with the state it made) or an undo/redo.
+///
+/// A failed write leaves the journal unhealthy: it appends nothing more to that file (a torn
+/// line must stay the last one) until it is started again, which the appends taking the
+/// session do by themselves.
 class SessionJournal
 {
 public:
-  /// Starts a new journal for `session` at `path` (replacing any file there), writing its
-  /// whole history so far.
-  Status start(const std::string& path, const Session& session);
-  /// Appends the operations `session` logged since the last call. Call it after every
-  /// operation: a commit's event carries the session's current state.
+  /// Starts a new journal for `session` at `path`, writing its whole history so far. The
+  /// header is written to a new file beside `path`, synced and renamed over it, so `path`
+  /// always holds a whole journal. `run_id` (roslaunch's /run_id) tells a respawn within the
+  /// same launch from a new launch when the journal is read back.
+  Status start(const std::string& path, const Session& session, const std::string& run_id = "");
+  /// Journals `op` before it is committed: `state_after` is the paper it makes (null for an
+  /// undo or redo). Succeeds only once the line is written (and synced, see setSync); on a
+  /// failure the caller must not commit `op`.
+  Status append(const Operation& op, const Paper* state_after);
+  /// The same for `before`, the session `op` is about to change. A journal that is unhealthy
+  /// or out of step with `before` is first started again from it.
+  Status append(const Session& before, const Operation& op, const Paper* state_after);
+  /// Appends the operations `session` logged since the journal last wrote, after they were
+  /// committed: a commit's event carries the session's current state, so call it after every
+  /// operation. A journal that is unhealthy or cannot catch up is started again from `session`.
   Status record(const Session& session);
+
+  /// Whether each event is fsync()ed before the append returns (default true). Without it a
+  /// crash of the machine, not of the node, can lose the last events. start() always syncs.
+  void setSync(bool sync) { sync_ = sync; }
+  bool sync() const { return sync_; }
+  /// False before a successful start and after a failed write, until the next start.
+  bool healthy() const { return healthy_; }
   const std::string& path() const { return path_; }
+  const std::string& runId() const { return run_id_; }
 
 private:
-  Status writeLine(const std::string& line);
+  /// An open file, closed when it goes; moved, never copied.
+  class Descriptor
+  {
+  public:
+    Descriptor() = default;
+    explicit Descriptor(int fd) : fd_(fd) {}
+    Descriptor(Descriptor&& other) noexcept : fd_(other.release()) {}
+    Descriptor& operator=(Descriptor&& other) noexcept;
+    Descriptor(const Descriptor&) = delete;
+    Descriptor& operator=(const Descriptor&) = delete;
+    ~Descriptor() { reset(); }
+    int get() const { return fd_; }
+    int release();
+    void reset();
+
+  private:
+    int fd_ = -1;
+  };
+
+  Status writeEvent(const std::string& line);
+  Status fail(const std::string& message);
+  bool inStepWith(const Session& session) const;
+  bool canCatchUp(const History& history) const;
+
   std::string path_;
-  std::ofstream out_;
-  size_t recorded_ = 0;  // operations of the log already written
+  std::string run_id_;
+  Descriptor file_;
+  bool healthy_ = false;
+  bool sync_ = true;
+  std::string failure_;       // why it is unhealthy
+  uint64_t written_ = 0;      // bytes of whole lines in the file
+  size_t recorded_ = 0;       // operations of the session's log in the journal
+  uint64_t revision_ = 0;     // the revision the journal's last line leaves the session at
+  size_t undo_depth_ = 0;     // states undo could go back to, after the last line
+  size_t redo_depth_ = 0;
 };
 
-/// The session a journal describes. A torn last line (a crash while writing) is ignored;
-/// any other damage is an error naming the line.
+/// What a journal holds, read up to its first bad line.
+struct JournalRecovery
+{
+  History history;
+  std::string run_id;  // empty when the journal has none
+  size_t lines_read = 0;  // lines in `history`, the header included
+  /// In words, the bad line, why, and the lines dropped from it on; empty for a whole journal.
+  std::vector<std::string> dropped;
+};
+
+/// Reads the journal at `path`. A bad header is a failure (nothing can be recovered); any
+/// later bad line (torn, not JSON, incomplete, an impossible undo or redo, a revision that is
+/// not the previous one + 1) ends the history before it and is described in `dropped`.
+Expected<JournalRecovery> recoverJournal(const std::string& path);
+/// recoverJournal's history alone (what was dropped is not reported).
 Expected<History> readJournal(const std::string& path);
+
+/// A name beside `path` for keeping an old journal aside, that nothing has yet:
+/// `<path>.<UTC yyyymmddThhmmss.nnnnnnnnn>.<pid>[.<n>].old`.
+std::string keepAsideName(const std::string& path);
 
 }  // namespace virtual_origami::core
