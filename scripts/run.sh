@@ -30,7 +30,7 @@ if [ -z "${DISPLAY:-}" ]; then
   sleep 1
 fi
 
-roslaunch virtual_origami origami.launch journal:="$out/session.jsonl" resume:=false >"$out/roslaunch.log" 2>&1 &
+roslaunch virtual_origami origami.launch data_dir:="$out" journal:=session.jsonl resume:=false >"$out/roslaunch.log" 2>&1 &
 pids+=($!)
 for _ in $(seq 120); do rostopic list >/dev/null 2>&1 && break; sleep 0.5; done  # the master is up
 python3 "$root/scripts/fold_demo_client.py" "$out"

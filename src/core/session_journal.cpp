@@ -515,7 +515,9 @@ Status SessionJournal::record(const Session& session)
 bool SessionJournal::inStepWith(const Session& session) const
 {
   const History& h = session.history();
-  return revision_ == h.revision && recorded_ == h.log.size() && undo_depth_ == h.undo.size() &&
+  // A session that caps its undo history by memory forgets the oldest undo states, which the
+  // journal keeps: deeper, but in step.
+  return revision_ == h.revision && recorded_ == h.log.size() && undo_depth_ >= h.undo.size() &&
          redo_depth_ == h.redo.size();
 }
 

@@ -90,9 +90,21 @@ core::Expected<core::Paper> fromMessage(const PaperState& state)
   for (const FaceOrder& o : state.face_orders)
     paper.face_orders.push_back({ o.face, o.other, o.above });
   // Link first: it checks every index, and the areas read the vertices faces name.
+  if (paper.faces.empty())
+    return Failure::failure("the paper has no faces");
   const core::Status linked = core::linkTopology(paper);
   if (!linked)
     return Failure::failure(linked.message());
+  // The faces an edge names are derived again; a message that names others is not this paper.
+  for (size_t i = 0; i < state.edges.size(); ++i)
+  {
+    const Edge& e = state.edges[i];
+    const std::array<int, 2>& derived = paper.edges[i].faces;
+    if (e.face_left != derived[0] || e.face_right != derived[1])
+      return Failure::failure("edge " + std::to_string(i) + " names faces " + std::to_string(e.face_left) + " and " +
+                              std::to_string(e.face_right) + ", but its faces are " + std::to_string(derived[0]) +
+                              " and " + std::to_string(derived[1]));
+  }
   for (size_t f = 0; f < paper.faces.size(); ++f)
     paper.sheet_area += paper.faceArea(static_cast<int>(f));
   return paper;

@@ -1,8 +1,7 @@
 #include "virtual_origami/ros/paper_model_node.h"
 
-#include <cstdlib>
-#include <ctime>
 #include <filesystem>
+#include <stdexcept>
 
 #include <Eigen/Geometry>
 #include <geometry_msgs/TransformStamped.h>
@@ -18,16 +17,14 @@ namespace virtual_origami
 {
 namespace
 {
-std::string defaultJournalPath(const ros::NodeHandle& nh)
+/// In the data folder, one per namespace.
+std::string defaultJournalName(const ros::NodeHandle& nh)
 {
-  const char* ros_home = std::getenv("ROS_HOME");
-  const char* home = std::getenv("HOME");
-  const std::string base = ros_home ? ros_home : std::string(home ? home : "/tmp") + "/.ros";
   std::string ns = nh.getNamespace();
   for (char& c : ns)
     if (c == '/')
       c = '_';
-  return base + "/virtual_origami/session" + ns + ".jsonl";
+  return "session" + ns + ".jsonl";
 }
 
 geometry_msgs::TransformStamped transform(const std::string& parent, const std::string& child, const core::Vec3& at,
@@ -90,16 +87,34 @@ PaperModelNode::PaperModelNode(ros::NodeHandle nh, ros::NodeHandle private_nh) :
   pin_frame_timeout_ = private_nh.param("pin_frame_timeout", pin_frame_timeout_);
   face_frames_ = private_nh.param("face_frames", face_frames_);
   face_frame_prefix_ = private_nh.param<std::string>("face_frame_prefix", "");
+  solve_attempts_ = std::max(1, private_nh.param("solve_attempts", solve_attempts_));
   const double pin_rate = private_nh.param("pin_rate", 30.0);
+
+  std::string data_dir = private_nh.param<std::string>("data_dir", "");
+  if (data_dir.empty())
+    data_dir = core::defaultDataFolder();
+  std::vector<std::string> allowed;
+  private_nh.param("allowed_dirs", allowed, allowed);
+  core::Expected<core::DataFolder> folder = core::DataFolder::open(data_dir, allowed);
+  if (!folder)
+    throw std::runtime_error(folder.message());
+  folder_ = std::move(*folder);
+  const core::Expected<std::string> journal =
+      folder_->resolve(private_nh.param<std::string>("journal", defaultJournalName(nh_)));
+  if (!journal)
+    throw std::runtime_error("the journal: " + journal.message());
+  journal_.setSync(private_nh.param("journal_sync", true));
+
   // First: it replaces the session, and with it the solver and snap settings set below (a
   // resumed model had no solver, so every fold that needs one was refused: found by chaos).
-  restoreOrStart(private_nh);
+  restoreOrStart(private_nh, *journal);
   core::SnapSettings& snap = session_.snapSettings();
   snap.radius = private_nh.param("snap_radius", snap.radius * size_);
   private_nh.param("edge_divisions", snap.edge_divisions, snap.edge_divisions);
   private_nh.param("angle_divisions", snap.angle_divisions, snap.angle_divisions);
   session_.setSolver(std::make_shared<RemoteSolver>(nh_, private_nh.param<std::string>("solver_service", "solve"),
-                                                    private_nh.param("solver_timeout", 2.0)));
+                                                    private_nh.param("solver_timeout", 5.0)));
+  session_.setHistoryLimit(static_cast<size_t>(std::max(0.0, private_nh.param("history_memory_mb", 1024.0)) * 1e6));
 
   state_pub_ = nh_.advertise<PaperState>("state", 1, true);
   markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
@@ -124,49 +139,129 @@ PaperModelNode::PaperModelNode(ros::NodeHandle nh, ros::NodeHandle private_nh) :
   services_.push_back(nh_.advertiseService("pull", &PaperModelNode::pull, this));
   services_.push_back(nh_.advertiseService("load", &PaperModelNode::load, this));
   services_.push_back(nh_.advertiseService("save", &PaperModelNode::save, this));
+  std::lock_guard<std::mutex> lock(mutex_);
   publishState();
 }
 
-void PaperModelNode::restoreOrStart(ros::NodeHandle& private_nh)
+void PaperModelNode::restoreOrStart(ros::NodeHandle& private_nh, const std::string& path)
 {
-  const std::string path = private_nh.param("journal", defaultJournalPath(nh_));
-  std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+  // roslaunch sets /run_id once per launch: a respawned node finds its own launch's id in the
+  // journal, and `resume: false` means a new session per launch, not per process.
+  const std::string run_id = nh_.param<std::string>("/run_id", "");
+  const bool resume = private_nh.param("resume", true);
   if (std::filesystem::exists(path))
   {
-    const core::Expected<core::History> history = core::readJournal(path);
-    if (history && private_nh.param("resume", true))
+    const core::Expected<core::JournalRecovery> recovered = core::recoverJournal(path);
+    const bool same_launch = recovered && !run_id.empty() && recovered->run_id == run_id;
+    if (recovered && (resume || same_launch))
     {
-      session_ = core::Session(*history);
-      ROS_INFO("paper_model: resumed revision %lu (%zu operations) from %s",
-               static_cast<unsigned long>(session_.revision()), session_.log().size(), path.c_str());
+      session_ = core::Session(recovered->history);
+      ROS_INFO("paper_model: resumed revision %lu (%zu operations) from %s (%s)",
+               static_cast<unsigned long>(session_.revision()), session_.log().size(), path.c_str(),
+               resume ? "resume is on" : "respawned in the launch that started this session");
+      if (!recovered->dropped.empty())
+      {
+        // The journal is written anew below: keep the damaged one as it was.
+        const std::string kept = core::keepAsideName(path);
+        std::error_code error;
+        std::filesystem::copy_file(path, kept, error);
+        notice_ = "the journal " + path + " was damaged: " + recovered->dropped.front() + "; revision " +
+                  std::to_string(session_.revision()) + " and everything before it were recovered" +
+                  (error ? "" : ", the damaged journal is kept as " + kept);
+        ROS_WARN("paper_model: %s", notice_.c_str());
+      }
     }
     else
     {
       // Never lose a user's work: keep the old journal beside the new one.
-      const std::string kept = path + "." + std::to_string(std::time(nullptr)) + ".old";
-      std::filesystem::rename(path, kept);
-      if (!history)
-        ROS_ERROR("paper_model: %s; kept it as %s and started afresh", history.message().c_str(), kept.c_str());
+      const std::string kept = core::keepAsideName(path);
+      std::error_code error;
+      std::filesystem::rename(path, kept, error);
+      if (!recovered)
+        ROS_ERROR("paper_model: %s; kept it as %s and started afresh", recovered.message().c_str(), kept.c_str());
+      else
+        ROS_INFO("paper_model: resume is off and %s is from another launch: a new session; the last one is kept as %s",
+                 path.c_str(), kept.c_str());
+      if (error)
+        ROS_ERROR("paper_model: cannot keep %s aside: %s", path.c_str(), error.message().c_str());
     }
   }
+  else
+    ROS_INFO("paper_model: a new session, journaled in %s", path.c_str());
   if (session_.revision() == 0 && size_ != 1.0)
     session_ = core::Session(core::Paper::square(size_));
-  const core::Status started = journal_.start(path, session_);
+  std::error_code error;
+  std::filesystem::create_directories(std::filesystem::path(path).parent_path(), error);
+  const core::Status started = journal_.start(path, session_, run_id);
   if (!started)
-    ROS_ERROR("paper_model: %s; changes will not survive a restart", started.message().c_str());
+    ROS_ERROR("paper_model: %s; every change is refused until the journal can be written", started.message().c_str());
 }
 
-void PaperModelNode::committed(const std::string& what, const ros::Time& stamp)
+core::Status PaperModelNode::commit(core::Change change, const std::string& what, const ros::Time& stamp)
 {
-  const core::Status journaled = journal_.record(session_);
+  if (change.base_revision != session_.revision())
+    return core::failure("the model changed while this was computed; try again");
+  // Journaled first: an operation answered `success` survives a crash.
+  const core::Status journaled = journal_.append(session_, change.operation, change.next ? &*change.next : nullptr);
   if (!journaled)
+  {
     ROS_ERROR("paper_model: %s", journaled.message().c_str());
+    return core::failure("not done: it could not be recorded on disk (" + journaled.message() + ")");
+  }
+  const size_t forgotten = session_.forgottenStates();
+  const core::Status committed = session_.commit(std::move(change));
+  if (!committed)
+    return committed;
+  if (session_.forgottenStates() > forgotten)
+    ROS_WARN_THROTTLE(10.0, "paper_model: the oldest undo states were forgotten to keep the history within "
+                      "history_memory_mb (%zu so far); the journal keeps every operation",
+                      session_.forgottenStates());
+  notice_.clear();
   Operation op = toMessage(session_.log().back());
   op.header.stamp = ros::Time::now();
   op.header.frame_id = style_.frame_id;
   operations_pub_.publish(op);
   publishState(stamp);
   ROS_DEBUG("paper_model: %s, revision %lu", what.c_str(), static_cast<unsigned long>(session_.revision()));
+  return core::success();
+}
+
+template <class Result>
+core::Expected<core::Computed<Result>> PaperModelNode::computeAndCommit(
+    const std::function<core::Expected<core::Computed<Result>>(core::Workspace)>& compute, bool commit_it,
+    const std::string& what, const ros::Time& stamp)
+{
+  using Answer = core::Expected<core::Computed<Result>>;
+  for (int attempt = 1;; ++attempt)
+  {
+    core::Workspace workspace;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      session_.setHeldVertices(pinnedVertices());
+      workspace = session_.workspace();
+    }
+    Answer computed = compute(std::move(workspace));
+    if (!computed)
+      return computed;
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (computed->change.base_revision != session_.revision())
+    {
+      if (attempt < solve_attempts_)
+        continue;  // somebody else's change came first: compute again on it
+      return Answer::failure("the model kept changing while this was computed (" + std::to_string(attempt) +
+                             " tries); try again");
+    }
+    if (!commit_it)
+    {
+      publishMarkers(*computed->change.next);  // a preview is drawn, not recorded
+      session_.setPreview(std::move(computed->change));
+      return computed;
+    }
+    const core::Status committed = commit(std::move(computed->change), what, stamp);
+    if (!committed)
+      return Answer::failure(committed.message());
+    return computed;
+  }
 }
 
 void PaperModelNode::publishState(const ros::Time& stamp)
@@ -174,6 +269,7 @@ void PaperModelNode::publishState(const ros::Time& stamp)
   PaperState state = toMessage(session_.paper(), session_.revision(), pins_);
   state.header.stamp = stamp.isZero() ? ros::Time::now() : stamp;
   state.header.frame_id = style_.frame_id;
+  state.notice = notice_;
   state_pub_.publish(state);
   publishMarkers(session_.paper());
   // Now, not the state's stamp: a pull's older tf stamp would leave the last timer's
@@ -203,42 +299,48 @@ std::vector<int> PaperModelNode::pinnedVertices() const
 
 void PaperModelNode::followPins(const ros::TimerEvent&)
 {
-  const core::Paper& paper = session_.paper();
-  const int count = static_cast<int>(paper.vertices.size());
-  const double still = 1e-9 * paper.scale();
   std::vector<core::PullTarget> targets;
+  std::vector<int> held;
   ros::Time stamp;
-  bool moved = false;
-  for (const auto& [vertex, pin] : pins_)
   {
-    if (pin.frame_id.empty() || vertex >= count)
-      continue;
-    geometry_msgs::TransformStamped t;
-    try
+    std::lock_guard<std::mutex> lock(mutex_);
+    const core::Paper& paper = session_.paper();
+    const int count = static_cast<int>(paper.vertices.size());
+    const double still = 1e-9 * paper.scale();
+    bool moved = false;
+    for (const auto& [vertex, pin] : pins_)
     {
-      t = tf_buffer_.lookupTransform(style_.frame_id, pin.frame_id, ros::Time(0));
+      if (pin.frame_id.empty() || vertex >= count)
+        continue;
+      geometry_msgs::TransformStamped t;
+      try
+      {
+        t = tf_buffer_.lookupTransform(style_.frame_id, pin.frame_id, ros::Time(0));
+      }
+      catch (const tf2::TransformException& e)
+      {
+        // A cycle pulls every pin or none, so the pins never pull against a stale frame.
+        ROS_WARN_THROTTLE(5.0, "paper_model: vertex %d follows %s, which tf cannot place: %s; the paper stays", vertex,
+                          pin.frame_id.c_str(), e.what());
+        return;
+      }
+      const core::Vec3 target(t.transform.translation.x, t.transform.translation.y, t.transform.translation.z);
+      targets.push_back({ vertex, target });
+      stamp = std::max(stamp, t.header.stamp);
+      const auto last = pulled_to_.find(vertex);
+      if (last == pulled_to_.end() || (last->second - target).norm() > still)
+        moved = true;
     }
-    catch (const tf2::TransformException& e)
-    {
-      // A cycle pulls every pin or none, so the pins never pull against a stale frame.
-      ROS_WARN_THROTTLE(5.0, "paper_model: vertex %d follows %s, which tf cannot place: %s; the paper stays", vertex,
-                        pin.frame_id.c_str(), e.what());
+    if (!moved)
       return;
-    }
-    const core::Vec3 target(t.transform.translation.x, t.transform.translation.y, t.transform.translation.z);
-    targets.push_back({ vertex, target });
-    stamp = std::max(stamp, t.header.stamp);
-    const auto last = pulled_to_.find(vertex);
-    if (last == pulled_to_.end() || (last->second - target).norm() > still)
-      moved = true;
+    held = pinnedVertices();
+    if (refused_ && refused_->revision == session_.revision() && refused_->targets == targets && refused_->held == held)
+      return;
   }
-  if (!moved)
-    return;
-  const std::vector<int> held = pinnedVertices();
-  if (refused_ && refused_->revision == session_.revision() && refused_->targets == targets && refused_->held == held)
-    return;
-  session_.setHeldVertices(held);
-  const auto result = session_.pull(targets);
+  const auto result = computeAndCommit<core::PullResult>(
+      [&](core::Workspace workspace) { return core::computePull(std::move(workspace), targets); }, true,
+      "pulled to the pins' frames", stamp);
+  std::lock_guard<std::mutex> lock(mutex_);
   if (!result)
   {
     // Refused cycles (a frame the rigid faces cannot reach) repeat while the frame moves on:
@@ -250,12 +352,12 @@ void PaperModelNode::followPins(const ros::TimerEvent&)
   refused_.reset();
   for (const core::PullTarget& target : targets)
     pulled_to_[target.vertex] = target.position;
-  if (result->residual > 1e-6 * paper.scale())
+  const core::PullResult& pulled = result->result;
+  if (pulled.residual > 1e-6 * session_.paper().scale())
     ROS_WARN_THROTTLE(5.0, "paper_model: the rigid faces keep the pinned vertices up to %g m from their frames",
-                      result->residual);
-  ROS_DEBUG("paper_model: pulled %zu pins, residual %g m, strain %g", targets.size(), result->residual,
-            result->solve.max_strain);
-  committed("pulled to the pins' frames", stamp);
+                      pulled.residual);
+  ROS_DEBUG("paper_model: pulled %zu pins, residual %g m, strain %g", targets.size(), pulled.residual,
+            pulled.solve.max_strain);
 }
 
 void PaperModelNode::publishMarkers(const core::Paper& paper)
@@ -265,6 +367,7 @@ void PaperModelNode::publishMarkers(const core::Paper& paper)
 
 void PaperModelNode::broadcastFrames(const ros::TimerEvent&)
 {
+  std::lock_guard<std::mutex> lock(mutex_);
   broadcastFaces(ros::Time::now());
   std::vector<geometry_msgs::TransformStamped> frames;
   for (const auto& [vertex, pin] : pins_)
@@ -283,16 +386,21 @@ bool PaperModelNode::crease(Crease::Request& req, Crease::Response& res)
   if (req.has_eye)
     request.eye = toVec3(req.eye);
   request.snap = req.snap;
-  const auto result = session_.crease(request);
-  res.success = result.ok();
+  std::lock_guard<std::mutex> lock(mutex_);  // a crease needs no solver: computed under the lock
+  auto result = core::computeCrease(session_.workspace(), request);
+  core::Status status = result ? core::success() : core::failure(result.message());
   if (result)
   {
-    res.new_edges.assign(result->new_edges.begin(), result->new_edges.end());
-    res.message = "creased " + std::to_string(result->split_faces.size()) + " faces";
-    committed(res.message);
+    res.new_edges.assign(result->result.new_edges.begin(), result->result.new_edges.end());
+    res.message = "creased " + std::to_string(result->result.split_faces.size()) + " faces";
+    status = commit(std::move(result->change), res.message);
   }
-  else
-    res.message = result.message();
+  res.success = status.ok();
+  if (!status)
+  {
+    res.new_edges.clear();
+    res.message = status.message();
+  }
   res.revision = session_.revision();
   return true;
 }
@@ -304,16 +412,14 @@ bool PaperModelNode::rotate(Rotate::Request& req, Rotate::Response& res)
   request.axis_edge = req.axis_edge;
   request.click = toVec3(req.click);
   request.angle = req.angle;
-  session_.setHeldVertices(pinnedVertices());
-  const auto result = session_.rotate(request, req.commit);
+  const auto result = computeAndCommit<core::RotateResult>(
+      [&](core::Workspace workspace) { return core::computeRotate(std::move(workspace), request); }, req.commit,
+      "rotated");
   res.success = result.ok();
   res.message = result ? (req.commit ? "rotated" : "preview") : result.message();
-  res.face = result ? result->face : req.face;
-  res.axis_edge = result ? result->axis_edge : req.axis_edge;
-  if (result && req.commit)
-    committed("rotated");
-  else if (result)
-    publishMarkers(*session_.preview());  // a preview is drawn, not recorded
+  res.face = result ? result->result.face : req.face;
+  res.axis_edge = result ? result->result.axis_edge : req.axis_edge;
+  std::lock_guard<std::mutex> lock(mutex_);
   res.revision = session_.revision();
   return true;
 }
@@ -322,76 +428,98 @@ bool PaperModelNode::answer(const core::Status& status, const std::string& done,
 {
   res.success = status.ok();
   res.message = status ? done : status.message();
-  if (status)
-    committed(done);
   return true;
 }
 
 bool PaperModelNode::squash(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res)
 {
-  const auto result = session_.squash();
+  const auto result = computeAndCommit<core::SquashResult>(
+      [](core::Workspace workspace) { return core::computeSquash(std::move(workspace)); }, true, "squashed");
   return answer(result ? core::success() : core::failure(result.message()),
-                result && result->exact ? "pressed flat" : "pressed flat and restored by the solver", res);
+                result && result->result.exact ? "pressed flat" : "pressed flat and restored by the solver", res);
 }
 
 bool PaperModelNode::undo(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res)
 {
-  return answer(session_.undo(), "undone", res);
+  std::lock_guard<std::mutex> lock(mutex_);
+  core::Expected<core::Change> change = session_.prepareUndo();
+  return answer(change ? commit(std::move(*change), "undone") : core::failure(change.message()), "undone", res);
 }
 
 bool PaperModelNode::redo(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res)
 {
-  return answer(session_.redo(), "redone", res);
+  std::lock_guard<std::mutex> lock(mutex_);
+  core::Expected<core::Change> change = session_.prepareRedo();
+  return answer(change ? commit(std::move(*change), "redone") : core::failure(change.message()), "redone", res);
 }
 
 bool PaperModelNode::reset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res)
 {
-  const core::Status status = session_.reset(size_);
+  std::lock_guard<std::mutex> lock(mutex_);
+  core::Expected<core::Change> change = core::computeReset(session_.revision(), size_);
+  const core::Status status = change ? commit(std::move(*change), "reset") : core::failure(change.message());
   if (status)
   {
     pins_.clear();  // the vertices they held are gone
     pulled_to_.clear();
+    publishState();
   }
   return answer(status, "reset to an unfolded square", res);
 }
 
 bool PaperModelNode::pin(PinVertex::Request& req, PinVertex::Response& res)
 {
-  const int count = static_cast<int>(session_.paper().vertices.size());
   res.success = false;
-  if (req.vertex < 0 || req.vertex >= count)
+  const auto missing = [&] {
+    const int count = static_cast<int>(session_.paper().vertices.size());
+    if (req.vertex >= 0 && req.vertex < count)
+      return false;
     res.message =
         "vertex " + std::to_string(req.vertex) + " does not exist (the model has " + std::to_string(count) + ")";
-  else if (req.release && !pins_.count(req.vertex))
-    res.message = "vertex " + std::to_string(req.vertex) + " is not pinned";
-  else if (!req.release && !req.frame_id.empty() &&
-           !tf_buffer_.canTransform(style_.frame_id, req.frame_id, ros::Time(0), ros::Duration(pin_frame_timeout_),
-                                    &res.message))
+    return true;
+  };
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (missing())
+      return true;
+    if (req.release && !pins_.count(req.vertex))
+    {
+      res.message = "vertex " + std::to_string(req.vertex) + " is not pinned";
+      return true;
+    }
+  }
+  // Waiting for tf holds no lock: other clients go on meanwhile.
+  if (!req.release && !req.frame_id.empty() &&
+      !tf_buffer_.canTransform(style_.frame_id, req.frame_id, ros::Time(0), ros::Duration(pin_frame_timeout_),
+                               &res.message))
+  {
     res.message = "frame \"" + req.frame_id + "\" is not known to tf in " + style_.frame_id + " after " +
                   std::to_string(pin_frame_timeout_) + " s (" + res.message + "); vertex " +
                   std::to_string(req.vertex) + " is not pinned";
-  else
-  {
-    pulled_to_.erase(req.vertex);
-    if (req.release)
-      pins_.erase(req.vertex);
-    else
-      pins_[req.vertex] = { req.frame_id, req.frame_id.empty() ? session_.paper().vertices[req.vertex].folded :
-                                                                 core::Vec3::Zero() };  // the frame's origin
-    res.success = true;
-    res.message = req.release ? "released" : req.frame_id.empty() ? "pinned in place" : "pinned to " + req.frame_id;
-    Operation op;
-    op.header.stamp = ros::Time::now();
-    op.header.frame_id = style_.frame_id;
-    op.revision = session_.revision();
-    op.type = "pin";
-    op.face = op.axis_edge = -1;
-    op.vertex = req.vertex;
-    op.frame_id = req.frame_id;
-    op.release = req.release;
-    operations_pub_.publish(op);
-    publishState();
+    return true;
   }
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (missing())  // the model changed while tf was asked
+    return true;
+  pulled_to_.erase(req.vertex);
+  if (req.release)
+    pins_.erase(req.vertex);
+  else
+    pins_[req.vertex] = { req.frame_id, req.frame_id.empty() ? session_.paper().vertices[req.vertex].folded :
+                                                               core::Vec3::Zero() };  // the frame's origin
+  res.success = true;
+  res.message = req.release ? "released" : req.frame_id.empty() ? "pinned in place" : "pinned to " + req.frame_id;
+  Operation op;
+  op.header.stamp = ros::Time::now();
+  op.header.frame_id = style_.frame_id;
+  op.revision = session_.revision();
+  op.type = "pin";
+  op.face = op.axis_edge = -1;
+  op.vertex = req.vertex;
+  op.frame_id = req.frame_id;
+  op.release = req.release;
+  operations_pub_.publish(op);
+  publishState();
   return true;
 }
 
@@ -406,45 +534,61 @@ bool PaperModelNode::pull(Pull::Request& req, Pull::Response& res)
     std::vector<core::PullTarget> targets;
     for (size_t i = 0; i < req.vertices.size(); ++i)
       targets.push_back({ req.vertices[i], toVec3(req.positions[i]) });
-    session_.setHeldVertices(pinnedVertices());
-    const auto result = session_.pull(targets);
+    const std::string done = "pulled " + std::to_string(targets.size()) + " vertices";
+    const auto result = computeAndCommit<core::PullResult>(
+        [&](core::Workspace workspace) { return core::computePull(std::move(workspace), targets); }, true, done);
     res.success = result.ok();
-    res.message = result ? "pulled " + std::to_string(targets.size()) + " vertices" : result.message();
+    res.message = result ? done : result.message();
     if (result)
     {
-      res.residual = result->residual;
-      res.max_strain = result->solve.max_strain;
-      committed(res.message);
+      res.residual = result->result.residual;
+      res.max_strain = result->result.solve.max_strain;
     }
   }
+  std::lock_guard<std::mutex> lock(mutex_);
   res.revision = session_.revision();
   return true;
 }
 
 bool PaperModelNode::load(Load::Request& req, Load::Response& res)
 {
-  const core::Expected<core::Paper> paper = core::loadPaper(req.path);
-  const core::Status status = paper ? session_.load(*paper, req.path) : core::failure(paper.message());
+  // Read and checked outside the lock: a large file does not hold up other clients.
+  const core::Expected<std::string> path = folder_->resolve(req.path);
+  const core::Expected<core::Paper> paper =
+      path ? core::loadPaper(*path) : core::Expected<core::Paper>::failure(path.message());
+  std::lock_guard<std::mutex> lock(mutex_);
+  core::Expected<core::Change> change = paper ? core::computeLoad(session_.revision(), *paper, req.path) :
+                                                core::Expected<core::Change>::failure(paper.message());
+  const core::Status status = change ? commit(std::move(*change), "loaded") : core::failure(change.message());
   res.success = status.ok();
   res.message = status ? "loaded " + req.path : status.message();
   if (status)
   {
     pins_.clear();
     pulled_to_.clear();
-    committed(res.message);
+    publishState();
   }
   return true;
 }
 
 bool PaperModelNode::save(Save::Request& req, Save::Response& res)
 {
+  const bool fold = hasSuffix(req.path, ".fold"), obj = hasSuffix(req.path, ".obj");
+  const core::Expected<std::string> path = folder_->resolve(req.path);
   core::Status status = core::failure("save needs a path ending in .fold or .obj, not \"" + req.path + "\"");
-  if (hasSuffix(req.path, ".fold"))
-    status = core::writeTextFile(req.path, core::formatFold(session_.paper()));
-  else if (hasSuffix(req.path, ".obj"))
-    status = core::writeTextFile(req.path, core::formatObj(session_.paper()));
+  if ((fold || obj) && !path)
+    status = core::failure(path.message());
+  else if (fold || obj)
+  {
+    std::string text;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      text = fold ? core::formatFold(session_.paper()) : core::formatObj(session_.paper());
+    }
+    status = core::writeTextFile(*path, text);
+  }
   res.success = status.ok();
-  res.message = status ? "saved " + req.path : status.message();
+  res.message = status ? "saved " + *path : status.message();
   return true;
 }
 

@@ -1,5 +1,10 @@
 #include "virtual_origami/ros/remote_solver.h"
 
+#include <chrono>
+#include <future>
+#include <memory>
+#include <thread>
+
 #include <ros/service.h>
 #include <virtual_origami/Solve.h>
 
@@ -25,11 +30,38 @@ core::SolveReport RemoteSolver::solve(core::Paper& paper, const std::vector<char
   for (size_t v = 0; v < fixed.size(); ++v)
     if (fixed[v])
       call.request.fixed_vertices.push_back(static_cast<int>(v));
-  if (!ros::service::call(service_, call))
+  // roscpp's call has no deadline, and a stopped solver keeps its connection open: the call runs
+  // on a thread of its own, and the model gives up on it after the timeout. The thread ends
+  // when the solver answers or its connection breaks; a few stalled ones are refused at once.
+  if (stalled_->load() >= kMaxStalledCalls)
+  {
+    report.message = "the solver service " + service_ + " has not answered " + std::to_string(kMaxStalledCalls) +
+                     " calls; it seems stopped";
+    return report;
+  }
+  auto shared = std::make_shared<Solve>(std::move(call));
+  auto answered = std::make_shared<std::promise<bool>>();
+  std::future<bool> done = answered->get_future();
+  std::thread([service = service_, shared, answered] { answered->set_value(ros::service::call(service, *shared)); })
+      .detach();
+  if (done.wait_for(std::chrono::duration<double>(timeout_)) != std::future_status::ready)
+  {
+    // Counted until that thread ends.
+    ++*stalled_;
+    std::thread([stalled = stalled_, done = std::move(done)]() mutable {
+      done.wait();
+      --*stalled;
+    }).detach();
+    report.message = "the solver service " + service_ + " did not answer within solver_timeout (" +
+                     std::to_string(timeout_) + " s)";
+    return report;
+  }
+  if (!done.get())
   {
     report.message = "the call to " + service_ + " failed";
     return report;
   }
+  call = std::move(*shared);
   report.iterations = call.response.iterations;
   report.max_strain = call.response.max_strain;
   report.message = call.response.message;

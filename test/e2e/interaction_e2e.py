@@ -74,7 +74,7 @@ class System:
         self.procs.append(subprocess.Popen(
             ['roslaunch', '-p', str(self.port), 'virtual_origami', 'origami.launch',
              'rviz_config:=' + os.path.join(HERE, 'e2e.rviz'),
-             'journal:=' + os.path.join(self.out, 'session.jsonl'), 'resume:=false'],
+             'data_dir:=' + self.out, 'journal:=session.jsonl', 'resume:=false'],
             stdout=log('roslaunch.log'), stderr=subprocess.STDOUT, start_new_session=True))
 
     def stop(self):

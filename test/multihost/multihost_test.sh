@@ -73,7 +73,7 @@ host() {
 launch_args=(rviz:=false interaction:=false curved:=false)
 host "$model_ns" "$model_ip" roscore roscore -p 11311 &
 host "$model_ns" "$model_ip" model roslaunch --wait virtual_origami origami.launch "${launch_args[@]}" \
-  solvers:=false resume:=false journal:="$work/journal.jsonl" &
+  solvers:=false resume:=false data_dir:="$work" journal:=journal.jsonl &
 host "$solver_ns" "$solver_ip" solver roslaunch --wait virtual_origami origami.launch "${launch_args[@]}" \
   model:=false &
 

@@ -156,7 +156,7 @@ protected:
     const std::string node = rng_() % 5 < 3 ? "paper_model" : "spring_solver";
     // Half of them within the call's few milliseconds, the rest up to 40 ms on.
     const auto delay = std::chrono::microseconds(rng_() % (rng_() % 2 ? 10000 : 40000));
-    const int pid = pidOf(node);  // resolved first: pgrep itself takes milliseconds
+    const int pid = pidOf(node);  // resolved first: asking the master and the node takes milliseconds
     if (pid <= 0)
       return {};  // still coming back from the last kill
     return std::thread([this, node, delay, pid] {

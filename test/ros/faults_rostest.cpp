@@ -23,10 +23,12 @@
 #include <virtual_origami/Load.h>
 #include <virtual_origami/Operation.h>
 #include <virtual_origami/PinVertex.h>
+#include <virtual_origami/Pull.h>
 #include <virtual_origami/Save.h>
 #include <virtual_origami/Solve.h>
 
 #include "ros_test_client.h"
+#include "virtual_origami/core/data_folder.h"
 #include "virtual_origami/core/validity.h"
 #include "virtual_origami/ros/conversions.h"
 
@@ -258,7 +260,8 @@ TEST_F(Faults, PinLoadSaveBadInput)
     }
 
   // Files that are not FOLD models: each refused with a message, nothing changed.
-  const std::string dir = "/tmp/virtual_origami_faults_" + std::to_string(::getpid());
+  // In the data folder (ROS_HOME is the suite's own), so that their content is what refuses them.
+  const std::string dir = core::defaultDataFolder() + "/faults_" + std::to_string(::getpid());
   ::mkdir(dir.c_str(), 0755);
   const auto write = [&](const std::string& name, const std::string& text) {
     std::ofstream(dir + "/" + name) << text;
@@ -356,6 +359,39 @@ TEST_F(Faults, SolverGetsMalformedPapers)
   fine.request.paper = good;
   ASSERT_TRUE(ros::service::call("/origami/solve", fine));
   EXPECT_TRUE(fine.response.success) << fine.response.message;
+}
+
+TEST_F(Faults, SolverRefusesPapersThatAreNotOne)
+{
+  ASSERT_TRUE(client_.crease(0.5, -0.1, 0.5, 1.1).response.success);
+  const PaperState good = advanced(revision_ + 1);
+  std::vector<Solve::Request> requests(3);
+  requests[0].paper = PaperState();  // empty: nothing to solve
+  requests[1].paper = good;
+  requests[1].paper.edges[0].face_left = 1000000000;  // a face that does not exist
+  requests[2].paper = good;
+  requests[2].paper.edges[0].face_right = requests[2].paper.edges[0].face_left;  // not the edge's faces
+  for (size_t i = 0; i < requests.size(); ++i)
+  {
+    Solve srv;
+    srv.request = requests[i];
+    ASSERT_TRUE(ros::service::call("/origami/solve", srv)) << "request " << i << ": the solver died";
+    EXPECT_FALSE(srv.response.success) << "request " << i;
+    EXPECT_FALSE(srv.response.message.empty()) << "request " << i;
+  }
+}
+
+TEST_F(Faults, APullOfNothingMakesNoRevision)
+{
+  const PaperState before = client_.state();
+  Pull::Request nothing;
+  const Pull pulled = client_.call<Pull>("pull", nothing);
+  EXPECT_FALSE(pulled.response.success);
+  EXPECT_FALSE(pulled.response.message.empty());
+  EXPECT_EQ(pulled.response.revision, before.revision);
+  ros::WallDuration(0.3).sleep();
+  ros::spinOnce();
+  EXPECT_EQ(client_.state().revision, before.revision);
 }
 
 TEST_F(Faults, ConcurrentClients)

@@ -4,17 +4,17 @@
 #include <gtest/gtest.h>
 
 #include <csignal>
-#include <cstdio>
-#include <fstream>
 #include <functional>
 #include <string>
 
 #include <ros/master.h>
+#include <ros/network.h>
 #include <ros/ros.h>
 #include <std_srvs/Trigger.h>
 #include <virtual_origami/Crease.h>
 #include <virtual_origami/PaperState.h>
 #include <virtual_origami/Rotate.h>
+#include <xmlrpcpp/XmlRpcClient.h>
 
 namespace virtual_origami::test
 {
@@ -32,24 +32,29 @@ inline bool waitFor(const std::function<bool()>& done, double seconds = 10.0)
   return done();
 }
 
-/// The pid of the process roslaunch started for a node under this test's master, or -1.
-/// Processes of other ROS systems on the machine (another test run) are left alone.
+/// The pid of a node registered with this test's master (`paper_model` means
+/// `/origami/paper_model`), asked of the node itself; -1 when it is not running. Processes of
+/// other ROS systems on the machine (another test run) are never found.
 inline int pidOf(const std::string& node)
 {
-  const std::string command = "pgrep -f '__name:=" + node + "( |$)'";
-  const std::string ours = "ROS_MASTER_URI=" + ros::master::getURI();
-  FILE* pipe = ::popen(command.c_str(), "r");
-  int found = -1;
-  for (int pid; pipe && found < 0 && std::fscanf(pipe, "%d", &pid) == 1;)
-  {
-    std::ifstream environ("/proc/" + std::to_string(pid) + "/environ");
-    for (std::string entry; std::getline(environ, entry, '\0');)
-      if (entry == ours)
-        found = pid;
-  }
-  if (pipe)
-    ::pclose(pipe);
-  return found;
+  XmlRpc::XmlRpcValue args, result, payload;
+  args[0] = ros::this_node::getName();
+  args[1] = node.front() == '/' ? node : "/origami/" + node;
+  if (!ros::master::execute("lookupNode", args, result, payload, false) ||
+      payload.getType() != XmlRpc::XmlRpcValue::TypeString)
+    return -1;
+  std::string host;
+  uint32_t port = 0;
+  if (!ros::network::splitURI(static_cast<std::string>(payload), host, port))
+    return -1;
+  XmlRpc::XmlRpcClient client(host.c_str(), static_cast<int>(port), "/");
+  XmlRpc::XmlRpcValue pid_args, pid;
+  pid_args[0] = ros::this_node::getName();
+  // A killed node stays registered until its successor registers: its URI refuses the call.
+  if (!client.execute("getPid", pid_args, pid) || pid.getType() != XmlRpc::XmlRpcValue::TypeArray ||
+      pid.size() < 3 || static_cast<int>(pid[0]) != 1)
+    return -1;
+  return static_cast<int>(pid[2]);
 }
 
 /// SIGKILL, as a crash would; with `respawned`, returns once another process has taken its place.
@@ -59,8 +64,10 @@ inline void crash(const std::string& node, bool respawned = true)
   ASSERT_GT(pid, 0) << node << " is not running";
   ASSERT_EQ(::kill(pid, SIGKILL), 0);
   if (respawned)
+  {
     ASSERT_TRUE(waitFor([&] { const int now = pidOf(node); return now > 0 && now != pid; }, 30.0))
         << node << " was not restarted";
+  }
 }
 
 class PaperClient

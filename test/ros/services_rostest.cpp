@@ -1,8 +1,11 @@
 // rostest: the paper_model services against their contract (SPEC §8).
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 
 #include <tf2_ros/buffer.h>
@@ -14,6 +17,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "ros_test_client.h"
+#include "virtual_origami/core/data_folder.h"
 #include "virtual_origami/core/session.h"
 #include "virtual_origami/ros/conversions.h"
 
@@ -197,20 +201,24 @@ TEST_F(Services, SaveAndLoad)
   ASSERT_TRUE(client_.crease(0, 0, 1, 1).response.success);
   ASSERT_TRUE(client_.rotate(-1, -1, 0.2, 0.8, M_PI).response.success);
   const PaperState folded = client_.stateAt(base_ + 2);
-  const std::string path = "/tmp/virtual_origami_rostest_" + std::to_string(::getpid()) + ".fold";
+  // Relative paths resolve in the node's data folder (ROS_HOME is the suite's own folder).
+  const std::string data = core::defaultDataFolder();
+  const std::string name = "rostest_" + std::to_string(::getpid());
   Save::Request save;
-  save.path = path;
+  save.path = name + ".fold";
+  const Save saved = client_.call<Save>("save", save);
+  ASSERT_TRUE(saved.response.success) << saved.response.message;
+  EXPECT_TRUE(std::ifstream(data + "/" + name + ".fold").good()) << saved.response.message;
+  save.path = data + "/" + name + ".obj";  // absolute, inside
   ASSERT_TRUE(client_.call<Save>("save", save).response.success);
-  save.path = "/tmp/virtual_origami_rostest_" + std::to_string(::getpid()) + ".obj";
-  ASSERT_TRUE(client_.call<Save>("save", save).response.success);
-  save.path = "/no/such/folder/x.fold";
+  save.path = "no/such/folder/x.fold";
   EXPECT_FALSE(client_.call<Save>("save", save).response.success);
-  save.path = "/tmp/x.png";
+  save.path = "x.png";
   EXPECT_FALSE(client_.call<Save>("save", save).response.success);
 
   ASSERT_TRUE(client_.trigger("reset").response.success);
   Load::Request load;
-  load.path = path;
+  load.path = name + ".fold";
   const Load loaded = client_.call<Load>("load", load);
   ASSERT_TRUE(loaded.response.success) << loaded.response.message;
   const PaperState back = client_.stateAt(base_ + 4);
@@ -222,14 +230,81 @@ TEST_F(Services, SaveAndLoad)
     EXPECT_NEAR(back.vertices_folded[i].z, folded.vertices_folded[i].z, 1e-12);
   }
   // A broken file and a missing one are refused.
-  const std::string broken = "/tmp/virtual_origami_rostest_broken_" + std::to_string(::getpid()) + ".fold";
-  std::ofstream(broken) << "{\"vertices_coords\": [[0,0],[1,0]], \"faces_vertices\": [[0,1,7]]}";
-  load.path = broken;
+  std::ofstream(data + "/" + name + "_broken.fold") << "{\"vertices_coords\": [[0,0],[1,0]], \"faces_vertices\": [[0,1,7]]}";
+  load.path = name + "_broken.fold";
   expectRefused(client_.call<Load>("load", load).response, back);
-  load.path = "/no/such/file.fold";
+  load.path = "no/such/file.fold";
   expectRefused(client_.call<Load>("load", load).response, back);
-  std::remove(path.c_str());
-  std::remove(broken.c_str());
+}
+
+TEST_F(Services, FilesStayInTheDataFolder)
+{
+  namespace fs = std::filesystem;
+  const PaperState before = client_.state();
+  const fs::path data = core::defaultDataFolder();
+  // A folder beside the data folder stands for the rest of the user's files.
+  const fs::path outside = data.parent_path() / "outside";
+  fs::create_directories(outside);
+  const fs::path victim = outside / "victim.fold";
+  std::ofstream(victim) << "the user's own file";
+  const fs::path secret = outside / "secret.fold";
+  std::ofstream(secret) << "SECRET-BYTES";
+
+  std::vector<std::string> refused_saves{ "/etc/vo_probe.fold", "/etc/vo_probe.obj", "../outside/x.fold",
+                                          "../../x.fold", victim.string() };
+  fs::create_symlink(victim, data / "link.fold");  // a link leaving the folder
+  refused_saves.push_back("link.fold");
+  std::ofstream(data / "readonly.fold") << "kept";
+  fs::permissions(data / "readonly.fold", fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
+  refused_saves.push_back("readonly.fold");
+  for (const std::string& path : refused_saves)
+  {
+    Save::Request save;
+    save.path = path;
+    const Save res = client_.call<Save>("save", save);
+    EXPECT_FALSE(res.response.success) << "save " << path;
+    EXPECT_FALSE(res.response.message.empty()) << "save " << path;
+  }
+  EXPECT_FALSE(fs::exists("/etc/vo_probe.fold"));
+  EXPECT_FALSE(fs::exists("/etc/vo_probe.obj"));
+  const auto content = [](const fs::path& p) {
+    std::ifstream in(p);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_EQ(content(victim), "the user's own file");
+  EXPECT_EQ(content(data / "readonly.fold"), "kept");
+
+  // A link planted at the temporary name the save of an earlier version used.
+  fs::create_symlink(victim, data / "planted.fold.tmp");
+  Save::Request save;
+  save.path = "planted.fold";
+  const Save planted = client_.call<Save>("save", save);
+  EXPECT_TRUE(planted.response.success) << planted.response.message;
+  EXPECT_EQ(content(victim), "the user's own file");
+  EXPECT_TRUE(fs::is_symlink(data / "planted.fold.tmp"));
+
+  for (const std::string& path : { std::string("/etc/shadow"), std::string("/etc/passwd"), secret.string(),
+                                   std::string("../outside/secret.fold") })
+  {
+    Load::Request load;
+    load.path = path;
+    const Load res = client_.call<Load>("load", load);
+    EXPECT_FALSE(res.response.success) << "load " << path;
+    EXPECT_EQ(res.response.message.find("SECRET"), std::string::npos) << res.response.message;
+  }
+  // Inside, a file that is not FOLD is refused without quoting it.
+  std::ofstream(data / "not_fold.fold") << "SECRET-BYTES and more";
+  Load::Request load;
+  load.path = "not_fold.fold";
+  const Load res = client_.call<Load>("load", load);
+  EXPECT_FALSE(res.response.success);
+  EXPECT_EQ(res.response.message.find("SECRET"), std::string::npos) << res.response.message;
+  EXPECT_EQ(res.response.message.find("S\'"), std::string::npos) << res.response.message;
+
+  ros::WallDuration(0.2).sleep();
+  ros::spinOnce();
+  EXPECT_EQ(client_.state().revision, before.revision);
+  fs::remove_all(outside);
 }
 
 TEST_F(Services, ASequenceEndsWhereTheCoreAloneEnds)

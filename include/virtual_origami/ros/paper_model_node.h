@@ -2,8 +2,10 @@
 // state, markers, operations and tf frames, and journals every change to disk.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -21,6 +23,7 @@
 #include <virtual_origami/Rotate.h>
 #include <virtual_origami/Save.h>
 
+#include "virtual_origami/core/data_folder.h"
 #include "virtual_origami/core/session.h"
 #include "virtual_origami/core/session_journal.h"
 #include "virtual_origami/ros/conversions.h"
@@ -28,6 +31,10 @@
 
 namespace virtual_origami
 {
+/// Services are served concurrently (run it under an AsyncSpinner): the model is locked only
+/// while an operation is applied, and solver-bound operations are computed outside the lock, so a
+/// crease never waits for another client's solve. Every change is journaled (and synced) before
+/// it is committed and answered.
 class PaperModelNode
 {
 public:
@@ -45,8 +52,15 @@ private:
   bool load(Load::Request& req, Load::Response& res);
   bool save(Save::Request& req, Save::Response& res);
 
-  /// After a committed change: journal it, announce it on `operations`, publish the state.
-  void committed(const std::string& what, const ros::Time& stamp = ros::Time(0));
+  /// Journals a change and commits it, then announces it on `operations` and publishes the
+  /// state; refused (nothing changed) when the journal cannot record it. Holds `mutex_`.
+  core::Status commit(core::Change change, const std::string& what, const ros::Time& stamp = ros::Time(0));
+  /// Computes an operation on a copy of the model outside the lock, then commits it (or shows it
+  /// as the preview) if nobody changed the model meanwhile; computed again when somebody did.
+  template <class Result>
+  core::Expected<core::Computed<Result>>
+  computeAndCommit(const std::function<core::Expected<core::Computed<Result>>(core::Workspace)>& compute, bool commit_it,
+                   const std::string& what, const ros::Time& stamp = ros::Time(0));
   /// `stamp` zero: now (a pull is stamped with the tf data it followed).
   void publishState(const ros::Time& stamp = ros::Time(0));
   void publishMarkers(const core::Paper& paper);
@@ -57,11 +71,15 @@ private:
   /// the solver re-solves the paper around every pin.
   void followPins(const ros::TimerEvent&);
   std::vector<int> pinnedVertices() const;
-  void restoreOrStart(ros::NodeHandle& private_nh);
+  void restoreOrStart(ros::NodeHandle& private_nh, const std::string& journal);
   bool answer(const core::Status& status, const std::string& done, std_srvs::Trigger::Response& res);
 
   ros::NodeHandle nh_;
+  std::mutex mutex_;  // the session, journal, pins and what follows them
+  std::optional<core::DataFolder> folder_;
   core::Session session_;
+  std::string notice_;  // said on `state` until the next change
+  int solve_attempts_ = 3;
   core::SessionJournal journal_;
   Pins pins_;
   std::map<int, core::Vec3> pulled_to_;  // where each followed pin last pulled its vertex (paper frame)

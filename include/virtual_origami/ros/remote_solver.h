@@ -2,6 +2,8 @@
 // its own process, on another machine if need be.
 #pragma once
 
+#include <atomic>
+#include <memory>
 #include <string>
 
 #include <ros/node_handle.h>
@@ -15,14 +17,16 @@ class RemoteSolver : public core::ShapeSolver
 public:
   RemoteSolver(ros::NodeHandle nh, std::string service, double timeout);
   std::string name() const override { return "solver service " + service_; }
-  /// Waits up to the timeout for the service; a missing or failing solver reports not
-  /// converged, so the operation is refused and the model stays as it was.
+  /// Waits up to the timeout for the service and again for its answer; a missing, failing or
+  /// stalled solver reports not converged, so the operation is refused and the model stays as it was.
   core::SolveReport solve(core::Paper& paper, const std::vector<char>& fixed) override;
 
 private:
   ros::NodeHandle nh_;
   std::string service_;
   double timeout_;
+  static constexpr int kMaxStalledCalls = 4;
+  std::shared_ptr<std::atomic<int>> stalled_ = std::make_shared<std::atomic<int>>(0);  // calls given up on, still open
 };
 
 }  // namespace virtual_origami
