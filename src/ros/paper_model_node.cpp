@@ -229,7 +229,7 @@ core::Status PaperModelNode::commit(core::Change change, const std::string& what
 template <class Result>
 core::Expected<core::Computed<Result>> PaperModelNode::computeAndCommit(
     const std::function<core::Expected<core::Computed<Result>>(core::Workspace)>& compute, bool commit_it,
-    const std::string& what, const ros::Time& stamp)
+    const std::string& what, uint64_t& revision, const ros::Time& stamp)
 {
   using Answer = core::Expected<core::Computed<Result>>;
   for (int attempt = 1;; ++attempt)
@@ -241,9 +241,10 @@ core::Expected<core::Computed<Result>> PaperModelNode::computeAndCommit(
       workspace = session_.workspace();
     }
     Answer computed = compute(std::move(workspace));
+    std::lock_guard<std::mutex> lock(mutex_);
+    revision = session_.revision();  // answered with the revision this call made or found
     if (!computed)
       return computed;
-    std::lock_guard<std::mutex> lock(mutex_);
     if (computed->change.base_revision != session_.revision())
     {
       if (attempt < solve_attempts_)
@@ -258,6 +259,7 @@ core::Expected<core::Computed<Result>> PaperModelNode::computeAndCommit(
       return computed;
     }
     const core::Status committed = commit(std::move(computed->change), what, stamp);
+    revision = session_.revision();
     if (!committed)
       return Answer::failure(committed.message());
     return computed;
@@ -337,16 +339,17 @@ void PaperModelNode::followPins(const ros::TimerEvent&)
     if (refused_ && refused_->revision == session_.revision() && refused_->targets == targets && refused_->held == held)
       return;
   }
+  uint64_t revision = 0;
   const auto result = computeAndCommit<core::PullResult>(
       [&](core::Workspace workspace) { return core::computePull(std::move(workspace), targets); }, true,
-      "pulled to the pins' frames", stamp);
+      "pulled to the pins' frames", revision, stamp);
   std::lock_guard<std::mutex> lock(mutex_);
   if (!result)
   {
     // Refused cycles (a frame the rigid faces cannot reach) repeat while the frame moves on:
     // one warning every few seconds, and a frame standing still is not solved again.
     ROS_WARN_THROTTLE(5.0, "paper_model: the pins cannot be followed: %s", result.message().c_str());
-    refused_ = RefusedPull{ session_.revision(), targets, held };
+    refused_ = RefusedPull{ revision, targets, held };
     return;
   }
   refused_.reset();
@@ -414,13 +417,11 @@ bool PaperModelNode::rotate(Rotate::Request& req, Rotate::Response& res)
   request.angle = req.angle;
   const auto result = computeAndCommit<core::RotateResult>(
       [&](core::Workspace workspace) { return core::computeRotate(std::move(workspace), request); }, req.commit,
-      "rotated");
+      "rotated", res.revision);
   res.success = result.ok();
   res.message = result ? (req.commit ? "rotated" : "preview") : result.message();
   res.face = result ? result->result.face : req.face;
   res.axis_edge = result ? result->result.axis_edge : req.axis_edge;
-  std::lock_guard<std::mutex> lock(mutex_);
-  res.revision = session_.revision();
   return true;
 }
 
@@ -433,8 +434,9 @@ bool PaperModelNode::answer(const core::Status& status, const std::string& done,
 
 bool PaperModelNode::squash(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res)
 {
+  uint64_t revision = 0;
   const auto result = computeAndCommit<core::SquashResult>(
-      [](core::Workspace workspace) { return core::computeSquash(std::move(workspace)); }, true, "squashed");
+      [](core::Workspace workspace) { return core::computeSquash(std::move(workspace)); }, true, "squashed", revision);
   return answer(result ? core::success() : core::failure(result.message()),
                 result && result->result.exact ? "pressed flat" : "pressed flat and restored by the solver", res);
 }
@@ -536,7 +538,8 @@ bool PaperModelNode::pull(Pull::Request& req, Pull::Response& res)
       targets.push_back({ req.vertices[i], toVec3(req.positions[i]) });
     const std::string done = "pulled " + std::to_string(targets.size()) + " vertices";
     const auto result = computeAndCommit<core::PullResult>(
-        [&](core::Workspace workspace) { return core::computePull(std::move(workspace), targets); }, true, done);
+        [&](core::Workspace workspace) { return core::computePull(std::move(workspace), targets); }, true, done,
+        res.revision);
     res.success = result.ok();
     res.message = result ? done : result.message();
     if (result)
@@ -544,6 +547,7 @@ bool PaperModelNode::pull(Pull::Request& req, Pull::Response& res)
       res.residual = result->result.residual;
       res.max_strain = result->result.solve.max_strain;
     }
+    return true;
   }
   std::lock_guard<std::mutex> lock(mutex_);
   res.revision = session_.revision();

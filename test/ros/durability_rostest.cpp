@@ -16,7 +16,6 @@
 
 using namespace virtual_origami;
 using virtual_origami::test::PaperClient;
-using virtual_origami::test::crash;
 using virtual_origami::test::pidOf;
 using virtual_origami::test::waitFor;
 
@@ -24,9 +23,7 @@ namespace
 {
 const std::string kJournal = core::defaultDataFolder() + "/session_origami.jsonl";
 
-/// Kills paper_model as a crash would and returns once its successor is up; `meanwhile` runs
-/// while no process has the journal open (launch's respawn_delay is 2 s).
-void crashModel(PaperClient& client, const std::function<void()>& meanwhile = {})
+void crashOnly(const std::function<void()>& meanwhile)
 {
   const int pid = pidOf("paper_model");
   ASSERT_GT(pid, 0);
@@ -35,7 +32,15 @@ void crashModel(PaperClient& client, const std::function<void()>& meanwhile = {}
     meanwhile();
   ASSERT_TRUE(waitFor([&] { const int now = pidOf("paper_model"); return now > 0 && now != pid; }, 30.0));
   ASSERT_TRUE(ros::service::waitForService("/origami/crease", ros::Duration(30)));
-  (void)client;
+}
+
+/// Kills paper_model as a crash would and returns the first state its successor publishes;
+/// `meanwhile` runs while no process has the journal open (launch's respawn_delay is 2 s).
+PaperState crashModel(PaperClient& client, const std::function<void()>& meanwhile = {})
+{
+  const int received = client.received();
+  crashOnly(meanwhile);
+  return client.stateAfter(received);
 }
 
 /// Creases n vertical lines; returns the last acknowledged revision.
@@ -68,9 +73,9 @@ TEST(Durability, ResumeFalseMeansANewSessionPerLaunchNotPerProcess)
   ASSERT_TRUE(client.trigger("reset").response.success);
   const uint64_t acknowledged = creaseLines(client, 6, 0.1);
   const PaperState last = client.stateAt(acknowledged);
-  crashModel(client);
   // The respawned process is of the same launch: it resumes although resume is false.
-  const PaperState& back = client.stateAt(acknowledged);
+  const PaperState back = crashModel(client);
+  EXPECT_EQ(back.revision, acknowledged);
   EXPECT_EQ(back.vertices_folded, last.vertices_folded);
   EXPECT_EQ(back.edges, last.edges);
   const std_srvs::Trigger undone = client.trigger("undo");
@@ -99,8 +104,8 @@ TEST(Durability, AnOperationThatCannotBeJournaledIsRefused)
   const uint64_t after = creaseLines(client, 2, 0.72);
   EXPECT_EQ(after, before + 2);
   const PaperState last = client.stateAt(after);
-  crashModel(client);
-  const PaperState& back = client.stateAt(after);
+  const PaperState back = crashModel(client);
+  EXPECT_EQ(back.revision, after);
   EXPECT_EQ(back.edges, last.edges);
   EXPECT_EQ(back.vertices_folded, last.vertices_folded);
 }
@@ -110,13 +115,13 @@ TEST(Durability, ADamagedJournalKeepsEverythingBeforeTheDamage)
   PaperClient client;
   const uint64_t acknowledged = creaseLines(client, 2, 0.2);
   const PaperState last = client.stateAt(acknowledged);
-  crashModel(client, [&] {
+  const PaperState back = crashModel(client, [&] {
     // Well-formed JSON that cannot be applied: a revision no history reaches, then a good-looking line.
     std::ofstream journal(kJournal, std::ios::app);
     journal << R"({"operation": {"kind": "undo", "revision": 1e308}})" << '\n'
             << R"({"operation": {"kind": "undo", "revision": )" << acknowledged + 2 << "}}\n";
   });
-  const PaperState& back = client.stateAt(acknowledged);
+  EXPECT_EQ(back.revision, acknowledged);
   EXPECT_EQ(back.edges, last.edges);
   EXPECT_FALSE(back.notice.empty());
   EXPECT_NE(back.notice.find("line"), std::string::npos) << back.notice;
@@ -130,9 +135,12 @@ TEST(Durability, AStoppedSolverHoldsUpNoOtherClient)
 {
   PaperClient client;
   ASSERT_TRUE(client.trigger("reset").response.success);
-  // A degree-4 vertex: turning a face about a half crease needs the solver.
+  // A degree-4 vertex: turning a face about a half crease drags the others through the solver.
   ASSERT_TRUE(client.crease(0.5, -0.1, 0.5, 1.1).response.success);
-  ASSERT_TRUE(client.crease(0.5, 0.5, 1.0, 0.8).response.success);
+  const Crease half = client.crease(0.5, 0.5, 1.0, 0.8);
+  ASSERT_TRUE(half.response.success);
+  ASSERT_EQ(half.response.new_edges.size(), 1u);
+  const int axis = half.response.new_edges[0];
   const Crease third = client.crease(0.5, 0.5, 0.0, 0.9);
   ASSERT_TRUE(third.response.success);
   const int solver = pidOf("spring_solver");
@@ -145,7 +153,7 @@ TEST(Durability, AStoppedSolverHoldsUpNoOtherClient)
     ASSERT_TRUE(stop.ok);
     rotating = std::thread([&] {
       PaperClient other;
-      stalled = other.rotate(-1, -1, 0.9, 0.9, 0.3);
+      stalled = other.rotate(-1, axis, 0.9, 0.9, 0.3);
       returned = true;
     });
     ros::WallDuration(1.0).sleep();  // the rotation is waiting on the solver by now
@@ -163,7 +171,7 @@ TEST(Durability, AStoppedSolverHoldsUpNoOtherClient)
   // The solver goes on: so does folding.
   bool rotated = false;
   waitFor([&] {
-    rotated = client.rotate(-1, -1, 0.9, 0.9, 0.3).response.success;
+    rotated = client.rotate(-1, axis, 0.9, 0.9, 0.3).response.success;
     return rotated;
   }, 30.0);
   EXPECT_TRUE(rotated);

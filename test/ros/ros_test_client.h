@@ -121,6 +121,14 @@ public:
         << "state stayed at revision " << state_.revision << ", expected " << revision;
     return state_;
   }
+  /// States received so far: a test that restarts the model waits for one past it.
+  int received() const { return states_; }
+  /// The first state received after `count` states.
+  const PaperState& stateAfter(int count)
+  {
+    EXPECT_TRUE(waitFor([&] { return states_ > count; }, 30.0)) << "no new state";
+    return state_;
+  }
   const PaperState& state()
   {
     waitFor([&] { return states_ > 0; });

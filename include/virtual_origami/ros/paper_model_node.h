@@ -57,10 +57,11 @@ private:
   core::Status commit(core::Change change, const std::string& what, const ros::Time& stamp = ros::Time(0));
   /// Computes an operation on a copy of the model outside the lock, then commits it (or shows it
   /// as the preview) if nobody changed the model meanwhile; computed again when somebody did.
+  /// `revision`: the one the commit made, or the model's when nothing was committed.
   template <class Result>
   core::Expected<core::Computed<Result>>
   computeAndCommit(const std::function<core::Expected<core::Computed<Result>>(core::Workspace)>& compute, bool commit_it,
-                   const std::string& what, const ros::Time& stamp = ros::Time(0));
+                   const std::string& what, uint64_t& revision, const ros::Time& stamp = ros::Time(0));
   /// `stamp` zero: now (a pull is stamped with the tf data it followed).
   void publishState(const ros::Time& stamp = ros::Time(0));
   void publishMarkers(const core::Paper& paper);
