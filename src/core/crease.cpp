@@ -4,7 +4,6 @@
 #include <map>
 #include <sstream>
 #include <string>
-#include <utility>
 
 #include <Eigen/Geometry>
 
@@ -457,19 +456,13 @@ std::string unusablePoint(const Paper& paper, const Vec3& point, const std::stri
 
 Expected<CreaseResult> crease(Paper& paper, const CreaseRequest& request, const SnapSettings& snap_settings)
 {
-  for (const auto& [point, what] : { std::pair(request.start, "the crease line's start"),
-                                     std::pair(request.end, "the crease line's end") })
-  {
-    const std::string problem = unusablePoint(paper, point, what);
-    if (!problem.empty())
-      return Expected<CreaseResult>::failure(problem);
-  }
-  if (request.eye)
-  {
-    const std::string problem = unusablePoint(paper, *request.eye, "the eye point");
-    if (!problem.empty())
-      return Expected<CreaseResult>::failure(problem);
-  }
+  std::string problem = unusablePoint(paper, request.start, "the crease line's start");
+  if (problem.empty())
+    problem = unusablePoint(paper, request.end, "the crease line's end");
+  if (problem.empty() && request.eye)
+    problem = unusablePoint(paper, *request.eye, "the eye point");
+  if (!problem.empty())
+    return Expected<CreaseResult>::failure(problem);
   CreaseRequest snapped = request;
   Snap start_snap, end_snap;
   if (request.snap)
