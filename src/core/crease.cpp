@@ -3,6 +3,7 @@
 #include <cmath>
 #include <map>
 #include <sstream>
+#include <string>
 
 #include <Eigen/Geometry>
 
@@ -424,13 +425,44 @@ private:
   std::map<int, int> split_vertex_;
 };
 
-bool finite(const CreaseRequest& r) { return r.start.allFinite() && r.end.allFinite() && (!r.eye || r.eye->allFinite()); }
+/// A point of the request farther than this many sheet sizes from the paper is refused: no
+/// line drawn on the paper needs it, and the cut's products of such coordinates overflow (ends
+/// at 1e308 made NaN distances, refused as a line "along an existing edge").
+constexpr double kFarthest = 1e3;
+
+/// Why `point` (named `what`) cannot be creased with, or empty when it can.
+std::string unusablePoint(const Paper& paper, const Vec3& point, const std::string& what)
+{
+  if (!point.allFinite())
+    return what + " is not a finite point";
+  if (paper.vertices.empty())
+    return {};
+  Vec3 low = paper.vertices[0].folded, high = low;
+  for (const Vertex& v : paper.vertices)
+  {
+    low = low.cwiseMin(v.folded);
+    high = high.cwiseMax(v.folded);
+  }
+  // Componentwise, so nothing squares the coordinates (1e308² overflows).
+  const double outside = (low - point).cwiseMax(point - high).cwiseMax(0.0).lpNorm<Eigen::Infinity>();
+  if (outside <= kFarthest * paper.scale())
+    return {};
+  std::ostringstream msg;
+  msg << what << " lies far outside the paper (at " << point.x() << ", " << point.y() << ", " << point.z()
+      << "; more than " << kFarthest << " times the sheet's size from it)";
+  return msg.str();
+}
 }  // namespace
 
 Expected<CreaseResult> crease(Paper& paper, const CreaseRequest& request, const SnapSettings& snap_settings)
 {
-  if (!finite(request))
-    return Expected<CreaseResult>::failure("the crease line has a non-finite coordinate");
+  std::string problem = unusablePoint(paper, request.start, "the crease line's start");
+  if (problem.empty())
+    problem = unusablePoint(paper, request.end, "the crease line's end");
+  if (problem.empty() && request.eye)
+    problem = unusablePoint(paper, *request.eye, "the eye point");
+  if (!problem.empty())
+    return Expected<CreaseResult>::failure(problem);
   CreaseRequest snapped = request;
   Snap start_snap, end_snap;
   if (request.snap)

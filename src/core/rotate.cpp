@@ -1,6 +1,8 @@
 #include "virtual_origami/core/rotate.h"
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <sstream>
 
 #include "virtual_origami/core/axis.h"
@@ -225,6 +227,74 @@ double onAxisTolerance(const Paper& paper)
 }
 }  // namespace
 
+namespace
+{
+/// The largest turn one solve is asked to follow. The solver starts from the model with the
+/// face already turned and the rest where it was, and settles on the nearest shape: after a
+/// large turn that can be another branch of the mechanism (a Miura-ori turned 175° at once
+/// ended with creases at ±180° off its closed form by 2π; in 30° steps it stayed exact).
+constexpr double kMaxStage = 10 * M_PI / 180;
+/// A stage that changes any crease by more than this is retried at half the turn, down to
+/// kMinStage: a crease swinging much faster than the turn is where the path nears another
+/// branch (a degree-4 vertex near flat moves one crease five times as fast as the others).
+constexpr double kMaxCreaseChange = 20 * M_PI / 180;
+constexpr double kMinStage = kMaxStage / 64;
+
+double largestCreaseChange(const Paper& before, const Paper& after)
+{
+  double largest = 0.0;
+  for (size_t e = 0; e < before.edges.size(); ++e)
+    largest = std::max(largest, std::abs(after.edges[e].fold_angle - before.edges[e].fold_angle));
+  return largest;
+}
+
+/// Follows the turn with the solver in stages of at most kMaxStage, each solve started from
+/// the shape the one before found, so one call ends where the same turn in small calls does.
+/// `turnedBy(paper, angle)` places the turning faces `angle` of the way. Fails, returning no
+/// paper, when a stage does not converge; `report` sums the stages' iterations and time.
+Expected<Paper> solveInStages(const Paper& paper, double turn,
+                              const std::function<Paper(const Paper&, double)>& turnedBy, ShapeSolver& solver,
+                              const std::vector<char>& fixed, SolveReport& report)
+{
+  const int stages = std::max(1, static_cast<int>(std::ceil(std::abs(turn) / kMaxStage - 1e-9)));
+  Paper current = paper;
+  double done = 0.0;  // the part of `turn` the stages have followed
+  double step = turn / stages;
+  int iterations = 0;
+  double seconds = 0.0;
+  do  // at least once: a turn by 0 still settles the model
+  {
+    const bool last = std::abs(turn - done) <= std::abs(step) * (1 + 1e-12);
+    const double to = last ? turn : done + step;
+    Paper attempt = turnedBy(current, to);
+    SolveReport stage = solver.solve(attempt, fixed);
+    iterations += stage.iterations;
+    seconds += stage.seconds;
+    if (stage.diverged || !stage.converged)
+    {
+      report = stage;
+      report.iterations = iterations;
+      report.seconds = seconds;
+      return Expected<Paper>::failure(solver.name() + " could not restore the face shapes: " + stage.message +
+                                      "; the model is unchanged");
+    }
+    updateFoldAngles(attempt);
+    if (std::abs(to - done) > kMinStage && largestCreaseChange(current, attempt) > kMaxCreaseChange)
+    {
+      step = (to - done) / 2;
+      continue;
+    }
+    current = std::move(attempt);
+    report = stage;
+    done = to;
+    step = std::abs(2 * step) < std::abs(turn) / stages ? 2 * step : turn / stages;  // back up after a retry
+  } while (done != turn);
+  report.iterations = iterations;
+  report.seconds = seconds;
+  return current;
+}
+}  // namespace
+
 std::vector<int> flapOf(const Paper& paper, int face, int axis_edge)
 {
   const double tolerance = 1e-7 * paper.scale();
@@ -279,9 +349,9 @@ Expected<RotateResult> rotate(Paper& paper, const RotateRequest& request, ShapeS
   }
   result.moved_faces = facesIn(moving);
 
-  Paper next = paper;
   // Hinge creases change by the turn exactly; telling updateFoldAngles so keeps ±180° on
   // the side it was folded to.
+  std::vector<std::pair<int, double>> hinges;  // edge, change of its fold angle per radian of `turn`
   for (size_t e = 0; e < paper.edges.size(); ++e)
   {
     const Edge& edge = paper.edges[e];
@@ -291,8 +361,8 @@ Expected<RotateResult> rotate(Paper& paper, const RotateRequest& request, ShapeS
     if (axis.distance(paper.vertices[edge.vertices[0]].folded) > tolerance ||
         axis.distance(paper.vertices[edge.vertices[1]].folded) > tolerance)
       continue;
-    const double delta = (moving[edge.faces[0]] ? turn : -turn) * (dir.dot(axis.direction) > 0 ? 1.0 : -1.0);
-    const double expected = edge.fold_angle + delta;
+    const double rate = (moving[edge.faces[0]] ? 1.0 : -1.0) * (dir.dot(axis.direction) > 0 ? 1.0 : -1.0);
+    const double expected = edge.fold_angle + rate * turn;
     if (std::abs(expected) > M_PI + 1e-9)
     {
       std::ostringstream msg;
@@ -300,16 +370,26 @@ Expected<RotateResult> rotate(Paper& paper, const RotateRequest& request, ShapeS
           << expected * 180 / M_PI << "); the layers would pass through each other";
       return Failure::failure(msg.str());
     }
-    next.edges[e].fold_angle = expected;
+    hinges.emplace_back(static_cast<int>(e), rate);
   }
   const std::vector<char> moving_vertices = verticesOf(paper, moving);
-  // Every vertex of the turning faces turns, also where a face the solver moves shares it;
-  // those on the axis stay exactly where they are.
-  for (size_t v = 0; v < paper.vertices.size(); ++v)
-    if (moving_vertices[v] && axis.distance(paper.vertices[v].folded) > onAxisTolerance(paper))
-      next.vertices[v].folded = rotateAbout(paper.vertices[v].folded, axis.origin, axis.direction, turn);
+  // The model turned by `angle` of the way: every vertex of the turning faces turns, also
+  // where a face the solver moves shares it; those on the axis stay exactly where they are.
+  const auto turnedBy = [&](Paper turned, double angle) {
+    for (size_t v = 0; v < paper.vertices.size(); ++v)
+      if (moving_vertices[v] && axis.distance(paper.vertices[v].folded) > onAxisTolerance(paper))
+        turned.vertices[v].folded = rotateAbout(paper.vertices[v].folded, axis.origin, axis.direction, angle);
+    for (const auto& [e, rate] : hinges)
+      turned.edges[e].fold_angle = paper.edges[e].fold_angle + rate * angle;
+    return turned;
+  };
 
-  if (!rigid)
+  Paper next;
+  if (rigid)
+  {
+    next = turnedBy(paper, turn);
+  }
+  else
   {
     if (!solver)
       return Failure::failure("turning face " + std::to_string(result.face) + " about edge " +
@@ -322,10 +402,10 @@ Expected<RotateResult> rotate(Paper& paper, const RotateRequest& request, ShapeS
       if (v >= 0 && v < static_cast<int>(fixed.size()))
         fixed[v] = 1;
     result.used_solver = true;
-    result.solve = solver->solve(next, fixed);
-    if (result.solve.diverged || !result.solve.converged)
-      return Failure::failure(solver->name() + " could not restore the face shapes: " + result.solve.message +
-                              "; the model is unchanged");
+    Expected<Paper> solved = solveInStages(paper, turn, turnedBy, *solver, fixed, result.solve);
+    if (!solved)
+      return Failure::failure(solved.message());
+    next = std::move(*solved);
   }
   updateFoldAngles(next);
   updateFaceOrders(next, paper, moving, axis, turn, tolerance);

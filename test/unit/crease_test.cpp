@@ -156,13 +156,13 @@ TEST(Crease, BadInputChangesNothing)
   creaseLine(paper, p3(0.5, -0.1), p3(0.5, 1.1));
   expectRejected(paper, line(p3(2, 2), p3(3, 3)), "misses the paper");
   expectRejected(paper, line(p3(0.2, 0.2), p3(0.2, 0.2)), "zero length");
-  expectRejected(paper, line(p3(std::nan(""), 0), p3(1, 1)), "non-finite");
-  expectRejected(paper, line(p3(0, 0), p3(INFINITY, 1)), "non-finite");
+  expectRejected(paper, line(p3(std::nan(""), 0), p3(1, 1)), "not a finite point");
+  expectRejected(paper, line(p3(0, 0), p3(INFINITY, 1)), "not a finite point");
   expectRejected(paper, line(p3(0.2, 0.2), p3(0.3, 0.3)), "completely");  // ends inside a face
   expectRejected(paper, line(p3(0.2, 0.2, 0), p3(0.2, 0.2, 1)), "perpendicular");
   CreaseRequest eye_nan = line(p3(0, 0), p3(1, 1));
   eye_nan.eye = p3(0, NAN, 1);
-  expectRejected(paper, eye_nan, "non-finite");
+  expectRejected(paper, eye_nan, "not a finite point");
 }
 
 TEST(Crease, SnapsEndsBeforeCutting)
@@ -175,5 +175,34 @@ TEST(Crease, SnapsEndsBeforeCutting)
   EXPECT_EQ(r->start_snap.kind, SnapKind::Vertex);
   EXPECT_EQ(r->end_snap.kind, SnapKind::Vertex);
   EXPECT_TRUE(r->new_vertices.empty());  // exactly corner to corner
+  expectValid(paper);
+}
+
+TEST(Crease, EndsFarOutsideThePaperAreRefusedAsSuch)
+{
+  // Ends at 1e308 used to overflow the cut's geometry into NaN and be refused as running
+  // "along an existing edge"; any point a thousand sheets away is refused for what it is,
+  // before any geometry, as is a point that is not finite at all.
+  Paper paper = Paper::square(1.0);
+  creaseLine(paper, p3(0.5, -0.1), p3(0.5, 1.1));
+  for (double far : { 1e308, -1e308, 1e20, 2000.0 })
+  {
+    expectRejected(paper, line(p3(far, 0.5), p3(0.5, 0.5)), "start lies far outside the paper");
+    expectRejected(paper, line(p3(0.25, 0.5), p3(0.75, far)), "end lies far outside the paper");
+    expectRejected(paper, line(p3(far, far, far), p3(-far, -far, -far)), "start lies far outside the paper");
+    CreaseRequest far_eye = line(p3(0.25, -0.1), p3(0.25, 1.1));
+    far_eye.eye = p3(0.25, 0.5, far);
+    expectRejected(paper, far_eye, "eye point lies far outside the paper");
+  }
+  for (double bad : { NAN, INFINITY, -INFINITY })
+  {
+    expectRejected(paper, line(p3(bad, 0.5), p3(0.5, 0.5)), "start is not a finite point");
+    expectRejected(paper, line(p3(0.25, 0.5), p3(0.75, 0.5, bad)), "end is not a finite point");
+    CreaseRequest bad_eye = line(p3(0.25, -0.1), p3(0.25, 1.1));
+    bad_eye.eye = p3(0.25, bad, 3);
+    expectRejected(paper, bad_eye, "eye point is not a finite point");
+  }
+  // A long line that still lies within reach creases as usual.
+  creaseLine(paper, p3(0.25, -500), p3(0.25, 500));
   expectValid(paper);
 }

@@ -1,7 +1,12 @@
 #include <gtest/gtest.h>
 
+#include <memory>
+
 #include "test_models.h"
+#include "virtual_origami/core/metrics.h"
+#include "virtual_origami/core/reference_patterns.h"
 #include "virtual_origami/core/rotate.h"
+#include "virtual_origami/solvers/solver_factory.h"
 
 using namespace virtual_origami::core;
 using namespace virtual_origami::core::test;
@@ -15,6 +20,33 @@ void expectRejected(Paper& paper, const RotateRequest& request, const std::strin
   EXPECT_FALSE(result.ok());
   EXPECT_NE(result.message().find(words), std::string::npos) << result.message();
   EXPECT_TRUE(paper == before);
+}
+
+constexpr double kDeg = M_PI / 180;
+
+/// Turns `face` about `edge` by `angle` in `calls` equal rotate() calls, the solver moving
+/// the faces the turn drags.
+void turnInCalls(Paper& paper, int face, int edge, double angle, int calls)
+{
+  const std::unique_ptr<ShapeSolver> solver = makeSolver("newton");
+  RotateRequest request;
+  request.face = face;
+  request.axis_edge = edge;
+  request.angle = angle / calls;
+  for (int call = 0; call < calls; ++call)
+  {
+    const Expected<RotateResult> r = rotate(paper, request, solver.get());
+    ASSERT_TRUE(r.ok()) << r.message();
+    EXPECT_TRUE(r->used_solver);
+  }
+}
+
+double largestFoldAngleDifference(const Paper& a, const Paper& b)
+{
+  double largest = 0.0;
+  for (size_t e = 0; e < a.edges.size(); ++e)
+    largest = std::max(largest, std::abs(a.edges[e].fold_angle - b.edges[e].fold_angle));
+  return largest;
 }
 
 int onlyCrease(const Paper& paper)
@@ -158,4 +190,65 @@ TEST(Rotate, BadInputChangesNothing)
   Paper flat = Paper::square(1.0);
   request.click = p3(0.5, 0.5);
   expectRejected(flat, request, "no crease");
+}
+
+TEST(Rotate, OneLargeTurnFollowsTheMiuraOriLikeSmallTurns)
+{
+  // Miura-ori 6 × 5 (γ = 70°) started 0.02 rad along its rigid folding; face 0 turns about its
+  // zigzag crease to face 1 (held) by 175°, folding it further (valley, then mirrored
+  // mountain). Turned at once, the solver used to land on another branch, creases at ±180°
+  // off the closed form by 2π, where 30° steps stay on it.
+  constexpr int kColumns = 6, kRows = 5;
+  constexpr double kGamma = 70 * kDeg;
+  for (double sign : { 1.0, -1.0 })
+  {
+    Paper start = miuraOri(kColumns, kRows, 1.0, 1.3, kGamma);
+    ASSERT_TRUE(foldToAngles(start, miuraFoldAngles(start, kColumns, kRows, kGamma, sign * 0.02)).ok());
+    const int zigzag = start.findEdge(1, kColumns + 2);  // vertex (1, 0) to (1, 1)
+    const double turn = sign * 175 * kDeg;
+    Paper once = start, stepped = start;
+    turnInCalls(once, 0, zigzag, turn, 1);
+    turnInCalls(stepped, 0, zigzag, turn, 6);  // 29.2° each
+    const double zigzag_angle = once.edges[zigzag].fold_angle;
+    EXPECT_NEAR(zigzag_angle, start.edges[zigzag].fold_angle + turn, 1e-12);
+    // Zigzag crease (1, 0)→(1, 1) folds to 2·atan(tan(ρ/2)/cos γ) (reference_patterns.h).
+    const double rho = 2 * std::atan(std::tan(zigzag_angle / 2) * std::cos(kGamma));
+    const std::vector<double> closed_form = miuraFoldAngles(once, kColumns, kRows, kGamma, rho);
+    for (size_t e = 0; e < once.edges.size(); ++e)
+      EXPECT_NEAR(once.edges[e].fold_angle, closed_form[e], 1e-6) << "edge " << e << ", sign " << sign;
+    EXPECT_LT(largestFoldAngleDifference(once, stepped), 1e-6);
+    EXPECT_LT(edgeStrain(once).max, 1e-9);
+    expectValid(once);
+  }
+}
+
+TEST(Rotate, OneLargeTurnFollowsADegree4VertexLikeSmallTurns)
+{
+  // Sectors 60°, 80°, 120°, 100°, started 10° into mode 1 (ρ3 = ρ1, ρ4 = −ρ2); face 3 turns
+  // about crease 1 to face 0 (held) by 185°, through the flat state to −175° (and mirrored).
+  // Turned at once, the solver used to leave mode 1 for a shape off it by 2π.
+  constexpr double kAlpha = 60 * kDeg, kBeta = 80 * kDeg;
+  for (double sign : { 1.0, -1.0 })
+  {
+    Paper start = degree4Vertex({ kAlpha, kBeta, M_PI - kAlpha, M_PI - kBeta });
+    std::array<int, 4> creases{};
+    for (int k = 0; k < 4; ++k)
+      creases[k] = start.findEdge(0, k + 1);
+    const std::array<double, 4> begin = degree4FoldAngles(kAlpha, kBeta, sign * 10 * kDeg, 1);
+    std::vector<double> angles(start.edges.size(), 0.0);
+    for (int k = 0; k < 4; ++k)
+      angles[creases[k]] = begin[k];
+    ASSERT_TRUE(foldToAngles(start, angles).ok());
+    const double turn = -sign * 185 * kDeg;
+    Paper once = start, stepped = start;
+    turnInCalls(once, 3, creases[0], turn, 1);
+    turnInCalls(stepped, 3, creases[0], turn, 6);  // 30.8° each
+    EXPECT_NEAR(once.edges[creases[0]].fold_angle, -sign * 175 * kDeg, 1e-12);
+    const std::array<double, 4> closed_form = degree4FoldAngles(kAlpha, kBeta, -sign * 175 * kDeg, 1);
+    for (int k = 0; k < 4; ++k)
+      EXPECT_NEAR(once.edges[creases[k]].fold_angle, closed_form[k], 1e-6) << "crease " << k + 1 << ", sign " << sign;
+    EXPECT_LT(largestFoldAngleDifference(once, stepped), 1e-6);
+    EXPECT_LT(edgeStrain(once).max, 1e-9);
+    expectValid(once);
+  }
 }

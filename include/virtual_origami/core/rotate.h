@@ -27,6 +27,7 @@ struct RotateResult
   int axis_edge = -1;
   std::vector<int> moved_faces;  // turned rigidly with the face (its flap, or the layers carried)
   bool used_solver = false;
+  /// The last stage's report, with the iterations and seconds of every stage summed.
   SolveReport solve;
 };
 
@@ -35,7 +36,10 @@ struct RotateResult
 /// exact; with `carry_stack`, so do the layers stacked on that side in the turn's way, each
 /// with its own connected part. Otherwise the face turns alone (with the layers in its way)
 /// and `solver` moves the rest of the model, every layer (with the turned faces and the
-/// face across the axis held, and `held` vertices); without a solver that fails. The layer
+/// face across the axis held, and `held` vertices); without a solver that fails. The solver
+/// follows a large turn in stages of at most 10° (smaller where a crease swings fast), each
+/// started from the last, so one call ends on the branch the same turn in small calls does;
+/// each stage has the solver's own limits (a time budget counts per stage). The layer
 /// order (face_orders) follows: faces folded flat onto others lie on the side they came
 /// from, and entries of faces no longer stacked are dropped. On failure `paper` is untouched.
 Expected<RotateResult> rotate(Paper& paper, const RotateRequest& request, ShapeSolver* solver = nullptr,
