@@ -29,6 +29,8 @@ PACKAGES=(
   libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
   # ROS and end-to-end tests (rostest suites are Python: rospy and the Python messages)
   python3-rostest python3-roslaunch python3-rospy python3-rosnode
+  # rosrun, as the README runs single nodes
+  rosbash
   python3-std-srvs python3-tf2-ros python3-visualization-msgs
   xvfb xdotool imagemagick
   # fold_sequence's PNG frames (rsvg-convert)

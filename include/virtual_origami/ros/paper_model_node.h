@@ -104,6 +104,7 @@ private:
   tf2_ros::TransformListener tf_listener_{ tf_buffer_ };  // its own thread: lookups may wait in a service
   double pin_frame_timeout_ = 1.0;                        // how long `pin` waits for an unknown frame to appear
   bool face_frames_ = true;
+  int face_frames_max_ = 1000;  // larger models broadcast no face frames
   std::string face_frame_prefix_;
   ros::Timer pin_timer_, follow_timer_;
 };
