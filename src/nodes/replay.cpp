@@ -1,5 +1,6 @@
 // replay: re-applies a recorded folding (a bag of `operations`) to a running paper_model.
-// Parameters: ~bag (path), ~speed (1: as recorded, 0: at once), ~animation_steps.
+// Parameters: ~bag (path), ~speed (1: as recorded, 0: at once), ~animation_steps, ~data_dir
+// (paper_model's, where the first state is handed over; default as paper_model's).
 #include <ros/ros.h>
 
 #include "virtual_origami/ros/replay.h"
@@ -18,6 +19,7 @@ int main(int argc, char** argv)
   virtual_origami::ReplayOptions options;
   options.speed = private_nh.param("speed", options.speed);
   options.animation_steps = private_nh.param("animation_steps", options.animation_steps);
+  options.data_dir = private_nh.param("data_dir", options.data_dir);
   virtual_origami::OperationClient client(nh.getNamespace());
   if (!client.waitForServices(30.0))
   {

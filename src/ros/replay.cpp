@@ -26,11 +26,12 @@ core::Status startWhereTheRecordingStarted(const Recording& recording, Operation
   const core::Expected<core::Paper> paper = fromMessage(*recording.initial_state);
   if (!paper)
     return core::failure("the recording's first state is broken: " + paper.message());
-  const std::string path = options.scratch_dir + "/virtual_origami_replay_" + std::to_string(::getpid()) + ".fold";
+  const std::string name = "replay_start_" + std::to_string(::getpid()) + ".fold";
+  const std::string path = options.data_dir + "/" + name;
   const core::Status written = core::writeTextFile(path, core::formatFold(*paper, "replay start"));
   if (!written)
     return written;
-  const core::Status loaded = client.load(path);
+  const core::Status loaded = client.load(name);
   std::remove(path.c_str());
   return loaded;
 }

@@ -17,6 +17,7 @@
 #include <thread>
 
 #include "ros_test_client.h"
+#include "virtual_origami/core/data_folder.h"
 #include "virtual_origami/core/session_journal.h"
 #include "virtual_origami/ros/conversions.h"
 
@@ -274,7 +275,8 @@ TEST_F(Chaos, KilledNodesLoseNothing)
   // The journal holds the whole session: every round, each change once, and the last state.
   std::string journal;
   ASSERT_TRUE(ros::param::get("/origami/paper_model/journal", journal));
-  const core::Expected<core::History> history = core::readJournal(journal);
+  // Relative: in the model's data folder (ROS_HOME is the suite's own).
+  const core::Expected<core::History> history = core::readJournal(core::defaultDataFolder() + "/" + journal);
   ASSERT_TRUE(history.ok()) << history.message();
   EXPECT_EQ(history->revision, rounds.back().second);
   EXPECT_TRUE(sameGeometry(toMessage(history->paper, history->revision, {}), reference));

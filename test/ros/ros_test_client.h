@@ -60,7 +60,9 @@ inline int pidOf(const std::string& node)
 /// SIGKILL, as a crash would; with `respawned`, returns once another process has taken its place.
 inline void crash(const std::string& node, bool respawned = true)
 {
-  const int pid = pidOf(node);
+  int pid = -1;
+  // A node just launched may not have registered yet.
+  waitFor([&] { return (pid = pidOf(node)) > 0; }, 30.0);
   ASSERT_GT(pid, 0) << node << " is not running";
   ASSERT_EQ(::kill(pid, SIGKILL), 0);
   if (respawned)

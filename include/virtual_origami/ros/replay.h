@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "virtual_origami/core/data_folder.h"
 #include "virtual_origami/core/result.h"
 #include "virtual_origami/ros/operation_client.h"
 #include "virtual_origami/ros/recording.h"
@@ -14,7 +15,8 @@ struct ReplayOptions
   /// 1: as recorded; 2: twice as fast; 0: no pauses and no animation (as fast as it goes).
   double speed = 1.0;
   int animation_steps = 15;  // previews shown while a rotation turns
-  std::string scratch_dir = "/tmp";
+  /// paper_model's data folder: the first state is handed to its `load` there, by a relative name.
+  std::string data_dir = core::defaultDataFolder();
 };
 
 /// Starts the model where the recording started (its first state, else a reset sheet) and
