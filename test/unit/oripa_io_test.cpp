@@ -346,6 +346,8 @@ TEST(OripaOpx, ReadsXmlEncoderOutputTolerantly)
   EXPECT_THAT(parseOripaOpx("<java>\n\n<object class=\"oripa.OriLineProxy").message(), HasSubstr("line 3: a tag is "
                                                                                                  "never closed"));
   EXPECT_THAT(parseOripaOpx("<java>\n<!-- never closed").message(), HasSubstr("line 2: a comment is never closed"));
+  EXPECT_THAT(parseOripaOpx("<java>\n</></java>").message(), HasSubstr("line 2: a tag without a name"));
+  EXPECT_THAT(parseOripaOpx("<java>\n</>").message(), HasSubstr("line 2: a tag without a name"));
   EXPECT_THAT(parseOripaOpx("<java><object class=\"oripa.OriLineProxy\">\n<void property=\"type\"><int>NaN</int>"
                             "</void></object></java>")
                   .message(),
