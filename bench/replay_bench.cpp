@@ -50,7 +50,7 @@ int main(int argc, char** argv)
       return 1;
     }
     Session recorded_session;
-    const Expected<std::vector<Paper>> states = foldSequence(*sequence, recorded_session);
+    const Expected<std::vector<Paper>> states = foldSequence(*sequence, recorded_session, makeSolver(sequence->solver));
     if (!states)
     {
       std::fprintf(stderr, "replay_bench: %s: %s\n", file.c_str(), states.message().c_str());

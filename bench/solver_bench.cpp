@@ -267,7 +267,7 @@ Scene craneScene()
   const Expected<FoldSequence> sequence = parseFoldSequence(craneSequenceText());
   Session session;
   const Expected<std::vector<Paper>> states =
-      sequence ? foldSequence(*sequence, session) : Expected<std::vector<Paper>>::failure(sequence.message());
+      sequence ? foldSequence(*sequence, session, makeSolver(sequence->solver)) : Expected<std::vector<Paper>>::failure(sequence.message());
   if (!states || states->size() < 14)
   {
     std::cerr << "the crane sequence does not fold to its bird base: " << (states ? "too few states" : states.message())

@@ -17,8 +17,8 @@
 
 #include "virtual_origami/core/metrics.h"
 #include "virtual_origami/core/reference_patterns.h"
-#include "virtual_origami/solvers/face_springs.h"
-#include "virtual_origami/solvers/positions.h"
+#include "virtual_origami/core/face_springs.h"
+#include "virtual_origami/core/positions.h"
 #include "virtual_origami/solvers/seed_spring_solver.h"
 #include "virtual_origami/solvers/solver_factory.h"
 #include "bench_common.h"

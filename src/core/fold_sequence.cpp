@@ -4,7 +4,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include "virtual_origami/solvers/solver_factory.h"
 
 namespace virtual_origami::core
 {
@@ -147,9 +146,9 @@ Status applyFlatFold(Session& session, const FlatFoldRequest& request)
 }
 }  // namespace
 
-Expected<std::vector<Paper>> foldSequence(const FoldSequence& sequence, Session& session)
+Expected<std::vector<Paper>> foldSequence(const FoldSequence& sequence, Session& session,
+                                          std::shared_ptr<ShapeSolver> solver)
 {
-  std::shared_ptr<ShapeSolver> solver = makeSolver(sequence.solver);
   if (!solver)
     return Expected<std::vector<Paper>>::failure("no solver named \"" + sequence.solver + "\"");
   session.setSolver(solver);

@@ -7,7 +7,7 @@
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
 
-#include "virtual_origami/solvers/face_springs.h"
+#include "virtual_origami/core/face_springs.h"
 #include "virtual_origami/solvers/rigid_faces.h"
 #include "virtual_origami/solvers/solve_budget.h"
 

@@ -7,8 +7,8 @@
 #include <Eigen/Geometry>
 
 #include "virtual_origami/core/kinematics.h"
-#include "virtual_origami/solvers/face_springs.h"
-#include "virtual_origami/solvers/positions.h"
+#include "virtual_origami/core/face_springs.h"
+#include "virtual_origami/core/positions.h"
 #include "virtual_origami/solvers/rigid_faces.h"
 #include "virtual_origami/solvers/solve_budget.h"
 

@@ -18,6 +18,7 @@
 #include "virtual_origami/core/svg.h"
 #include "virtual_origami/ros/conversions.h"
 #include "virtual_origami/ros/recording.h"
+#include "virtual_origami/solvers/solver_factory.h"
 
 using namespace virtual_origami;
 
@@ -75,7 +76,7 @@ int main(int argc, char** argv)
   core::Session session;
   // The sequence starts with a reset, the session's first logged operation: frames[i] is the
   // state after log[i].
-  const auto states = core::foldSequence(*sequence, session);
+  const auto states = core::foldSequence(*sequence, session, core::makeSolver(sequence->solver));
   if (!states)
     return fail(std::string(argv[1]) + ": " + states.message());
   std::vector<core::Paper> frames(states->begin(), states->end());

@@ -42,7 +42,7 @@ TEST(FoldSequence, EveryShippedSequenceFolds)
     ASSERT_TRUE(sequence.ok()) << sequence.message();
     EXPECT_FALSE(sequence->title.empty());
     Session session;
-    const Expected<std::vector<Paper>> states = foldSequence(*sequence, session);
+    const Expected<std::vector<Paper>> states = foldSequence(*sequence, session, makeSolver(sequence->solver));
     ASSERT_TRUE(states.ok()) << states.message();
     size_t operations = 0;
     for (const FoldStep& step : sequence->steps)
@@ -63,7 +63,7 @@ TEST(FoldSequence, TheTriangleEndsWithItsLastFoldAtNinetyDegrees)
   const Expected<FoldSequence> sequence = parseFoldSequence(readFile(std::string(VO_SOURCE_DIR) + "/sequences/triangle.json"));
   ASSERT_TRUE(sequence.ok()) << sequence.message();
   Session session;
-  const auto states = foldSequence(*sequence, session);
+  const auto states = foldSequence(*sequence, session, makeSolver(sequence->solver));
   ASSERT_TRUE(states.ok()) << states.message();
   const Paper& paper = states->back();
   EXPECT_EQ(paper.faces.size(), 4u);
@@ -86,7 +86,7 @@ TEST(FoldSequence, RepeatTurnsTheSameFaceAboutTheSameAxis)
   const Expected<FoldSequence> sequence = parseFoldSequence(text);
   ASSERT_TRUE(sequence.ok()) << sequence.message();
   Session session;
-  const auto states = foldSequence(*sequence, session);
+  const auto states = foldSequence(*sequence, session, makeSolver(sequence->solver));
   ASSERT_TRUE(states.ok()) << states.message();
   ASSERT_EQ(states->size(), 5u);
   const Operation& last = session.log().back();
@@ -111,7 +111,7 @@ TEST(FoldSequence, AStepThatFailsIsNamed)
       R"({"steps": [{"crease": {"start": [0, 0], "end": [1, 1]}}, {"crease": {"start": [5, 5], "end": [6, 6]}, "note": "off the paper"}]})");
   ASSERT_TRUE(sequence.ok());
   Session session;
-  const auto states = foldSequence(*sequence, session);
+  const auto states = foldSequence(*sequence, session, makeSolver(sequence->solver));
   EXPECT_FALSE(states.ok());
   EXPECT_NE(states.message().find("step 2 (off the paper)"), std::string::npos) << states.message();
   EXPECT_NE(states.message().find("misses"), std::string::npos) << states.message();
@@ -124,7 +124,7 @@ TEST(FoldSequence, AFlatFoldIsRecordedAsThePullOfTheVerticesItMoves)
   const Expected<FoldSequence> sequence = parseFoldSequence(text);
   ASSERT_TRUE(sequence.ok()) << sequence.message();
   Session session;
-  const auto states = foldSequence(*sequence, session);
+  const auto states = foldSequence(*sequence, session, makeSolver(sequence->solver));
   ASSERT_TRUE(states.ok()) << states.message();
   ASSERT_EQ(session.log().size(), 3u);  // reset, crease, the fold
   const Operation& fold = session.log().back();

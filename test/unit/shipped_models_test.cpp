@@ -11,6 +11,7 @@
 #include "virtual_origami/core/layers.h"
 #include "virtual_origami/core/metrics.h"
 #include "virtual_origami/core/validity.h"
+#include "virtual_origami/solvers/solver_factory.h"
 
 using namespace virtual_origami::core;
 
@@ -32,7 +33,7 @@ std::vector<Paper> foldShipped(const std::string& name, size_t* operations = nul
       *operations += static_cast<size_t>(step.repeat);
   }
   Session session;
-  const Expected<std::vector<Paper>> states = foldSequence(*sequence, session);
+  const Expected<std::vector<Paper>> states = foldSequence(*sequence, session, makeSolver(sequence->solver));
   EXPECT_TRUE(states.ok()) << states.message();
   return states ? *states : std::vector<Paper>{};
 }

@@ -15,6 +15,7 @@
 // where the fold puts it, so bags and replays carry it like any other operation.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -45,7 +46,9 @@ struct FoldSequence
 Expected<FoldSequence> parseFoldSequence(const std::string& text);
 
 /// The state after every operation (front: the unfolded sheet; a repeated rotation gives one
-/// state per turn), or the first step that failed.
-Expected<std::vector<Paper>> foldSequence(const FoldSequence& sequence, Session& session);
+/// state per turn), or the first step that failed. `solver` is the one the sequence names
+/// (solvers/solver_factory.h makes it; null: refused, naming it).
+Expected<std::vector<Paper>> foldSequence(const FoldSequence& sequence, Session& session,
+                                          std::shared_ptr<ShapeSolver> solver);
 
 }  // namespace virtual_origami::core

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "virtual_origami/core/paper.h"
-#include "virtual_origami/solvers/face_springs.h"
+#include "virtual_origami/core/face_springs.h"
 
 namespace virtual_origami::core
 {

@@ -7,7 +7,7 @@
 
 #include "virtual_origami/core/paper.h"
 #include "virtual_origami/core/result.h"
-#include "virtual_origami/solvers/shape_solver.h"
+#include "virtual_origami/core/shape_solver.h"
 
 namespace virtual_origami::core
 {

@@ -13,7 +13,7 @@
 #include "virtual_origami/core/rotate.h"
 #include "virtual_origami/core/snap.h"
 #include "virtual_origami/core/squash.h"
-#include "virtual_origami/solvers/shape_solver.h"
+#include "virtual_origami/core/shape_solver.h"
 
 namespace virtual_origami::core
 {

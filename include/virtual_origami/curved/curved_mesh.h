@@ -10,7 +10,7 @@
 
 #include "virtual_origami/core/paper.h"
 #include "virtual_origami/core/result.h"
-#include "virtual_origami/solvers/positions.h"
+#include "virtual_origami/core/positions.h"
 
 namespace virtual_origami::core
 {

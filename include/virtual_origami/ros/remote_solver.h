@@ -8,7 +8,7 @@
 
 #include <ros/node_handle.h>
 
-#include "virtual_origami/solvers/shape_solver.h"
+#include "virtual_origami/core/shape_solver.h"
 
 namespace virtual_origami
 {

@@ -10,7 +10,7 @@
 #include <virtual_origami/Solve.h>
 #include <virtual_origami/SpringSolverConfig.h>
 
-#include "virtual_origami/solvers/shape_solver.h"
+#include "virtual_origami/core/shape_solver.h"
 
 namespace virtual_origami
 {

@@ -8,9 +8,9 @@
 #include <Eigen/Core>
 
 #include "virtual_origami/core/paper.h"
-#include "virtual_origami/solvers/face_springs.h"
-#include "virtual_origami/solvers/positions.h"
-#include "virtual_origami/solvers/shape_solver.h"
+#include "virtual_origami/core/face_springs.h"
+#include "virtual_origami/core/positions.h"
+#include "virtual_origami/core/shape_solver.h"
 
 namespace virtual_origami::core
 {

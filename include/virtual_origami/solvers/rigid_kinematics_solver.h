@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "virtual_origami/solvers/shape_solver.h"
+#include "virtual_origami/core/shape_solver.h"
 
 namespace virtual_origami::core
 {

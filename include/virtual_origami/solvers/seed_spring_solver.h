@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "virtual_origami/solvers/face_springs.h"
-#include "virtual_origami/solvers/shape_solver.h"
+#include "virtual_origami/core/face_springs.h"
+#include "virtual_origami/core/shape_solver.h"
 
 namespace virtual_origami::core
 {

@@ -3,7 +3,7 @@
 
 #include <chrono>
 
-#include "virtual_origami/solvers/shape_solver.h"
+#include "virtual_origami/core/shape_solver.h"
 
 namespace virtual_origami::core
 {

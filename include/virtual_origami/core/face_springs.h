@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "virtual_origami/core/paper.h"
-#include "virtual_origami/solvers/positions.h"
+#include "virtual_origami/core/positions.h"
 
 namespace virtual_origami::core
 {

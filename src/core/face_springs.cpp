@@ -1,4 +1,4 @@
-#include "virtual_origami/solvers/face_springs.h"
+#include "virtual_origami/core/face_springs.h"
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-#include "virtual_origami/solvers/positions.h"
+#include "virtual_origami/core/positions.h"
 
 namespace virtual_origami::core
 {
