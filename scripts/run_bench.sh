@@ -51,6 +51,30 @@ step curved_bench "$bin/curved_bench" "$out/curved_solvers.csv"
 step curved_speed_bench env OMP_THREAD_LIMIT=1 "$bin/curved_speed_bench" "$out"
 step replay_bench "$bin/replay_bench" "$out/replay.csv" sequences/crane.json sequences/penguin.json sequences/miura_ori.json
 step mesh_bench "$bin/mesh_bench" "$out"
+# Journal and memory: their temporary files in the build folder, on disk (not a tmpfs /tmp).
+step journal_bench "$bin/journal_bench" "$out" "$build"
+step memory_bench "$bin/memory_bench" "$out" "$build"
+
+# paper_model + spring_solver + 4 clients (bench/contention_bench.launch): a master on a free
+# port of its own, a ROS_HOME and a data folder (the journal, on disk) of its own, removed
+# after; the CSVs are moved into docs/bench only when the run wrote them.
+run_contention() {
+  local ros_home data port status=0
+  ros_home="$(mktemp -d)"
+  data="$(mktemp -d -p "$build" contention_bench.XXXXXX)"
+  port="$(/usr/bin/python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')"
+  ROS_HOME="$ros_home" timeout 600 "$build/devel/env.sh" roslaunch -p "$port" virtual_origami contention_bench.launch \
+    data_dir:="$data" csv_prefix:="$data/contention" || status=$?
+  if [ "$status" -eq 0 ] && [ -s "$data/contention.csv" ] && [ -s "$data/contention_refusals.csv" ]; then
+    mv "$data/contention.csv" "$data/contention_refusals.csv" "$out/"
+  else
+    echo "contention_bench: no CSV written (roslaunch status $status)" >&2
+    status=1
+  fi
+  rm -rf "$ros_home" "$data"
+  return "$status"
+}
+step contention_bench run_contention
 step plot_charts /usr/bin/python3 bench/plot_charts.py "$out" docs/images/bench "$doc"
 children_cpu
 echo "total,$(minus "$(date +%s.%N)" "$run_start"),$(minus "$cpu_now" "$run_cpu")" >>"$pending"
