@@ -125,9 +125,13 @@ public:
     {
       if (pause > 0 && i > 0)
         std::this_thread::sleep_for(std::chrono::duration<double>(pause));
-      // Lines y = x - c across the corner (1, 0): each thread its own two, so that creases
-      // an undo missed (it took back another client's change) leave a bounded model.
-      const double c = 0.9 - 0.05 * (thread % 2) - 0.1 * (i % 2);
+      // Lines y = x - c across the corner (1, 0), a new one every call (c by the golden ratio's
+      // sequence, each thread its own): a crease an undo missed (the undo took back another
+      // client's change, a rotation say) stays, and a line repeated on it would be refused
+      // at once ("nothing new to crease") instead of measured. Those misses are bounded by the
+      // other clients' changes.
+      const double golden = 0.6180339887498949;
+      const double c = 0.62 + 0.3 * std::fmod((2 * i + thread + 1) * golden, 1.0);
       auto request = creaseRequest(c - 0.1, -0.1, 1.1, 1.1 - c);
       call(crease, request, phase, "crease", thread, crease_answer);
       if (!request.response.success)

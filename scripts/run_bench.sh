@@ -59,14 +59,15 @@ step memory_bench "$bin/memory_bench" "$out" "$build"
 # port of its own, a ROS_HOME and a data folder (the journal, on disk) of its own, removed
 # after; the CSVs are moved into docs/bench only when the run wrote them.
 run_contention() {
-  local ros_home data port status=0
+  local name="$1" ros_home data port status=0
+  shift
   ros_home="$(mktemp -d)"
   data="$(mktemp -d -p "$build" contention_bench.XXXXXX)"
   port="$(/usr/bin/python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')"
   ROS_HOME="$ros_home" timeout 600 "$build/devel/env.sh" roslaunch -p "$port" virtual_origami contention_bench.launch \
-    data_dir:="$data" csv_prefix:="$data/contention" || status=$?
-  if [ "$status" -eq 0 ] && [ -s "$data/contention.csv" ] && [ -s "$data/contention_refusals.csv" ]; then
-    mv "$data/contention.csv" "$data/contention_refusals.csv" "$out/"
+    data_dir:="$data" csv_prefix:="$data/$name" "$@" || status=$?
+  if [ "$status" -eq 0 ] && [ -s "$data/$name.csv" ] && [ -s "$data/${name}_refusals.csv" ]; then
+    mv "$data/$name.csv" "$data/${name}_refusals.csv" "$out/"
   else
     echo "contention_bench: no CSV written (roslaunch status $status)" >&2
     status=1
@@ -74,7 +75,9 @@ run_contention() {
   rm -rf "$ros_home" "$data"
   return "$status"
 }
-step contention_bench run_contention
+# A slow solver (the seed's scheme, the launch's default), then the default solver.
+step contention_bench run_contention contention
+step contention_bench_newton run_contention contention_newton solver:=newton tolerance:=1e-10 max_iterations:=1000
 step plot_charts /usr/bin/python3 bench/plot_charts.py "$out" docs/images/bench "$doc"
 children_cpu
 echo "total,$(minus "$(date +%s.%N)" "$run_start"),$(minus "$cpu_now" "$run_cpu")" >>"$pending"

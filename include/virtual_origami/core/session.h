@@ -145,8 +145,9 @@ public:
   /// Shows a computed rotation as the preview, unless the session has moved on since.
   bool setPreview(Change change);
 
-  /// Undo states beyond this many bytes (with the current state's) are forgotten, oldest first;
-  /// 0: no limit. The operation log and the journal keep every operation all the same.
+  /// Undo states beyond this many bytes (the undo and redo states together, by approximateBytes)
+  /// are forgotten, oldest first; 0: no limit. The operation log and the journal keep every
+  /// operation all the same.
   void setHistoryLimit(size_t bytes);
   /// Bytes the undo and redo states hold, and how many undo states the limit has dropped.
   size_t historyBytes() const { return history_bytes_; }

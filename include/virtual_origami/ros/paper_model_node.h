@@ -56,7 +56,8 @@ private:
   /// state; refused (nothing changed) when the journal cannot record it. Holds `mutex_`.
   core::Status commit(core::Change change, const std::string& what, const ros::Time& stamp = ros::Time(0));
   /// Computes an operation on a copy of the model outside the lock, then commits it (or shows it
-  /// as the preview) if nobody changed the model meanwhile; computed again when somebody did.
+  /// as the preview) if nobody changed the model meanwhile; computed again when somebody did,
+  /// the last of `solve_attempts_` tries under the lock, so that it lands.
   /// `revision`: the one the commit made, or the model's when nothing was committed.
   template <class Result>
   core::Expected<core::Computed<Result>>
