@@ -61,13 +61,29 @@ std::string indexed(const std::string& name, size_t i)
   return name + "[" + std::to_string(i) + "]";
 }
 
-/// A JSON value for a message, cut short when long.
-std::string describe(const json& value)
+/// What a JSON value is, for a message: never the value itself, so that no message quotes
+/// the file (loading any file, a private one too, must not echo what is in it).
+std::string kindOf(const json& value)
 {
-  std::string text = value.dump();
-  if (text.size() > 40)
-    text = text.substr(0, 37) + "...";
-  return text;
+  switch (value.type())
+  {
+    case json::value_t::null:
+      return "null";
+    case json::value_t::boolean:
+      return "true or false";
+    case json::value_t::number_integer:
+    case json::value_t::number_unsigned:
+    case json::value_t::number_float:
+      return "a number";
+    case json::value_t::string:
+      return "a string";
+    case json::value_t::array:
+      return value.empty() ? "an empty array" : "an array of " + std::to_string(value.size());
+    case json::value_t::object:
+      return "an object";
+    default:
+      return "no JSON value";
+  }
 }
 
 std::string formatNumber(double x)
@@ -89,13 +105,13 @@ const json* findField(const json& object, const std::string& key)
 void requireArray(const json& value, const std::string& name)
 {
   if (!value.is_array())
-    fail(name + " is " + describe(value) + ", not an array");
+    fail(name + " is " + kindOf(value) + ", not an array");
 }
 
 double readNumber(const json& value, const std::string& name)
 {
   if (!value.is_number())
-    fail(name + " is " + describe(value) + ", not a number");
+    fail(name + " is " + kindOf(value) + ", not a number");
   const double x = value.get<double>();
   if (!std::isfinite(x))
     fail(name + " is not a finite number");
@@ -107,7 +123,8 @@ int readIndex(const json& value, const std::string& name)
   // Accept 3.0 as well as 3: some writers print every number as a double.
   const double x = value.is_number() ? value.get<double>() : -1.0;
   if (!(x >= 0 && x <= INT_MAX && x == std::floor(x)))
-    fail(name + " is " + describe(value) + ", not an index");
+    fail(name + " is " + (value.is_number() ? std::string("a number but") : kindOf(value) + ",") +
+         " not an index (a whole number from 0)");
   return static_cast<int>(x);
 }
 
@@ -125,7 +142,7 @@ std::optional<std::string> readOptionalString(const json& object, const std::str
   if (!field)
     return std::nullopt;
   if (!field->is_string())
-    fail(key + " is " + describe(*field) + ", not a string");
+    fail(key + " is " + kindOf(*field) + ", not a string");
   return field->get<std::string>();
 }
 
@@ -139,7 +156,7 @@ std::vector<std::string> readStrings(const json& object, const std::string& key)
   for (size_t i = 0; i < field->size(); ++i)
   {
     if (!(*field)[i].is_string())
-      fail(indexed(key, i) + " is " + describe((*field)[i]) + ", not a string");
+      fail(indexed(key, i) + " is " + kindOf((*field)[i]) + ", not a string");
     strings.push_back((*field)[i].get<std::string>());
   }
   return strings;
@@ -210,7 +227,7 @@ std::optional<std::vector<std::array<int, 2>>> readEdges(const json& frame, size
     const json& entry = (*field)[e];
     const std::string name = indexed("edges_vertices", e);
     if (!entry.is_array() || entry.size() != 2)
-      fail(name + " is " + describe(entry) + ", not a pair of vertices");
+      fail(name + " is " + kindOf(entry) + ", not a pair of vertices");
     const std::array<int, 2> ends{ readVertexIndex(entry[0], name, vertex_count),
                                    readVertexIndex(entry[1], name, vertex_count) };
     if (ends[0] == ends[1])
@@ -232,7 +249,7 @@ std::optional<std::vector<Assignment>> readAssignments(const json& frame, const 
     const std::optional<Assignment> assignment =
         entry.is_string() ? assignmentFromLetter(entry.get<std::string>()) : std::nullopt;
     if (!assignment)
-      fail(indexed("edges_assignment", e) + " is " + describe(entry) + ", not one of B M V F U C");
+      fail(indexed("edges_assignment", e) + " is not one of the letters B M V F U C");
     assignments.push_back(*assignment);
   }
   return assignments;
@@ -255,7 +272,7 @@ std::optional<std::vector<double>> readFoldAngles(const json& frame, const std::
   {
     const double degrees = readNumber((*field)[e], indexed(key, e));
     if (std::abs(degrees) > 180.0 + 1e-9)
-      fail(indexed(key, e) + " is " + formatNumber(degrees) + ", outside [-180, 180]");
+      fail(indexed(key, e) + " is outside [-180, 180] degrees");
     angles.push_back(toRadians(std::max(-180.0, std::min(180.0, degrees))));
   }
   return angles;
@@ -300,12 +317,12 @@ std::vector<std::array<int, 3>> readFaceOrders(const json& frame)
     const json& entry = (*field)[i];
     const std::string name = indexed("faceOrders", i);
     if (!entry.is_array() || entry.size() != 3)
-      fail(name + " is " + describe(entry) + ", not a triple [f, g, s]");
+      fail(name + " is " + kindOf(entry) + ", not a triple [f, g, s]");
     const int f = readIndex(entry[0], indexed(name, 0));
     const int g = readIndex(entry[1], indexed(name, 1));
     const double s = entry[2].is_number() ? entry[2].get<double>() : 2.0;
     if (s != -1.0 && s != 0.0 && s != 1.0)
-      fail(name + " has order " + describe(entry[2]) + ", not -1, 0 or 1");
+      fail(name + " has an order other than -1, 0 or 1");
     orders.push_back({ f, g, static_cast<int>(s) });
   }
   return orders;
@@ -326,7 +343,7 @@ std::optional<std::vector<Vec2>> readCreasePatternField(const json& frame, size_
   {
     const json& entry = (*field)[i];
     if (!entry.is_array() || entry.size() != 2)
-      fail(indexed(key, i) + " is " + describe(entry) + ", not a 2D point");
+      fail(indexed(key, i) + " is " + kindOf(entry) + ", not a 2D point");
     points.emplace_back(readNumber(entry[0], indexed(indexed(key, i), 0)),
                         readNumber(entry[1], indexed(indexed(key, i), 1)));
   }
@@ -875,7 +892,7 @@ std::vector<json> ownFrames(const json& root)
   for (size_t i = 0; i < file_frames->size(); ++i)
   {
     if (!(*file_frames)[i].is_object())
-      fail(indexed("file_frames", i) + " is " + describe((*file_frames)[i]) + ", not an object");
+      fail(indexed("file_frames", i) + " is " + kindOf((*file_frames)[i]) + ", not an object");
     frames.push_back((*file_frames)[i]);
   }
   return frames;
@@ -888,7 +905,7 @@ int inheritedParent(const json& frame, size_t index, size_t frame_count)
   if (index == 0 || !inherit)
     return -1;
   if (!inherit->is_boolean())
-    fail("frame_inherit is " + describe(*inherit) + ", not true or false");
+    fail("frame_inherit is " + kindOf(*inherit) + ", not true or false");
   if (!inherit->get<bool>())
     return -1;
   const json* parent = findField(frame, "frame_parent");
@@ -1081,6 +1098,17 @@ std::string dumpFold(const ordered_json& file)
   return out + "\n";
 }
 
+/// "line L, column C (byte B)" for the 1-based byte offset nlohmann's parse errors give.
+std::string placeIn(const std::string& text, size_t byte)
+{
+  const size_t end = std::min(byte > 0 ? byte - 1 : 0, text.size());
+  const size_t line = 1 + static_cast<size_t>(std::count(text.begin(), text.begin() + static_cast<long>(end), '\n'));
+  const size_t line_start = text.rfind('\n', end > 0 ? end - 1 : 0);
+  const size_t column = line_start == std::string::npos || end == 0 ? end + 1 : end - line_start;
+  return "syntax error at line " + std::to_string(line) + ", column " + std::to_string(column) + " (byte " +
+         std::to_string(byte) + ")";
+}
+
 std::string errnoText()
 {
   return std::strerror(errno);
@@ -1095,12 +1123,17 @@ Expected<FoldDocument> parseFold(const std::string& text)
   {
     root = json::parse(text);
   }
-  catch (const json::exception& e)  // parse_error, and out_of_range for numbers like 1e999
+  // nlohmann's messages quote what it last read ("last read: '...'"): say where instead.
+  catch (const json::parse_error& e)
   {
-    return Expected<FoldDocument>::failure(std::string("invalid JSON: ") + e.what());
+    return Expected<FoldDocument>::failure("invalid JSON: " + placeIn(text, e.byte));
+  }
+  catch (const json::exception&)  // out_of_range, for numbers like 1e999
+  {
+    return Expected<FoldDocument>::failure("invalid JSON: a number too large for a double");
   }
   if (!root.is_object())
-    return Expected<FoldDocument>::failure("invalid FOLD: the top level is " + describe(root) + ", not a JSON object");
+    return Expected<FoldDocument>::failure("invalid FOLD: the top level is " + kindOf(root) + ", not a JSON object");
   try
   {
     return readDocument(root);

@@ -494,17 +494,17 @@ TEST(FoldIo, RejectsBrokenFilesNamingTheField)
     { R"({"vertices_coords": [[NaN,0]]})", "invalid JSON" },
     { R"([1, 2])", "JSON object" },
     { "{" + square_edges + "}", "vertices_coords is missing" },
-    { R"({"vertices_coords": 5, "faces_vertices": []})", "vertices_coords is 5, not an array" },
+    { R"({"vertices_coords": 5, "faces_vertices": []})", "vertices_coords is a number, not an array" },
     { "{" + square_coords + "," + square_edges + R"(, "edges_assignment": ["B","B","B","B"]})",
       "edges_assignment has 4 entries but edges_vertices has 5" },
     { "{" + square_coords + R"(, "edges_vertices": [[0,1],[1,2],[2,3],[3,9]]})",
       "edges_vertices[3] names vertex 9 but there are 4 vertices" },
     { "{" + square_coords + "," + square_edges + R"(, "edges_assignment": ["B","B","X","B","V"]})",
-      "edges_assignment[2] is \"X\", not one of B M V F U C" },
+      "edges_assignment[2] is not one of the letters B M V F U C" },
     { R"({"vertices_coords": [[0,0],[null,0],[0,1]], "faces_vertices": [[0,1,2]]})",
       "vertices_coords[1][0] is null, not a number" },
     { R"({"vertices_coords": [[0,0],[1,"one"],[0,1]], "faces_vertices": [[0,1,2]]})",
-      "vertices_coords[1][1] is \"one\", not a number" },
+      "vertices_coords[1][1] is a string, not a number" },
     { R"({"vertices_coords": [[0,0],[1,0,0,0],[0,1]], "faces_vertices": [[0,1,2]]})",
       "vertices_coords[1] has 4 coordinates" },
     { R"({"vertices_coords": [[0,0],[1,0],[0,1]], "faces_vertices": [[0,1]]})",
@@ -533,7 +533,7 @@ TEST(FoldIo, RejectsBrokenFilesNamingTheField)
          "faces_vertices": [[0,1,4],[0,4,3],[0,3,2],[0,2,1]]})",
       "folded form is not developable at vertex" },
     { "{" + square_coords + "," + square_faces + R"(, "file_frames": {}})",
-      "file_frames is {}, not an array" },
+      "file_frames is an object, not an array" },
     { "{" + square_coords + "," + square_faces + R"(, "file_frames": [{"frame_inherit": true, "frame_parent": 4}]})",
       "file_frames[0]: frame_parent is 4 but there are 2 frames" },
     { "{" + square_coords + "," + square_faces +
@@ -580,6 +580,57 @@ TEST(FoldIo, WritingReplacesAnExistingFile)
   const Expected<Paper> loaded = loadPaper(path);
   ASSERT_TRUE(loaded.ok()) << loaded.message();
   EXPECT_DOUBLE_EQ(9.0, loaded->sheet_area);
+  std::filesystem::remove_all(folder);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Messages never quote the file
+
+TEST(FoldIo, NoMessageQuotesWhatTheFileHolds)
+{
+  // Each text holds the marker Qz7 where the reader trips over it: as a stray byte, in a
+  // string where a number or array belongs, as a key, a number too large, bad UTF-8.
+  const std::vector<std::string> texts{
+    "Qz7",
+    "{\"vertices_coords\": Qz7}",
+    "[1, 2, Qz7",
+    "{\"a\": 1}\nQz7",
+    "\"Qz7\"",
+    "[\"Qz7\"]",
+    "{\"vertices_coords\": \"Qz7\", \"faces_vertices\": []}",
+    "{\"vertices_coords\": [[0,0],[1,\"Qz7\"],[0,1]], \"faces_vertices\": [[0,1,2]]}",
+    "{\"vertices_coords\": [[0,0],[1,0],[0,1]], \"edges_vertices\": [[0,1],[1,2],[2,0]],"
+    " \"edges_assignment\": [\"B\",\"Qz7\",\"B\"]}",
+    "{\"vertices_coords\": [[0,0],[1,0],[0,1]], \"faces_vertices\": [[0,1,2]], \"file_title\": [\"Qz7\"]}",
+    "{\"vertices_coords\": [[0,0],[1,0],[0,1]], \"faces_vertices\": [[0,1,\"Qz7\"]]}",
+    "{\"vertices_coords\": [[0,0],[1,0],[0,1]], \"faces_vertices\": [[0,1,2]], \"faceOrders\": [[0,0,\"Qz7\"]]}",
+    "{\"vertices_coords\": [[0,0],[1,0],[0,1]], \"faces_vertices\": [[0,1,2]], \"file_frames\": [\"Qz7\"]}",
+    "{\"vertices_coords\": [[0,0],[1,0],[0,1]], \"faces_vertices\": [[0,1,2]], \"file_frames\": [{\"frame_inherit\":"
+    " \"Qz7\"}]}",
+    "{\"vertices_coords\": [[0,0],[1,0],[0,1]], \"edges_vertices\": [[0,1],[1,2],[2,0]],"
+    " \"edges_foldAngle\": [0, 1234567, 0]}",
+    "{\"vertices_coords\": [[0,0],[1e999,0],[0,1]], \"faces_vertices\": [[0,1,2]]}",
+    "{\"vertices_coords\": [[0,0],[1,0],[0,1]], \"faces_vertices\": [[0,1,2]], \"frame_title\": \"Qz7\xff\"}",
+    "{\"Qz7\": [1, 2,, 3]}",
+  };
+  const std::filesystem::path folder = scratchFolder("quotes");
+  for (const std::string& text : texts)
+  {
+    const Expected<FoldDocument> parsed = parseFold(text);
+    ASSERT_FALSE(parsed.ok()) << text;
+    const std::string path = (folder / "secret.fold").string();
+    std::ofstream(path, std::ios::binary) << text;
+    for (const std::string& message : { parsed.message(), readFoldFile(path).message(), loadPaper(path).message() })
+    {
+      EXPECT_FALSE(message.empty()) << text;
+      EXPECT_THAT(message, ::testing::Not(HasSubstr("Qz7"))) << text;
+      EXPECT_THAT(message, ::testing::Not(HasSubstr("last read"))) << text;
+      EXPECT_THAT(message, ::testing::Not(HasSubstr("1234567"))) << text;
+      EXPECT_THAT(message, ::testing::Not(HasSubstr("1e999"))) << text;
+    }
+  }
+  // A syntax error says where instead.
+  EXPECT_THAT(parseFold("{\"a\": 1,\n  \"b\": Qz7}").message(), HasSubstr("invalid JSON: syntax error at line 2, column 8"));
   std::filesystem::remove_all(folder);
 }
 
