@@ -13,6 +13,9 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include "virtual_origami/core/validity.h"
 
 namespace virtual_origami::core
@@ -631,6 +634,71 @@ TEST(FoldIo, NoMessageQuotesWhatTheFileHolds)
   }
   // A syntax error says where instead.
   EXPECT_THAT(parseFold("{\"a\": 1,\n  \"b\": Qz7}").message(), HasSubstr("invalid JSON: syntax error at line 2, column 8"));
+  std::filesystem::remove_all(folder);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Writing files safely
+
+std::string contentOf(const std::filesystem::path& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+TEST(FoldIo, WritingNeverFollowsALinkPlantedAtTheTemporaryName)
+{
+  const std::filesystem::path folder = scratchFolder("planted");
+  const std::filesystem::path victim = folder / "victim.txt", path = folder / "x.fold";
+  std::ofstream(victim) << "keep me";
+  std::filesystem::create_symlink(victim, folder / "x.fold.tmp");
+  const Status written = writeTextFile(path.string(), "new");
+  ASSERT_TRUE(written.ok()) << written.message();
+  EXPECT_EQ("new", contentOf(path));
+  EXPECT_EQ("keep me", contentOf(victim));
+  EXPECT_TRUE(std::filesystem::is_symlink(folder / "x.fold.tmp"));
+  // Nothing else is left in the folder.
+  EXPECT_EQ(3, std::distance(std::filesystem::directory_iterator(folder), std::filesystem::directory_iterator()));
+  std::filesystem::remove_all(folder);
+}
+
+TEST(FoldIo, WritingRefusesALinkAFolderOrAReadOnlyFile)
+{
+  const std::filesystem::path folder = scratchFolder("refused");
+  const std::filesystem::path victim = folder / "victim.txt";
+  std::ofstream(victim) << "keep me";
+  const auto expectRefused = [&](const std::filesystem::path& path, const std::string& words) {
+    const Status written = writeTextFile(path.string(), "new");
+    EXPECT_FALSE(written.ok()) << path;
+    EXPECT_THAT(written.message(), HasSubstr("cannot write " + path.string() + ": " + words));
+    EXPECT_EQ("keep me", contentOf(victim));
+  };
+  // A link at the target: rename would replace the link, not the file it names.
+  std::filesystem::create_symlink(victim, folder / "link.fold");
+  expectRefused(folder / "link.fold", "it is a symbolic link");
+  EXPECT_TRUE(std::filesystem::is_symlink(folder / "link.fold"));
+  std::filesystem::create_directory(folder / "folder.fold");
+  expectRefused(folder / "folder.fold", "not a regular file");
+  ASSERT_EQ(0, ::mkfifo((folder / "fifo.fold").c_str(), 0600));
+  expectRefused(folder / "fifo.fold", "not a regular file");
+  // No write permission for anyone: refused even as root, whom access() lets write anything.
+  ASSERT_EQ(0, ::chmod(victim.c_str(), 0444));
+  expectRefused(victim, "the file is read-only");
+  EXPECT_EQ(4, std::distance(std::filesystem::directory_iterator(folder), std::filesystem::directory_iterator()));
+  std::filesystem::remove_all(folder);
+}
+
+TEST(FoldIo, WritingKeepsTheReplacedFilesPermissions)
+{
+  const std::filesystem::path folder = scratchFolder("mode");
+  const std::filesystem::path path = folder / "x.fold";
+  std::ofstream(path) << "old";
+  ASSERT_EQ(0, ::chmod(path.c_str(), 0640));
+  ASSERT_TRUE(writeTextFile(path.string(), "new").ok());
+  EXPECT_EQ("new", contentOf(path));
+  struct stat written;
+  ASSERT_EQ(0, ::stat(path.c_str(), &written));
+  EXPECT_EQ(0640u, written.st_mode & 07777);
   std::filesystem::remove_all(folder);
 }
 

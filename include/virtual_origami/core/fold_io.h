@@ -18,7 +18,8 @@ struct FoldDocument
   std::vector<Paper> frames;  // frames[0] is the file's top-level frame
 };
 
-/// Parses FOLD text. Rejects malformed input with a message naming the field.
+/// Parses FOLD text. Rejects malformed input with a message naming the field (or, for broken
+/// JSON, the line and column), never quoting the text.
 Expected<FoldDocument> parseFold(const std::string& text);
 Expected<FoldDocument> readFoldFile(const std::string& path);
 
@@ -26,7 +27,10 @@ Expected<FoldDocument> readFoldFile(const std::string& path);
 std::string formatFold(const Paper& paper, const std::string& title = "");
 /// Writes a folding sequence, one frame per state.
 std::string formatFoldSequence(const std::vector<Paper>& steps, const std::string& title = "");
-/// Writes text to a file atomically (temporary file, then rename).
+/// Writes text to a file atomically: into a new temporary file beside it (created exclusively,
+/// never through a link), synced to disk, then renamed over it, keeping its permissions.
+/// Refuses, changing nothing, a target that is a symbolic link, not a regular file, or
+/// read-only (no write permission, also when running as root).
 Status writeTextFile(const std::string& path, const std::string& text);
 
 /// The state a file describes: its last frame.
