@@ -11,9 +11,11 @@
 #include <cstring>
 #include <deque>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <optional>
 #include <random>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -640,29 +642,209 @@ void orientCounterClockwise(Paper& paper)
       v.crease_pattern.x() = -v.crease_pattern.x();
 }
 
-/// Every turn of a counter-clockwise face is to the left (or straight on), once around.
-void checkConvex(const Paper& paper)
+/// The least distance between two segments: 0 when they cross.
+double segmentDistance(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d)
 {
-  for (size_t f = 0; f < paper.faces.size(); ++f)
+  const auto pointToSegment = [](const Vec2& p, const Vec2& s, const Vec2& t) {
+    const Vec2 st = t - s;
+    const double length2 = st.squaredNorm();
+    const double u = length2 > 0 ? std::clamp((p - s).dot(st) / length2, 0.0, 1.0) : 0.0;
+    return (s + u * st - p).norm();
+  };
+  const double abc = cross2(b - a, c - a), abd = cross2(b - a, d - a);
+  const double cda = cross2(d - c, a - c), cdb = cross2(d - c, b - c);
+  if (((abc > 0 && abd < 0) || (abc < 0 && abd > 0)) && ((cda > 0 && cdb < 0) || (cda < 0 && cdb > 0)))
+    return 0.0;
+  return std::min({ pointToSegment(a, c, d), pointToSegment(b, c, d), pointToSegment(c, a, b), pointToSegment(d, a, b) });
+}
+
+/// Convex pieces of a simple counter-clockwise polygon (indices into it), and the diagonals
+/// between them. Ear clipping cuts it into triangles, then each diagonal whose removal leaves
+/// a convex piece is removed (Hertel–Mehlhorn: at most four times the fewest pieces). Corners
+/// turning right by less than `slack` (a cross product) count as straight. Empty when no ear
+/// is found (the polygon is not simple).
+struct ConvexPieces
+{
+  std::vector<std::vector<int>> pieces;
+  std::vector<std::array<int, 2>> diagonals;
+};
+
+bool convexCycle(const std::vector<Vec2>& polygon, const std::vector<int>& cycle, double slack)
+{
+  const size_t n = cycle.size();
+  for (size_t i = 0; i < n; ++i)
   {
+    const Vec2& a = polygon[cycle[i]];
+    const Vec2& b = polygon[cycle[(i + 1) % n]];
+    const Vec2& c = polygon[cycle[(i + 2) % n]];
+    if (cross2(b - a, c - b) < -slack)
+      return false;
+  }
+  return true;
+}
+
+/// `cycle` turned to start at `first`.
+std::vector<int> startingAt(const std::vector<int>& cycle, int first)
+{
+  std::vector<int> turned = cycle;
+  std::rotate(turned.begin(), std::find(turned.begin(), turned.end(), first), turned.end());
+  return turned;
+}
+
+ConvexPieces convexPieces(const std::vector<Vec2>& polygon, double slack)
+{
+  ConvexPieces result;
+  std::vector<int> remaining(polygon.size());
+  for (size_t i = 0; i < remaining.size(); ++i)
+    remaining[i] = static_cast<int>(i);
+  while (remaining.size() > 3)
+  {
+    const size_t m = remaining.size();
+    bool clipped = false;
+    for (size_t k = 0; k < m && !clipped; ++k)
+    {
+      const int p = remaining[(k + m - 1) % m], i = remaining[k], q = remaining[(k + 1) % m];
+      const Vec2 &a = polygon[p], &b = polygon[i], &c = polygon[q];
+      if (cross2(b - a, c - b) <= slack)
+        continue;  // reflex or straight: no ear
+      bool empty = true;
+      for (int r : remaining)
+        if (r != p && r != i && r != q && cross2(b - a, polygon[r] - a) >= -slack &&
+            cross2(c - b, polygon[r] - b) >= -slack && cross2(a - c, polygon[r] - c) >= -slack)
+          empty = false;
+      if (!empty)
+        continue;
+      result.pieces.push_back({ p, i, q });
+      result.diagonals.push_back({ p, q });
+      remaining.erase(remaining.begin() + static_cast<long>(k));
+      clipped = true;
+    }
+    if (!clipped)
+      return {};
+  }
+  result.pieces.push_back(remaining);
+  // Join the pieces across every diagonal that leaves them convex, the last cut first.
+  std::vector<std::array<int, 2>> kept;
+  for (auto d = result.diagonals.rbegin(); d != result.diagonals.rend(); ++d)
+  {
+    const auto [u, v] = *d;
+    const auto hasSide = [](const std::vector<int>& cycle, int from, int to) {
+      const size_t n = cycle.size();
+      for (size_t i = 0; i < n; ++i)
+        if (cycle[i] == from && cycle[(i + 1) % n] == to)
+          return true;
+      return false;
+    };
+    auto first = std::find_if(result.pieces.begin(), result.pieces.end(),
+                              [&](const std::vector<int>& c) { return hasSide(c, u, v); });
+    auto second = std::find_if(result.pieces.begin(), result.pieces.end(),
+                               [&](const std::vector<int>& c) { return hasSide(c, v, u); });
+    if (first == result.pieces.end() || second == result.pieces.end())
+      return {};  // every diagonal has a piece on each side: never happens
+    // From v, the first piece ends at u; from u, the second ends at v: joined, v … u … back to v.
+    std::vector<int> joined = startingAt(*first, v);
+    const std::vector<int> rest = startingAt(*second, u);
+    joined.insert(joined.end(), rest.begin() + 1, rest.end() - 1);
+    if (!convexCycle(polygon, joined, slack))
+    {
+      kept.push_back(*d);
+      continue;
+    }
+    *first = joined;
+    result.pieces.erase(second);
+  }
+  result.diagonals.assign(kept.rbegin(), kept.rend());
+  return result;
+}
+
+/// Every face must be a simple polygon, counter-clockwise in the crease pattern; a concave one
+/// is split into convex pieces (SPEC: faces are convex) joined by new flat edges marked
+/// `split`, which formatFold leaves out again. The first piece keeps the face's number and
+/// starts at its first vertex; the others come after the file's faces. Returns, for each of
+/// the file's faces, the faces it became.
+std::vector<std::vector<int>> splitConcaveFaces(Paper& paper)
+{
+  const double diagonal = boundingDiagonal(creasePatternOf(paper));
+  const double touching = 1e-9 * diagonal;  // sides this close meet
+  const double slack = 1e-13 * diagonal * diagonal;
+  const size_t file_faces = paper.faces.size();
+  std::vector<std::vector<int>> pieces_of(file_faces);
+  for (size_t f = 0; f < file_faces; ++f)
+  {
+    pieces_of[f] = { static_cast<int>(f) };
+    const std::string name = indexed("faces_vertices", f);
+    const std::vector<int> cycle = paper.faces[f].vertices;
     const std::vector<Vec2> polygon = facePolygon(paper, static_cast<int>(f));
     const size_t n = polygon.size();
     double total_turn = 0;
+    bool convex = true;
     for (size_t i = 0; i < n; ++i)
     {
       const Vec2 in = polygon[(i + 1) % n] - polygon[i];
       const Vec2 out = polygon[(i + 2) % n] - polygon[(i + 1) % n];
       const double turn = std::atan2(cross2(in, out), in.dot(out));
       const double sine = cross2(in, out) / (in.norm() * out.norm());
+      const std::string corner = " (at vertex " + std::to_string(cycle[(i + 1) % n]) + ")";
+      if (!std::isfinite(sine))
+        fail(name + " has two corners at one point in the crease pattern" + corner);
       // A corner that doubles back (turn near ±π) has a tiny sine too: reject it by angle.
-      if (!(sine >= -kConvexityTolerance) || turn > M_PI - kConvexityTolerance)
-        fail(indexed("faces_vertices", f) + " is not convex in the crease pattern (at vertex " +
-             std::to_string(paper.faces[f].vertices[(i + 1) % n]) + ")");
+      if (std::abs(turn) > M_PI - kConvexityTolerance)
+        fail(name + " doubles back on itself in the crease pattern" + corner);
+      convex = convex && sine >= -kConvexityTolerance;
       total_turn += turn;
     }
     if (total_turn > 3 * M_PI)  // all left turns, but winding twice: a star
-      fail(indexed("faces_vertices", f) + " is not convex in the crease pattern (it winds around twice)");
+      fail(name + " winds around twice in the crease pattern (a star, not a polygon)");
+    if (convex)
+      continue;
+    for (size_t i = 0; i < n; ++i)
+      for (size_t j = i + 2; j < n; ++j)
+      {
+        if (i == 0 && j == n - 1)
+          continue;  // neighbours round the end
+        if (segmentDistance(polygon[i], polygon[(i + 1) % n], polygon[j], polygon[(j + 1) % n]) <= touching)
+          fail(name + " crosses or touches itself in the crease pattern (its sides " + std::to_string(cycle[i]) +
+               "-" + std::to_string(cycle[(i + 1) % n]) + " and " + std::to_string(cycle[j]) + "-" +
+               std::to_string(cycle[(j + 1) % n]) + " meet)");
+      }
+    const ConvexPieces split = convexPieces(polygon, slack);
+    if (split.pieces.empty())
+      fail(name + " is concave and could not be split into convex pieces");
+    // The piece with the face's first side keeps the face's number and first vertex.
+    std::vector<std::vector<int>> pieces;
+    for (const std::vector<int>& piece : split.pieces)
+    {
+      std::vector<int> vertices;
+      for (int i : piece)
+        vertices.push_back(cycle[i]);
+      pieces.push_back(vertices);
+    }
+    const auto first = std::find_if(pieces.begin(), pieces.end(), [&](const std::vector<int>& piece) {
+      const auto at = std::find(piece.begin(), piece.end(), cycle[0]);
+      return at != piece.end() && piece[(at - piece.begin() + 1) % piece.size()] == cycle[1];
+    });
+    if (first == pieces.end())
+      fail(name + " is concave and could not be split into convex pieces");
+    std::iter_swap(pieces.begin(), first);
+    paper.faces[f].vertices = startingAt(pieces[0], cycle[0]);
+    for (size_t k = 1; k < pieces.size(); ++k)
+    {
+      pieces_of[f].push_back(static_cast<int>(paper.faces.size()));
+      paper.faces.push_back({ pieces[k], {} });
+    }
+    for (const auto& [u, v] : split.diagonals)
+    {
+      Edge edge;
+      edge.vertices = { cycle[u], cycle[v] };
+      edge.assignment = Assignment::Flat;
+      edge.split = true;
+      paper.edges.push_back(edge);
+    }
   }
+  const Status linked = linkTopology(paper);
+  if (!linked)
+    fail(linked.message());
+  return pieces_of;
 }
 
 void checkEveryVertexUsed(const std::vector<std::vector<int>>& faces, size_t vertex_count)
@@ -676,8 +858,11 @@ void checkEveryVertexUsed(const std::vector<std::vector<int>>& faces, size_t ver
       fail("vertex " + std::to_string(v) + " (" + indexed("vertices_coords", v) + ") is used by no face");
 }
 
-std::vector<FaceOrder> faceOrdersOf(const std::vector<std::array<int, 3>>& orders, size_t face_count)
+/// The file's face orders, each between every piece of its two faces (splitConcaveFaces).
+std::vector<FaceOrder> faceOrdersOf(const std::vector<std::array<int, 3>>& orders,
+                                    const std::vector<std::vector<int>>& pieces_of)
 {
+  const size_t face_count = pieces_of.size();
   std::vector<FaceOrder> result;
   for (size_t i = 0; i < orders.size(); ++i)
   {
@@ -687,7 +872,9 @@ std::vector<FaceOrder> faceOrdersOf(const std::vector<std::array<int, 3>>& order
         fail(indexed("faceOrders", i) + " names face " + std::to_string(face) + " but there are " +
              std::to_string(face_count) + " faces");
     // FOLD [f, g, +1]: f lies on the side g's normal points to, i.e. FaceOrder{g, f, +1}.
-    result.push_back({ g, f, s });
+    for (int g_piece : pieces_of[g])
+      for (int f_piece : pieces_of[f])
+        result.push_back({ g_piece, f_piece, s });
   }
   return result;
 }
@@ -850,16 +1037,20 @@ BuiltFrame buildFrame(const json& frame, const BuiltFrame* parent)
       paper.vertices[v].crease_pattern = unfolded[v];
   }
   orientCounterClockwise(paper);
-  checkConvex(paper);
-  paper.face_orders = faceOrdersOf(data.face_orders, paper.faces.size());
+  const std::vector<std::vector<int>> pieces_of = splitConcaveFaces(paper);
+  paper.face_orders = faceOrdersOf(data.face_orders, pieces_of);
   paper.sheet_area = 0.0;
   for (size_t f = 0; f < paper.faces.size(); ++f)
     paper.sheet_area += paper.faceArea(static_cast<int>(f));
   markBoundaries(paper);
+  // The edges splitConcaveFaces added lie flat.
+  std::optional<std::vector<double>> fold_angles = data.fold_angles;
+  if (fold_angles)
+    fold_angles->resize(paper.edges.size(), 0.0);
   if (built.crease_pattern)
-    foldCreasePattern(paper, data.fold_angles);
+    foldCreasePattern(paper, fold_angles);
   else
-    setFoldedFormAngles(paper, data.fold_angles);
+    setFoldedFormAngles(paper, fold_angles);
   return built;
 }
 
@@ -1016,29 +1207,141 @@ ordered_json foldedCoords(const Paper& paper)
   return coords;
 }
 
+/// The faces and edges a file gets: faces joined by split edges that are still flat (F) are
+/// merged back into the face they were split from, and those edges left out. A group whose
+/// outline is not one simple cycle (creased since in a way that pinches it) stays in pieces,
+/// with its split edges, which is still a valid FOLD.
+struct FileTopology
+{
+  std::vector<std::vector<int>> faces;
+  std::vector<int> edges;    // the paper's edges the file keeps, in order
+  std::vector<int> face_of;  // for each paper face, the file face it is (part of)
+};
+
+/// The outline of a group of faces joined across `inside` edges, counter-clockwise from the
+/// first face's first vertex; empty unless it is one cycle through every vertex of the group.
+std::vector<int> outline(const Paper& paper, const std::vector<int>& group, const std::vector<char>& inside)
+{
+  std::map<int, int> next;
+  std::vector<int> vertices;
+  size_t sides = 0;
+  for (int f : group)
+  {
+    const Face& face = paper.faces[f];
+    for (size_t i = 0; i < face.vertices.size(); ++i)
+    {
+      vertices.push_back(face.vertices[i]);
+      if (inside[face.edges[i]])
+        continue;
+      if (!next.emplace(face.vertices[i], face.vertices[(i + 1) % face.vertices.size()]).second)
+        return {};  // the outline passes a vertex twice
+      ++sides;
+    }
+  }
+  const int start = paper.faces[group.front()].vertices.front();
+  std::vector<int> cycle;
+  for (int v = start; cycle.size() <= sides; v = next.at(v))
+  {
+    if (!next.count(v))
+      return {};
+    cycle.push_back(v);
+    if (next.at(v) == start)
+      break;
+  }
+  std::sort(vertices.begin(), vertices.end());
+  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  if (cycle.size() != sides || cycle.size() != vertices.size())
+    return {};
+  return cycle;
+}
+
+FileTopology fileTopology(const Paper& paper)
+{
+  const size_t face_count = paper.faces.size();
+  // Union-find of the faces across flat split edges; each group's root is its first face.
+  std::vector<int> root(face_count);
+  for (size_t f = 0; f < face_count; ++f)
+    root[f] = static_cast<int>(f);
+  const std::function<int(int)> find = [&](int f) { return root[f] == f ? f : root[f] = find(root[f]); };
+  std::vector<char> inside(paper.edges.size(), 0);
+  for (size_t e = 0; e < paper.edges.size(); ++e)
+  {
+    const Edge& edge = paper.edges[e];
+    if (!edge.split || !edge.isCrease() || edge.assignment != Assignment::Flat)
+      continue;
+    inside[e] = 1;
+    const int a = find(edge.faces[0]), b = find(edge.faces[1]);
+    root[std::max(a, b)] = std::min(a, b);
+  }
+  std::vector<std::vector<int>> groups(face_count);
+  for (size_t f = 0; f < face_count; ++f)
+    groups[find(static_cast<int>(f))].push_back(static_cast<int>(f));
+  FileTopology file;
+  file.face_of.assign(face_count, -1);
+  std::vector<char> merged(face_count, 0);
+  for (size_t f = 0; f < face_count; ++f)
+  {
+    const std::vector<int>& group = groups[f];
+    if (group.empty())
+      continue;  // f is in an earlier face's group
+    std::vector<int> cycle = group.size() > 1 ? outline(paper, group, inside) : std::vector<int>{};
+    if (cycle.empty())
+    {
+      for (int g : group)  // in pieces: each face its own, in order
+        merged[g] = 0;
+      continue;
+    }
+    for (int g : group)
+      merged[g] = 1;
+    file.face_of[f] = static_cast<int>(file.faces.size());
+    file.faces.push_back(cycle);
+  }
+  for (size_t f = 0; f < face_count; ++f)
+  {
+    if (merged[f])
+    {
+      file.face_of[f] = file.face_of[find(static_cast<int>(f))];
+      continue;
+    }
+    file.face_of[f] = static_cast<int>(file.faces.size());
+    file.faces.push_back(paper.faces[f].vertices);
+  }
+  for (size_t e = 0; e < paper.edges.size(); ++e)
+    if (!inside[e] || !merged[paper.edges[e].faces[0]])
+      file.edges.push_back(static_cast<int>(e));
+  return file;
+}
+
 /// Edges, faces and layer order: everything but the coordinates.
 void addTopology(ordered_json& frame, const Paper& paper)
 {
+  const FileTopology file = fileTopology(paper);
   ordered_json edges = ordered_json::array(), assignments = ordered_json::array(), angles = ordered_json::array();
-  for (const Edge& edge : paper.edges)
+  for (int e : file.edges)
   {
+    const Edge& edge = paper.edges[e];
     edges.push_back({ edge.vertices[0], edge.vertices[1] });
     assignments.push_back(std::string(1, assignmentLetter(edge.assignment)));
     angles.push_back(toDegrees(edge.fold_angle));
   }
   ordered_json faces = ordered_json::array();
-  for (const Face& face : paper.faces)
-    faces.push_back(face.vertices);
+  for (const std::vector<int>& face : file.faces)
+    faces.push_back(face);
   frame["edges_vertices"] = edges;
   frame["edges_assignment"] = assignments;
   frame["edges_foldAngle"] = angles;
   frame["faces_vertices"] = faces;
-  if (paper.face_orders.empty())
-    return;
+  // Pieces of one face share its orders: each pair once, none of a face with itself.
   ordered_json orders = ordered_json::array();
+  std::set<std::pair<int, int>> written;
   for (const FaceOrder& order : paper.face_orders)
-    orders.push_back({ order.other, order.face, order.above });  // see faceOrdersOf
-  frame["faceOrders"] = orders;
+  {
+    const int face = file.face_of[order.face], other = file.face_of[order.other];
+    if (face != other && written.emplace(face, other).second)
+      orders.push_back({ other, face, order.above });  // see faceOrdersOf
+  }
+  if (!orders.empty())
+    frame["faceOrders"] = orders;
 }
 
 ordered_json fileHeader(const std::string& title, const std::string& file_class)

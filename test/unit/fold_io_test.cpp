@@ -16,6 +16,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "virtual_origami/core/crease.h"
 #include "virtual_origami/core/validity.h"
 
 namespace virtual_origami::core
@@ -83,6 +84,7 @@ void expectSamePaper(const Paper& expected, const Paper& actual)
     EXPECT_EQ(expected.edges[e].vertices, actual.edges[e].vertices) << "edge " << e;
     EXPECT_EQ(expected.edges[e].faces, actual.edges[e].faces) << "edge " << e;
     EXPECT_EQ(expected.edges[e].assignment, actual.edges[e].assignment) << "edge " << e;
+    EXPECT_EQ(expected.edges[e].split, actual.edges[e].split) << "edge " << e;
     EXPECT_NEAR(expected.edges[e].fold_angle, actual.edges[e].fold_angle, 1e-12) << "edge " << e;
   }
   for (size_t f = 0; f < expected.faces.size(); ++f)
@@ -512,8 +514,15 @@ TEST(FoldIo, RejectsBrokenFilesNamingTheField)
       "vertices_coords[1] has 4 coordinates" },
     { R"({"vertices_coords": [[0,0],[1,0],[0,1]], "faces_vertices": [[0,1]]})",
       "faces_vertices[0] has 2 vertices" },
-    { R"({"vertices_coords": [[0,0],[2,0],[1,0.2],[1,2]], "faces_vertices": [[0,1,2,3]]})",
-      "faces_vertices[0] is not convex" },
+    { R"({"vertices_coords": [[0,0],[3,0],[0,2],[1,2]], "faces_vertices": [[0,1,2,3]]})",
+      "faces_vertices[0] crosses or touches itself in the crease pattern (its sides 1-2 and 3-0 meet)" },
+    { R"({"vertices_coords": [[0,0],[2,0],[2,2],[1,0],[0,2]], "faces_vertices": [[0,1,2,3,4]]})",
+      "faces_vertices[0] crosses or touches itself" },  // vertex 3 on side 0-1: a pinch
+    { R"({"vertices_coords": [[1,0],[0.309,0.951],[-0.809,0.588],[-0.809,-0.588],[0.309,-0.951]],
+         "faces_vertices": [[0,2,4,1,3]]})",
+      "faces_vertices[0] winds around twice in the crease pattern" },
+    { R"({"vertices_coords": [[0,0],[2,0],[1,0],[1,2]], "faces_vertices": [[0,1,2,3]]})",
+      "faces_vertices[0] doubles back on itself in the crease pattern (at vertex 1)" },
     { R"({"vertices_coords": [[0,0],[1,0],[0,1],[5,5]], "faces_vertices": [[0,1,2]]})",
       "vertex 3 (vertices_coords[3]) is used by no face" },
     { R"({"vertices_coords": [[0,0],[1,0],[1,1],[0,1]], "faces_vertices": [[0,1,3],[1,3,2]]})",
@@ -584,6 +593,155 @@ TEST(FoldIo, WritingReplacesAnExistingFile)
   ASSERT_TRUE(loaded.ok()) << loaded.message();
   EXPECT_DOUBLE_EQ(9.0, loaded->sheet_area);
   std::filesystem::remove_all(folder);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Concave faces
+
+/// An L-shaped face (area 3) with a square (area 1) on its right, and the L above the square.
+const char* const kConcaveFile = R"({
+  "vertices_coords": [[0,0],[2,0],[2,1],[1,1],[1,2],[0,2],[3,0],[3,1]],
+  "edges_vertices": [[0,1],[1,6],[6,7],[7,2],[2,3],[3,4],[4,5],[5,0],[1,2]],
+  "edges_assignment": ["B","B","B","B","B","B","B","B","V"],
+  "faces_vertices": [[0,1,2,3,4,5],[1,6,7,2]],
+  "faceOrders": [[0,1,1]]
+})";
+
+/// An arrow (chevron) pointing up, concave at (1, 0.5): area 1.5.
+const char* const kArrowFile = R"({
+  "vertices_coords": [[0,0],[1,0.5],[2,0],[1,2]],
+  "faces_vertices": [[0,1,2,3]]
+})";
+
+/// The model of a one-frame file (empty, failing the test, when it does not load).
+Paper onlyFrame(const std::string& text)
+{
+  const FoldDocument document = parseOrFail(text);
+  EXPECT_EQ(1u, document.frames.size());
+  return document.frames.empty() ? Paper{} : document.frames[0];
+}
+
+int splitEdgeCount(const Paper& paper)
+{
+  int count = 0;
+  for (const Edge& edge : paper.edges)
+    count += edge.split;
+  return count;
+}
+
+void expectSplitIntoConvexPieces(const Paper& paper, double area, size_t file_faces)
+{
+  EXPECT_TRUE(checkValidity(paper).ok()) << checkValidity(paper).summary();  // convex, areas, Euler
+  EXPECT_GT(paper.faces.size(), file_faces);
+  EXPECT_EQ(static_cast<size_t>(splitEdgeCount(paper)), paper.faces.size() - file_faces);
+  EXPECT_NEAR(area, paper.sheet_area, 1e-12);
+  EXPECT_NEAR(area, totalFaceArea(paper), 1e-12);
+  for (const Edge& edge : paper.edges)
+    if (edge.split)
+    {
+      EXPECT_TRUE(edge.isCrease());
+      EXPECT_EQ(Assignment::Flat, edge.assignment);
+      EXPECT_EQ(0.0, edge.fold_angle);
+    }
+  expectFacesDoNotOverlap(paper, 1e-12);
+}
+
+TEST(FoldIo, SplitsAConcaveFaceIntoConvexPieces)
+{
+  const Paper paper = onlyFrame(kConcaveFile);
+  expectSplitIntoConvexPieces(paper, 4.0, 2);
+  EXPECT_EQ(3u, paper.faces.size());  // the L in two pieces: one edge from its inner corner
+  // The file's faces keep their numbers; face 0 starts at the file's first vertex and side.
+  EXPECT_EQ(0, paper.faces[0].vertices[0]);
+  EXPECT_EQ(1, paper.faces[0].vertices[1]);
+  EXPECT_EQ((std::vector<int>{ 1, 6, 7, 2 }), paper.faces[1].vertices);
+  // The L lies above the square: both its pieces do.
+  EXPECT_EQ((std::vector<FaceOrder>{ { 1, 0, 1 }, { 1, 2, 1 } }), paper.face_orders);
+
+  const Paper arrow = onlyFrame(kArrowFile);
+  expectSplitIntoConvexPieces(arrow, 1.5, 1);
+  EXPECT_EQ(2u, arrow.faces.size());
+}
+
+TEST(FoldIo, WritesAConcaveFaceBackAsTheFileHadIt)
+{
+  const nlohmann::json file = nlohmann::json::parse(kConcaveFile);
+  const Paper paper = onlyFrame(kConcaveFile);
+  const std::string text = formatFold(paper);
+  const nlohmann::json written = nlohmann::json::parse(text);
+  EXPECT_EQ(file["faces_vertices"], written["faces_vertices"]);
+  EXPECT_EQ(file["edges_vertices"], written["edges_vertices"]);
+  EXPECT_EQ(file["edges_assignment"], written["edges_assignment"]);
+  EXPECT_EQ(file["faceOrders"], written["faceOrders"]);
+  EXPECT_EQ(file["vertices_coords"], written["vertices_coords"]);
+  // And it reads back to the same model, pieces and all.
+  const FoldDocument again = parseOrFail(text);
+  ASSERT_EQ(2u, again.frames.size());
+  expectSamePaper(paper, again.frames[0]);
+  expectSamePaper(paper, again.frames[1]);
+
+  const Paper arrow = onlyFrame(kArrowFile);
+  const nlohmann::json arrow_written = nlohmann::json::parse(formatFold(arrow));
+  EXPECT_EQ(nlohmann::json::parse(kArrowFile)["faces_vertices"], arrow_written["faces_vertices"]);
+  EXPECT_EQ(4u, arrow_written["edges_vertices"].size());
+  expectSamePaper(arrow, onlyFrame(formatFoldSequence({ arrow })));
+}
+
+TEST(FoldIo, AConcaveFaceCreasedSinceStillWritesAValidFold)
+{
+  Paper paper = onlyFrame(kConcaveFile);
+  // Across both arms of the L and the square, then along the L's inner side.
+  for (const auto& [a, b] : { std::pair{ Vec3(-0.1, 0.5, 0), Vec3(3.1, 0.5, 0) },
+                              std::pair{ Vec3(0.5, -0.1, 0), Vec3(0.5, 2.1, 0) } })
+  {
+    CreaseRequest request;
+    request.start = a;
+    request.end = b;
+    const Expected<CreaseResult> creased = crease(paper, request);
+    ASSERT_TRUE(creased.ok()) << creased.message();
+  }
+  ASSERT_TRUE(checkValidity(paper).ok()) << checkValidity(paper).summary();
+  const nlohmann::json written = nlohmann::json::parse(formatFold(paper));
+  // The pieces still joined by flat split edges are written as one face each, without them.
+  size_t joined = 0;
+  for (const Edge& edge : paper.edges)
+    joined += edge.split;
+  EXPECT_GT(joined, 0u);
+  EXPECT_EQ(paper.edges.size() - joined, written["edges_vertices"].size());
+  EXPECT_EQ(paper.faces.size() - joined, written["faces_vertices"].size());
+  const FoldDocument again = parseOrFail(written.dump());
+  ASSERT_EQ(2u, again.frames.size());
+  for (const Paper& frame : again.frames)
+  {
+    EXPECT_TRUE(checkValidity(frame).ok()) << checkValidity(frame).summary();
+    EXPECT_NEAR(4.0, frame.sheet_area, 1e-12);
+    for (size_t v = 0; v < paper.vertices.size(); ++v)
+      EXPECT_EQ(paper.vertices[v].crease_pattern, frame.vertices[v].crease_pattern);
+  }
+}
+
+TEST(FoldIo, CreasingAlongASplitEdgeMakesItACrease)
+{
+  Paper paper = onlyFrame(kArrowFile);
+  int split = -1;
+  for (size_t e = 0; e < paper.edges.size(); ++e)
+    if (paper.edges[e].split)
+      split = static_cast<int>(e);
+  ASSERT_GE(split, 0);
+  const Edge edge = paper.edges[split];
+  const Vec3 a = paper.vertices[edge.vertices[0]].folded, b = paper.vertices[edge.vertices[1]].folded;
+  CreaseRequest request;
+  request.start = a + 0.1 * (a - b);
+  request.end = b + 0.1 * (b - a);
+  const Expected<CreaseResult> creased = crease(paper, request);
+  ASSERT_TRUE(creased.ok()) << creased.message();
+  EXPECT_EQ(std::vector<int>{ split }, creased->new_edges);
+  EXPECT_FALSE(paper.edges[split].split);
+  EXPECT_EQ(Assignment::Unassigned, paper.edges[split].assignment);
+  // Now a crease of the model: written as an edge between two faces.
+  const nlohmann::json written = nlohmann::json::parse(formatFold(paper));
+  EXPECT_EQ(2u, written["faces_vertices"].size());
+  EXPECT_EQ(5u, written["edges_vertices"].size());
 }
 
 // ---------------------------------------------------------------------------------------------

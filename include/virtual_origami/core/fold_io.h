@@ -19,11 +19,15 @@ struct FoldDocument
 };
 
 /// Parses FOLD text. Rejects malformed input with a message naming the field (or, for broken
-/// JSON, the line and column), never quoting the text.
+/// JSON, the line and column), never quoting the text. A concave face is split into convex
+/// pieces joined by flat edges marked Edge::split; a face that crosses or touches itself, or
+/// winds around twice, is refused.
 Expected<FoldDocument> parseFold(const std::string& text);
 Expected<FoldDocument> readFoldFile(const std::string& path);
 
-/// Writes one state: the crease pattern as the key frame, the folded form as frame 1.
+/// Writes one state: the crease pattern as the key frame, the folded form as frame 1. Faces
+/// joined by split edges still flat (F) are written as the one face they were read as, and
+/// those edges left out.
 std::string formatFold(const Paper& paper, const std::string& title = "");
 /// Writes a folding sequence, one frame per state.
 std::string formatFoldSequence(const std::vector<Paper>& steps, const std::string& title = "");
