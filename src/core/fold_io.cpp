@@ -655,7 +655,8 @@ double segmentDistance(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& 
   const double cda = cross2(d - c, a - c), cdb = cross2(d - c, b - c);
   if (((abc > 0 && abd < 0) || (abc < 0 && abd > 0)) && ((cda > 0 && cdb < 0) || (cda < 0 && cdb > 0)))
     return 0.0;
-  return std::min({ pointToSegment(a, c, d), pointToSegment(b, c, d), pointToSegment(c, a, b), pointToSegment(d, a, b) });
+  return std::min(
+      { pointToSegment(a, c, d), pointToSegment(b, c, d), pointToSegment(c, a, b), pointToSegment(d, a, b) });
 }
 
 /// Convex pieces of a simple counter-clockwise polygon (indices into it), and the diagonals
@@ -803,8 +804,8 @@ std::vector<std::vector<int>> splitConcaveFaces(Paper& paper)
         if (i == 0 && j == n - 1)
           continue;  // neighbours round the end
         if (segmentDistance(polygon[i], polygon[(i + 1) % n], polygon[j], polygon[(j + 1) % n]) <= touching)
-          fail(name + " crosses or touches itself in the crease pattern (its sides " + std::to_string(cycle[i]) +
-               "-" + std::to_string(cycle[(i + 1) % n]) + " and " + std::to_string(cycle[j]) + "-" +
+          fail(name + " crosses or touches itself in the crease pattern (its sides " + std::to_string(cycle[i]) + "-" +
+               std::to_string(cycle[(i + 1) % n]) + " and " + std::to_string(cycle[j]) + "-" +
                std::to_string(cycle[(j + 1) % n]) + " meet)");
       }
     const ConvexPieces split = convexPieces(polygon, slack);

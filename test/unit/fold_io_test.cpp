@@ -690,9 +690,9 @@ TEST(FoldIo, WritesAConcaveFaceBackAsTheFileHadIt)
 TEST(FoldIo, AConcaveFaceCreasedSinceStillWritesAValidFold)
 {
   Paper paper = onlyFrame(kConcaveFile);
-  // Across both arms of the L and the square, then along the L's inner side.
-  for (const auto& [a, b] : { std::pair{ Vec3(-0.1, 0.5, 0), Vec3(3.1, 0.5, 0) },
-                              std::pair{ Vec3(0.5, -0.1, 0), Vec3(0.5, 2.1, 0) } })
+  // Across the L's lower arm and the square, then up its left arm: both cut its pieces.
+  for (const auto& [a, b] :
+       { std::pair{ Vec3(-0.1, 0.5, 0), Vec3(3.1, 0.5, 0) }, std::pair{ Vec3(0.5, -0.1, 0), Vec3(0.5, 2.1, 0) } })
   {
     CreaseRequest request;
     request.start = a;
@@ -791,7 +791,8 @@ TEST(FoldIo, NoMessageQuotesWhatTheFileHolds)
     }
   }
   // A syntax error says where instead.
-  EXPECT_THAT(parseFold("{\"a\": 1,\n  \"b\": Qz7}").message(), HasSubstr("invalid JSON: syntax error at line 2, column 8"));
+  const std::string where = parseFold("{\"a\": 1,\n  \"b\": Qz7}").message();
+  EXPECT_THAT(where, HasSubstr("invalid JSON: syntax error at line 2, column 8"));
   std::filesystem::remove_all(folder);
 }
 
