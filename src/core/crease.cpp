@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -135,6 +136,8 @@ public:
       if (alongSide(static_cast<int>(f), xs))
       {
         (inside ? along_edge : partial) = true;
+        if (inside)
+          collectSplitEdgesOnPlane(static_cast<int>(f));
         continue;
       }
       if (xs.size() > 2 || !inside)
@@ -149,7 +152,7 @@ public:
       }
       cuts.push_back({ static_cast<int>(f), { xs[0], xs[1] } });
     }
-    if (cuts.empty())
+    if (cuts.empty() && split_edges_.empty())
     {
       if (along_edge)
         return Expected<CreaseResult>::failure("the crease line runs along an existing edge: nothing new to crease");
@@ -159,6 +162,13 @@ public:
       return Expected<CreaseResult>::failure("the crease line misses the paper");
     }
     CreaseResult result;
+    // An edge added on reading only to make a concave face convex becomes the crease asked for.
+    for (int e : split_edges_)
+    {
+      paper_.edges[e].split = false;
+      paper_.edges[e].assignment = Assignment::Unassigned;
+      result.new_edges.push_back(e);
+    }
     for (FaceCut& cut : cuts)
       for (Crossing& c : cut.ends)
         if (c.vertex < 0)
@@ -328,6 +338,20 @@ private:
            chainOnPlane(face, xs.back().vertex, xs.front().vertex);
   }
 
+  /// Notes the face's split edges (Edge::split) that lie on the plane.
+  void collectSplitEdgesOnPlane(int face)
+  {
+    const Face& f = paper_.faces[face];
+    for (size_t i = 0; i < f.vertices.size(); ++i)
+    {
+      const Edge& edge = paper_.edges[f.edges[i]];
+      if (edge.split && side_[edge.vertices[0]] == 0 && side_[edge.vertices[1]] == 0 &&
+          region_.contains(paper_.vertices[edge.vertices[0]].folded, region_tol_) &&
+          region_.contains(paper_.vertices[edge.vertices[1]].folded, region_tol_))
+        split_edges_.insert(f.edges[i]);
+    }
+  }
+
   bool chainOnPlane(int face, int from, int to) const
   {
     const std::vector<int>& vs = paper_.faces[face].vertices;
@@ -423,6 +447,7 @@ private:
   std::vector<int> side_;
   std::vector<double> distance_;
   std::map<int, int> split_vertex_;
+  std::set<int> split_edges_;  // split edges the line runs along
 };
 
 /// A point of the request farther than this many sheet sizes from the paper is refused: no

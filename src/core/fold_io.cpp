@@ -11,10 +11,17 @@
 #include <cstring>
 #include <deque>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <optional>
+#include <random>
+#include <set>
 #include <sstream>
 #include <stdexcept>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
@@ -61,13 +68,29 @@ std::string indexed(const std::string& name, size_t i)
   return name + "[" + std::to_string(i) + "]";
 }
 
-/// A JSON value for a message, cut short when long.
-std::string describe(const json& value)
+/// What a JSON value is, for a message: never the value itself, so that no message quotes
+/// the file (loading any file, a private one too, must not echo what is in it).
+std::string kindOf(const json& value)
 {
-  std::string text = value.dump();
-  if (text.size() > 40)
-    text = text.substr(0, 37) + "...";
-  return text;
+  switch (value.type())
+  {
+    case json::value_t::null:
+      return "null";
+    case json::value_t::boolean:
+      return "true or false";
+    case json::value_t::number_integer:
+    case json::value_t::number_unsigned:
+    case json::value_t::number_float:
+      return "a number";
+    case json::value_t::string:
+      return "a string";
+    case json::value_t::array:
+      return value.empty() ? "an empty array" : "an array of " + std::to_string(value.size());
+    case json::value_t::object:
+      return "an object";
+    default:
+      return "no JSON value";
+  }
 }
 
 std::string formatNumber(double x)
@@ -89,13 +112,13 @@ const json* findField(const json& object, const std::string& key)
 void requireArray(const json& value, const std::string& name)
 {
   if (!value.is_array())
-    fail(name + " is " + describe(value) + ", not an array");
+    fail(name + " is " + kindOf(value) + ", not an array");
 }
 
 double readNumber(const json& value, const std::string& name)
 {
   if (!value.is_number())
-    fail(name + " is " + describe(value) + ", not a number");
+    fail(name + " is " + kindOf(value) + ", not a number");
   const double x = value.get<double>();
   if (!std::isfinite(x))
     fail(name + " is not a finite number");
@@ -107,7 +130,8 @@ int readIndex(const json& value, const std::string& name)
   // Accept 3.0 as well as 3: some writers print every number as a double.
   const double x = value.is_number() ? value.get<double>() : -1.0;
   if (!(x >= 0 && x <= INT_MAX && x == std::floor(x)))
-    fail(name + " is " + describe(value) + ", not an index");
+    fail(name + " is " + (value.is_number() ? std::string("a number but") : kindOf(value) + ",") +
+         " not an index (a whole number from 0)");
   return static_cast<int>(x);
 }
 
@@ -125,7 +149,7 @@ std::optional<std::string> readOptionalString(const json& object, const std::str
   if (!field)
     return std::nullopt;
   if (!field->is_string())
-    fail(key + " is " + describe(*field) + ", not a string");
+    fail(key + " is " + kindOf(*field) + ", not a string");
   return field->get<std::string>();
 }
 
@@ -139,7 +163,7 @@ std::vector<std::string> readStrings(const json& object, const std::string& key)
   for (size_t i = 0; i < field->size(); ++i)
   {
     if (!(*field)[i].is_string())
-      fail(indexed(key, i) + " is " + describe((*field)[i]) + ", not a string");
+      fail(indexed(key, i) + " is " + kindOf((*field)[i]) + ", not a string");
     strings.push_back((*field)[i].get<std::string>());
   }
   return strings;
@@ -210,7 +234,7 @@ std::optional<std::vector<std::array<int, 2>>> readEdges(const json& frame, size
     const json& entry = (*field)[e];
     const std::string name = indexed("edges_vertices", e);
     if (!entry.is_array() || entry.size() != 2)
-      fail(name + " is " + describe(entry) + ", not a pair of vertices");
+      fail(name + " is " + kindOf(entry) + ", not a pair of vertices");
     const std::array<int, 2> ends{ readVertexIndex(entry[0], name, vertex_count),
                                    readVertexIndex(entry[1], name, vertex_count) };
     if (ends[0] == ends[1])
@@ -232,7 +256,7 @@ std::optional<std::vector<Assignment>> readAssignments(const json& frame, const 
     const std::optional<Assignment> assignment =
         entry.is_string() ? assignmentFromLetter(entry.get<std::string>()) : std::nullopt;
     if (!assignment)
-      fail(indexed("edges_assignment", e) + " is " + describe(entry) + ", not one of B M V F U C");
+      fail(indexed("edges_assignment", e) + " is not one of the letters B M V F U C");
     assignments.push_back(*assignment);
   }
   return assignments;
@@ -255,7 +279,7 @@ std::optional<std::vector<double>> readFoldAngles(const json& frame, const std::
   {
     const double degrees = readNumber((*field)[e], indexed(key, e));
     if (std::abs(degrees) > 180.0 + 1e-9)
-      fail(indexed(key, e) + " is " + formatNumber(degrees) + ", outside [-180, 180]");
+      fail(indexed(key, e) + " is outside [-180, 180] degrees");
     angles.push_back(toRadians(std::max(-180.0, std::min(180.0, degrees))));
   }
   return angles;
@@ -300,12 +324,12 @@ std::vector<std::array<int, 3>> readFaceOrders(const json& frame)
     const json& entry = (*field)[i];
     const std::string name = indexed("faceOrders", i);
     if (!entry.is_array() || entry.size() != 3)
-      fail(name + " is " + describe(entry) + ", not a triple [f, g, s]");
+      fail(name + " is " + kindOf(entry) + ", not a triple [f, g, s]");
     const int f = readIndex(entry[0], indexed(name, 0));
     const int g = readIndex(entry[1], indexed(name, 1));
     const double s = entry[2].is_number() ? entry[2].get<double>() : 2.0;
     if (s != -1.0 && s != 0.0 && s != 1.0)
-      fail(name + " has order " + describe(entry[2]) + ", not -1, 0 or 1");
+      fail(name + " has an order other than -1, 0 or 1");
     orders.push_back({ f, g, static_cast<int>(s) });
   }
   return orders;
@@ -326,7 +350,7 @@ std::optional<std::vector<Vec2>> readCreasePatternField(const json& frame, size_
   {
     const json& entry = (*field)[i];
     if (!entry.is_array() || entry.size() != 2)
-      fail(indexed(key, i) + " is " + describe(entry) + ", not a 2D point");
+      fail(indexed(key, i) + " is " + kindOf(entry) + ", not a 2D point");
     points.emplace_back(readNumber(entry[0], indexed(indexed(key, i), 0)),
                         readNumber(entry[1], indexed(indexed(key, i), 1)));
   }
@@ -618,29 +642,210 @@ void orientCounterClockwise(Paper& paper)
       v.crease_pattern.x() = -v.crease_pattern.x();
 }
 
-/// Every turn of a counter-clockwise face is to the left (or straight on), once around.
-void checkConvex(const Paper& paper)
+/// The least distance between two segments: 0 when they cross.
+double segmentDistance(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d)
 {
-  for (size_t f = 0; f < paper.faces.size(); ++f)
+  const auto pointToSegment = [](const Vec2& p, const Vec2& s, const Vec2& t) {
+    const Vec2 st = t - s;
+    const double length2 = st.squaredNorm();
+    const double u = length2 > 0 ? std::clamp((p - s).dot(st) / length2, 0.0, 1.0) : 0.0;
+    return (s + u * st - p).norm();
+  };
+  const double abc = cross2(b - a, c - a), abd = cross2(b - a, d - a);
+  const double cda = cross2(d - c, a - c), cdb = cross2(d - c, b - c);
+  if (((abc > 0 && abd < 0) || (abc < 0 && abd > 0)) && ((cda > 0 && cdb < 0) || (cda < 0 && cdb > 0)))
+    return 0.0;
+  return std::min(
+      { pointToSegment(a, c, d), pointToSegment(b, c, d), pointToSegment(c, a, b), pointToSegment(d, a, b) });
+}
+
+/// Convex pieces of a simple counter-clockwise polygon (indices into it), and the diagonals
+/// between them. Ear clipping cuts it into triangles, then each diagonal whose removal leaves
+/// a convex piece is removed (Hertel–Mehlhorn: at most four times the fewest pieces). Corners
+/// turning right by less than `slack` (a cross product) count as straight. Empty when no ear
+/// is found (the polygon is not simple).
+struct ConvexPieces
+{
+  std::vector<std::vector<int>> pieces;
+  std::vector<std::array<int, 2>> diagonals;
+};
+
+bool convexCycle(const std::vector<Vec2>& polygon, const std::vector<int>& cycle, double slack)
+{
+  const size_t n = cycle.size();
+  for (size_t i = 0; i < n; ++i)
   {
+    const Vec2& a = polygon[cycle[i]];
+    const Vec2& b = polygon[cycle[(i + 1) % n]];
+    const Vec2& c = polygon[cycle[(i + 2) % n]];
+    if (cross2(b - a, c - b) < -slack)
+      return false;
+  }
+  return true;
+}
+
+/// `cycle` turned to start at `first`.
+std::vector<int> startingAt(const std::vector<int>& cycle, int first)
+{
+  std::vector<int> turned = cycle;
+  std::rotate(turned.begin(), std::find(turned.begin(), turned.end(), first), turned.end());
+  return turned;
+}
+
+ConvexPieces convexPieces(const std::vector<Vec2>& polygon, double slack)
+{
+  ConvexPieces result;
+  std::vector<int> remaining(polygon.size());
+  for (size_t i = 0; i < remaining.size(); ++i)
+    remaining[i] = static_cast<int>(i);
+  while (remaining.size() > 3)
+  {
+    const size_t m = remaining.size();
+    bool clipped = false;
+    for (size_t k = 0; k < m && !clipped; ++k)
+    {
+      const int p = remaining[(k + m - 1) % m], i = remaining[k], q = remaining[(k + 1) % m];
+      const Vec2 &a = polygon[p], &b = polygon[i], &c = polygon[q];
+      if (cross2(b - a, c - b) <= slack)
+        continue;  // reflex or straight: no ear
+      bool empty = true;
+      for (int r : remaining)
+        if (r != p && r != i && r != q && cross2(b - a, polygon[r] - a) >= -slack &&
+            cross2(c - b, polygon[r] - b) >= -slack && cross2(a - c, polygon[r] - c) >= -slack)
+          empty = false;
+      if (!empty)
+        continue;
+      result.pieces.push_back({ p, i, q });
+      result.diagonals.push_back({ p, q });
+      remaining.erase(remaining.begin() + static_cast<long>(k));
+      clipped = true;
+    }
+    if (!clipped)
+      return {};
+  }
+  result.pieces.push_back(remaining);
+  // Join the pieces across every diagonal that leaves them convex, the last cut first.
+  std::vector<std::array<int, 2>> kept;
+  for (auto d = result.diagonals.rbegin(); d != result.diagonals.rend(); ++d)
+  {
+    const auto [u, v] = *d;
+    const auto hasSide = [](const std::vector<int>& cycle, int from, int to) {
+      const size_t n = cycle.size();
+      for (size_t i = 0; i < n; ++i)
+        if (cycle[i] == from && cycle[(i + 1) % n] == to)
+          return true;
+      return false;
+    };
+    auto first = std::find_if(result.pieces.begin(), result.pieces.end(),
+                              [&](const std::vector<int>& c) { return hasSide(c, u, v); });
+    auto second = std::find_if(result.pieces.begin(), result.pieces.end(),
+                               [&](const std::vector<int>& c) { return hasSide(c, v, u); });
+    if (first == result.pieces.end() || second == result.pieces.end())
+      return {};  // every diagonal has a piece on each side: never happens
+    // From v, the first piece ends at u; from u, the second ends at v: joined, v … u … back to v.
+    std::vector<int> joined = startingAt(*first, v);
+    const std::vector<int> rest = startingAt(*second, u);
+    joined.insert(joined.end(), rest.begin() + 1, rest.end() - 1);
+    if (!convexCycle(polygon, joined, slack))
+    {
+      kept.push_back(*d);
+      continue;
+    }
+    *first = joined;
+    result.pieces.erase(second);
+  }
+  result.diagonals.assign(kept.rbegin(), kept.rend());
+  return result;
+}
+
+/// Every face must be a simple polygon, counter-clockwise in the crease pattern; a concave one
+/// is split into convex pieces (SPEC: faces are convex) joined by new flat edges marked
+/// `split`, which formatFold leaves out again. The first piece keeps the face's number and
+/// starts at its first vertex; the others come after the file's faces. Returns, for each of
+/// the file's faces, the faces it became.
+std::vector<std::vector<int>> splitConcaveFaces(Paper& paper)
+{
+  const double diagonal = boundingDiagonal(creasePatternOf(paper));
+  const double touching = 1e-9 * diagonal;  // sides this close meet
+  const double slack = 1e-13 * diagonal * diagonal;
+  const size_t file_faces = paper.faces.size();
+  std::vector<std::vector<int>> pieces_of(file_faces);
+  for (size_t f = 0; f < file_faces; ++f)
+  {
+    pieces_of[f] = { static_cast<int>(f) };
+    const std::string name = indexed("faces_vertices", f);
+    const std::vector<int> cycle = paper.faces[f].vertices;
     const std::vector<Vec2> polygon = facePolygon(paper, static_cast<int>(f));
     const size_t n = polygon.size();
     double total_turn = 0;
+    bool convex = true;
     for (size_t i = 0; i < n; ++i)
     {
       const Vec2 in = polygon[(i + 1) % n] - polygon[i];
       const Vec2 out = polygon[(i + 2) % n] - polygon[(i + 1) % n];
       const double turn = std::atan2(cross2(in, out), in.dot(out));
       const double sine = cross2(in, out) / (in.norm() * out.norm());
+      const std::string corner = " (at vertex " + std::to_string(cycle[(i + 1) % n]) + ")";
+      if (!std::isfinite(sine))
+        fail(name + " has two corners at one point in the crease pattern" + corner);
       // A corner that doubles back (turn near ±π) has a tiny sine too: reject it by angle.
-      if (!(sine >= -kConvexityTolerance) || turn > M_PI - kConvexityTolerance)
-        fail(indexed("faces_vertices", f) + " is not convex in the crease pattern (at vertex " +
-             std::to_string(paper.faces[f].vertices[(i + 1) % n]) + ")");
+      if (std::abs(turn) > M_PI - kConvexityTolerance)
+        fail(name + " doubles back on itself in the crease pattern" + corner);
+      convex = convex && sine >= -kConvexityTolerance;
       total_turn += turn;
     }
     if (total_turn > 3 * M_PI)  // all left turns, but winding twice: a star
-      fail(indexed("faces_vertices", f) + " is not convex in the crease pattern (it winds around twice)");
+      fail(name + " winds around twice in the crease pattern (a star, not a polygon)");
+    if (convex)
+      continue;
+    for (size_t i = 0; i < n; ++i)
+      for (size_t j = i + 2; j < n; ++j)
+      {
+        if (i == 0 && j == n - 1)
+          continue;  // neighbours round the end
+        if (segmentDistance(polygon[i], polygon[(i + 1) % n], polygon[j], polygon[(j + 1) % n]) <= touching)
+          fail(name + " crosses or touches itself in the crease pattern (its sides " + std::to_string(cycle[i]) + "-" +
+               std::to_string(cycle[(i + 1) % n]) + " and " + std::to_string(cycle[j]) + "-" +
+               std::to_string(cycle[(j + 1) % n]) + " meet)");
+      }
+    const ConvexPieces split = convexPieces(polygon, slack);
+    if (split.pieces.empty())
+      fail(name + " is concave and could not be split into convex pieces");
+    // The piece with the face's first side keeps the face's number and first vertex.
+    std::vector<std::vector<int>> pieces;
+    for (const std::vector<int>& piece : split.pieces)
+    {
+      std::vector<int> vertices;
+      for (int i : piece)
+        vertices.push_back(cycle[i]);
+      pieces.push_back(vertices);
+    }
+    const auto first = std::find_if(pieces.begin(), pieces.end(), [&](const std::vector<int>& piece) {
+      const auto at = std::find(piece.begin(), piece.end(), cycle[0]);
+      return at != piece.end() && piece[(at - piece.begin() + 1) % piece.size()] == cycle[1];
+    });
+    if (first == pieces.end())
+      fail(name + " is concave and could not be split into convex pieces");
+    std::iter_swap(pieces.begin(), first);
+    paper.faces[f].vertices = startingAt(pieces[0], cycle[0]);
+    for (size_t k = 1; k < pieces.size(); ++k)
+    {
+      pieces_of[f].push_back(static_cast<int>(paper.faces.size()));
+      paper.faces.push_back({ pieces[k], {} });
+    }
+    for (const auto& [u, v] : split.diagonals)
+    {
+      Edge edge;
+      edge.vertices = { cycle[u], cycle[v] };
+      edge.assignment = Assignment::Flat;
+      edge.split = true;
+      paper.edges.push_back(edge);
+    }
   }
+  const Status linked = linkTopology(paper);
+  if (!linked)
+    fail(linked.message());
+  return pieces_of;
 }
 
 void checkEveryVertexUsed(const std::vector<std::vector<int>>& faces, size_t vertex_count)
@@ -654,8 +859,11 @@ void checkEveryVertexUsed(const std::vector<std::vector<int>>& faces, size_t ver
       fail("vertex " + std::to_string(v) + " (" + indexed("vertices_coords", v) + ") is used by no face");
 }
 
-std::vector<FaceOrder> faceOrdersOf(const std::vector<std::array<int, 3>>& orders, size_t face_count)
+/// The file's face orders, each between every piece of its two faces (splitConcaveFaces).
+std::vector<FaceOrder> faceOrdersOf(const std::vector<std::array<int, 3>>& orders,
+                                    const std::vector<std::vector<int>>& pieces_of)
 {
+  const size_t face_count = pieces_of.size();
   std::vector<FaceOrder> result;
   for (size_t i = 0; i < orders.size(); ++i)
   {
@@ -665,7 +873,9 @@ std::vector<FaceOrder> faceOrdersOf(const std::vector<std::array<int, 3>>& order
         fail(indexed("faceOrders", i) + " names face " + std::to_string(face) + " but there are " +
              std::to_string(face_count) + " faces");
     // FOLD [f, g, +1]: f lies on the side g's normal points to, i.e. FaceOrder{g, f, +1}.
-    result.push_back({ g, f, s });
+    for (int g_piece : pieces_of[g])
+      for (int f_piece : pieces_of[f])
+        result.push_back({ g_piece, f_piece, s });
   }
   return result;
 }
@@ -828,16 +1038,20 @@ BuiltFrame buildFrame(const json& frame, const BuiltFrame* parent)
       paper.vertices[v].crease_pattern = unfolded[v];
   }
   orientCounterClockwise(paper);
-  checkConvex(paper);
-  paper.face_orders = faceOrdersOf(data.face_orders, paper.faces.size());
+  const std::vector<std::vector<int>> pieces_of = splitConcaveFaces(paper);
+  paper.face_orders = faceOrdersOf(data.face_orders, pieces_of);
   paper.sheet_area = 0.0;
   for (size_t f = 0; f < paper.faces.size(); ++f)
     paper.sheet_area += paper.faceArea(static_cast<int>(f));
   markBoundaries(paper);
+  // The edges splitConcaveFaces added lie flat.
+  std::optional<std::vector<double>> fold_angles = data.fold_angles;
+  if (fold_angles)
+    fold_angles->resize(paper.edges.size(), 0.0);
   if (built.crease_pattern)
-    foldCreasePattern(paper, data.fold_angles);
+    foldCreasePattern(paper, fold_angles);
   else
-    setFoldedFormAngles(paper, data.fold_angles);
+    setFoldedFormAngles(paper, fold_angles);
   return built;
 }
 
@@ -875,7 +1089,7 @@ std::vector<json> ownFrames(const json& root)
   for (size_t i = 0; i < file_frames->size(); ++i)
   {
     if (!(*file_frames)[i].is_object())
-      fail(indexed("file_frames", i) + " is " + describe((*file_frames)[i]) + ", not an object");
+      fail(indexed("file_frames", i) + " is " + kindOf((*file_frames)[i]) + ", not an object");
     frames.push_back((*file_frames)[i]);
   }
   return frames;
@@ -888,7 +1102,7 @@ int inheritedParent(const json& frame, size_t index, size_t frame_count)
   if (index == 0 || !inherit)
     return -1;
   if (!inherit->is_boolean())
-    fail("frame_inherit is " + describe(*inherit) + ", not true or false");
+    fail("frame_inherit is " + kindOf(*inherit) + ", not true or false");
   if (!inherit->get<bool>())
     return -1;
   const json* parent = findField(frame, "frame_parent");
@@ -994,29 +1208,141 @@ ordered_json foldedCoords(const Paper& paper)
   return coords;
 }
 
+/// The faces and edges a file gets: faces joined by split edges that are still flat (F) are
+/// merged back into the face they were split from, and those edges left out. A group whose
+/// outline is not one simple cycle (creased since in a way that pinches it) stays in pieces,
+/// with its split edges, which is still a valid FOLD.
+struct FileTopology
+{
+  std::vector<std::vector<int>> faces;
+  std::vector<int> edges;    // the paper's edges the file keeps, in order
+  std::vector<int> face_of;  // for each paper face, the file face it is (part of)
+};
+
+/// The outline of a group of faces joined across `inside` edges, counter-clockwise from the
+/// first face's first vertex; empty unless it is one cycle through every vertex of the group.
+std::vector<int> outline(const Paper& paper, const std::vector<int>& group, const std::vector<char>& inside)
+{
+  std::map<int, int> next;
+  std::vector<int> vertices;
+  size_t sides = 0;
+  for (int f : group)
+  {
+    const Face& face = paper.faces[f];
+    for (size_t i = 0; i < face.vertices.size(); ++i)
+    {
+      vertices.push_back(face.vertices[i]);
+      if (inside[face.edges[i]])
+        continue;
+      if (!next.emplace(face.vertices[i], face.vertices[(i + 1) % face.vertices.size()]).second)
+        return {};  // the outline passes a vertex twice
+      ++sides;
+    }
+  }
+  const int start = paper.faces[group.front()].vertices.front();
+  std::vector<int> cycle;
+  for (int v = start; cycle.size() <= sides; v = next.at(v))
+  {
+    if (!next.count(v))
+      return {};
+    cycle.push_back(v);
+    if (next.at(v) == start)
+      break;
+  }
+  std::sort(vertices.begin(), vertices.end());
+  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  if (cycle.size() != sides || cycle.size() != vertices.size())
+    return {};
+  return cycle;
+}
+
+FileTopology fileTopology(const Paper& paper)
+{
+  const size_t face_count = paper.faces.size();
+  // Union-find of the faces across flat split edges; each group's root is its first face.
+  std::vector<int> root(face_count);
+  for (size_t f = 0; f < face_count; ++f)
+    root[f] = static_cast<int>(f);
+  const std::function<int(int)> find = [&](int f) { return root[f] == f ? f : root[f] = find(root[f]); };
+  std::vector<char> inside(paper.edges.size(), 0);
+  for (size_t e = 0; e < paper.edges.size(); ++e)
+  {
+    const Edge& edge = paper.edges[e];
+    if (!edge.split || !edge.isCrease() || edge.assignment != Assignment::Flat)
+      continue;
+    inside[e] = 1;
+    const int a = find(edge.faces[0]), b = find(edge.faces[1]);
+    root[std::max(a, b)] = std::min(a, b);
+  }
+  std::vector<std::vector<int>> groups(face_count);
+  for (size_t f = 0; f < face_count; ++f)
+    groups[find(static_cast<int>(f))].push_back(static_cast<int>(f));
+  FileTopology file;
+  file.face_of.assign(face_count, -1);
+  std::vector<char> merged(face_count, 0);
+  for (size_t f = 0; f < face_count; ++f)
+  {
+    const std::vector<int>& group = groups[f];
+    if (group.empty())
+      continue;  // f is in an earlier face's group
+    std::vector<int> cycle = group.size() > 1 ? outline(paper, group, inside) : std::vector<int>{};
+    if (cycle.empty())
+    {
+      for (int g : group)  // in pieces: each face its own, in order
+        merged[g] = 0;
+      continue;
+    }
+    for (int g : group)
+      merged[g] = 1;
+    file.face_of[f] = static_cast<int>(file.faces.size());
+    file.faces.push_back(cycle);
+  }
+  for (size_t f = 0; f < face_count; ++f)
+  {
+    if (merged[f])
+    {
+      file.face_of[f] = file.face_of[find(static_cast<int>(f))];
+      continue;
+    }
+    file.face_of[f] = static_cast<int>(file.faces.size());
+    file.faces.push_back(paper.faces[f].vertices);
+  }
+  for (size_t e = 0; e < paper.edges.size(); ++e)
+    if (!inside[e] || !merged[paper.edges[e].faces[0]])
+      file.edges.push_back(static_cast<int>(e));
+  return file;
+}
+
 /// Edges, faces and layer order: everything but the coordinates.
 void addTopology(ordered_json& frame, const Paper& paper)
 {
+  const FileTopology file = fileTopology(paper);
   ordered_json edges = ordered_json::array(), assignments = ordered_json::array(), angles = ordered_json::array();
-  for (const Edge& edge : paper.edges)
+  for (int e : file.edges)
   {
+    const Edge& edge = paper.edges[e];
     edges.push_back({ edge.vertices[0], edge.vertices[1] });
     assignments.push_back(std::string(1, assignmentLetter(edge.assignment)));
     angles.push_back(toDegrees(edge.fold_angle));
   }
   ordered_json faces = ordered_json::array();
-  for (const Face& face : paper.faces)
-    faces.push_back(face.vertices);
+  for (const std::vector<int>& face : file.faces)
+    faces.push_back(face);
   frame["edges_vertices"] = edges;
   frame["edges_assignment"] = assignments;
   frame["edges_foldAngle"] = angles;
   frame["faces_vertices"] = faces;
-  if (paper.face_orders.empty())
-    return;
+  // Pieces of one face share its orders: each pair once, none of a face with itself.
   ordered_json orders = ordered_json::array();
+  std::set<std::pair<int, int>> written;
   for (const FaceOrder& order : paper.face_orders)
-    orders.push_back({ order.other, order.face, order.above });  // see faceOrdersOf
-  frame["faceOrders"] = orders;
+  {
+    const int face = file.face_of[order.face], other = file.face_of[order.other];
+    if (face != other && written.emplace(face, other).second)
+      orders.push_back({ other, face, order.above });  // see faceOrdersOf
+  }
+  if (!orders.empty())
+    frame["faceOrders"] = orders;
 }
 
 ordered_json fileHeader(const std::string& title, const std::string& file_class)
@@ -1081,6 +1407,17 @@ std::string dumpFold(const ordered_json& file)
   return out + "\n";
 }
 
+/// "line L, column C (byte B)" for the 1-based byte offset nlohmann's parse errors give.
+std::string placeIn(const std::string& text, size_t byte)
+{
+  const size_t end = std::min(byte > 0 ? byte - 1 : 0, text.size());
+  const size_t line = 1 + static_cast<size_t>(std::count(text.begin(), text.begin() + static_cast<long>(end), '\n'));
+  const size_t line_start = text.rfind('\n', end > 0 ? end - 1 : 0);
+  const size_t column = line_start == std::string::npos || end == 0 ? end + 1 : end - line_start;
+  return "syntax error at line " + std::to_string(line) + ", column " + std::to_string(column) + " (byte " +
+         std::to_string(byte) + ")";
+}
+
 std::string errnoText()
 {
   return std::strerror(errno);
@@ -1095,12 +1432,17 @@ Expected<FoldDocument> parseFold(const std::string& text)
   {
     root = json::parse(text);
   }
-  catch (const json::exception& e)  // parse_error, and out_of_range for numbers like 1e999
+  // nlohmann's messages quote what it last read ("last read: '...'"): say where instead.
+  catch (const json::parse_error& e)
   {
-    return Expected<FoldDocument>::failure(std::string("invalid JSON: ") + e.what());
+    return Expected<FoldDocument>::failure("invalid JSON: " + placeIn(text, e.byte));
+  }
+  catch (const json::exception&)  // out_of_range, for numbers like 1e999
+  {
+    return Expected<FoldDocument>::failure("invalid JSON: a number too large for a double");
   }
   if (!root.is_object())
-    return Expected<FoldDocument>::failure("invalid FOLD: the top level is " + describe(root) + ", not a JSON object");
+    return Expected<FoldDocument>::failure("invalid FOLD: the top level is " + kindOf(root) + ", not a JSON object");
   try
   {
     return readDocument(root);
@@ -1175,25 +1517,80 @@ std::string formatFoldSequence(const std::vector<Paper>& steps, const std::strin
 
 Status writeTextFile(const std::string& path, const std::string& text)
 {
-  // Write beside the target, then rename: readers never see a half-written file.
-  const std::string temporary = path + ".tmp";
-  std::FILE* file = std::fopen(temporary.c_str(), "wb");
-  if (!file)
-    return failure("cannot write " + temporary + ": " + errnoText());
-  const bool written = std::fwrite(text.data(), 1, text.size(), file) == text.size();
-  const std::string write_reason = written ? "" : errnoText();
-  const bool closed = std::fclose(file) == 0;
-  if (!written || !closed)
+  // Replace only a regular file the user may write: never a link (rename would replace the
+  // link, not what it points to), a device or folder, or a read-only file (rename would
+  // replace it anyway, as the folder is writable). As root access() calls every file
+  // writable, so a file with no write permission at all counts as read-only too.
+  struct stat target;
+  const bool replacing = ::lstat(path.c_str(), &target) == 0;
+  if (!replacing && errno != ENOENT)
+    return failure("cannot write " + path + ": " + errnoText());
+  if (replacing && S_ISLNK(target.st_mode))
+    return failure("cannot write " + path + ": it is a symbolic link (not followed, not replaced)");
+  if (replacing && !S_ISREG(target.st_mode))
+    return failure("cannot write " + path + ": not a regular file");
+  if (replacing && ((target.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0 || ::access(path.c_str(), W_OK) != 0))
+    return failure("cannot write " + path + ": the file is read-only");
+  const std::filesystem::path target_path(path);
+  const std::string name = target_path.filename().string();
+  if (name.empty() || name == "." || name == "..")
+    return failure("cannot write " + path + ": not a file name");
+  const std::string folder = target_path.has_parent_path() ? target_path.parent_path().string() : ".";
+
+  // Write beside the target, then rename: readers never see a half-written file. The
+  // temporary file gets a new name and is created exclusively, without following links,
+  // so nothing planted in the folder (a link at <name>.tmp) is written through.
+  thread_local std::mt19937_64 random{ std::random_device{}() };
+  std::string temporary;
+  int fd = -1;
+  for (int attempt = 0; fd < 0; ++attempt)
   {
-    const std::string reason = written ? errnoText() : write_reason;
-    std::remove(temporary.c_str());
-    return failure("cannot write " + temporary + ": " + reason);
+    std::ostringstream unique;
+    unique << folder << "/." << name << "." << ::getpid() << "." << std::hex << random() << ".tmp";
+    temporary = unique.str();
+    fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+    if (fd < 0 && (errno != EEXIST || attempt == 100))
+      return failure("cannot write " + path + ": " + errnoText());
+  }
+  const auto abandon = [&](const std::string& reason) {
+    ::close(fd);
+    ::unlink(temporary.c_str());
+    return failure("cannot write " + path + ": " + reason);
+  };
+  // The new file keeps the permissions of the one it replaces.
+  if (replacing && ::fchmod(fd, target.st_mode & 07777) != 0)
+    return abandon(errnoText());
+  for (size_t done = 0; done < text.size();)
+  {
+    const ssize_t wrote = ::write(fd, text.data() + done, text.size() - done);
+    if (wrote < 0 && errno == EINTR)
+      continue;
+    if (wrote <= 0)
+      return abandon(errnoText());
+    done += static_cast<size_t>(wrote);
+  }
+  // On disk before the rename makes it the file: a crash then leaves the old file or the
+  // whole new one, never an empty one.
+  if (::fsync(fd) != 0)
+    return abandon(errnoText());
+  if (::close(fd) != 0)
+  {
+    const std::string reason = errnoText();
+    ::unlink(temporary.c_str());
+    return failure("cannot write " + path + ": " + reason);
   }
   if (std::rename(temporary.c_str(), path.c_str()) != 0)
   {
     const std::string reason = errnoText();
-    std::remove(temporary.c_str());
+    ::unlink(temporary.c_str());
     return failure("cannot rename " + temporary + " to " + path + ": " + reason);
+  }
+  // The rename itself on disk too (best effort: some file systems refuse to sync a folder).
+  const int folder_fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (folder_fd >= 0)
+  {
+    ::fsync(folder_fd);
+    ::close(folder_fd);
   }
   return success();
 }

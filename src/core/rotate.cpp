@@ -380,7 +380,10 @@ Expected<RotateResult> rotate(Paper& paper, const RotateRequest& request, ShapeS
       if (moving_vertices[v] && axis.distance(paper.vertices[v].folded) > onAxisTolerance(paper))
         turned.vertices[v].folded = rotateAbout(paper.vertices[v].folded, axis.origin, axis.direction, angle);
     for (const auto& [e, rate] : hinges)
+    {
       turned.edges[e].fold_angle = paper.edges[e].fold_angle + rate * angle;
+      turned.edges[e].split = false;  // turned about, an edge splitting a concave face is a crease
+    }
     return turned;
   };
 

@@ -13,6 +13,10 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "virtual_origami/core/crease.h"
 #include "virtual_origami/core/validity.h"
 
 namespace virtual_origami::core
@@ -80,6 +84,7 @@ void expectSamePaper(const Paper& expected, const Paper& actual)
     EXPECT_EQ(expected.edges[e].vertices, actual.edges[e].vertices) << "edge " << e;
     EXPECT_EQ(expected.edges[e].faces, actual.edges[e].faces) << "edge " << e;
     EXPECT_EQ(expected.edges[e].assignment, actual.edges[e].assignment) << "edge " << e;
+    EXPECT_EQ(expected.edges[e].split, actual.edges[e].split) << "edge " << e;
     EXPECT_NEAR(expected.edges[e].fold_angle, actual.edges[e].fold_angle, 1e-12) << "edge " << e;
   }
   for (size_t f = 0; f < expected.faces.size(); ++f)
@@ -494,23 +499,30 @@ TEST(FoldIo, RejectsBrokenFilesNamingTheField)
     { R"({"vertices_coords": [[NaN,0]]})", "invalid JSON" },
     { R"([1, 2])", "JSON object" },
     { "{" + square_edges + "}", "vertices_coords is missing" },
-    { R"({"vertices_coords": 5, "faces_vertices": []})", "vertices_coords is 5, not an array" },
+    { R"({"vertices_coords": 5, "faces_vertices": []})", "vertices_coords is a number, not an array" },
     { "{" + square_coords + "," + square_edges + R"(, "edges_assignment": ["B","B","B","B"]})",
       "edges_assignment has 4 entries but edges_vertices has 5" },
     { "{" + square_coords + R"(, "edges_vertices": [[0,1],[1,2],[2,3],[3,9]]})",
       "edges_vertices[3] names vertex 9 but there are 4 vertices" },
     { "{" + square_coords + "," + square_edges + R"(, "edges_assignment": ["B","B","X","B","V"]})",
-      "edges_assignment[2] is \"X\", not one of B M V F U C" },
+      "edges_assignment[2] is not one of the letters B M V F U C" },
     { R"({"vertices_coords": [[0,0],[null,0],[0,1]], "faces_vertices": [[0,1,2]]})",
       "vertices_coords[1][0] is null, not a number" },
     { R"({"vertices_coords": [[0,0],[1,"one"],[0,1]], "faces_vertices": [[0,1,2]]})",
-      "vertices_coords[1][1] is \"one\", not a number" },
+      "vertices_coords[1][1] is a string, not a number" },
     { R"({"vertices_coords": [[0,0],[1,0,0,0],[0,1]], "faces_vertices": [[0,1,2]]})",
       "vertices_coords[1] has 4 coordinates" },
     { R"({"vertices_coords": [[0,0],[1,0],[0,1]], "faces_vertices": [[0,1]]})",
       "faces_vertices[0] has 2 vertices" },
-    { R"({"vertices_coords": [[0,0],[2,0],[1,0.2],[1,2]], "faces_vertices": [[0,1,2,3]]})",
-      "faces_vertices[0] is not convex" },
+    { R"({"vertices_coords": [[0,0],[3,0],[0,2],[1,2]], "faces_vertices": [[0,1,2,3]]})",
+      "faces_vertices[0] crosses or touches itself in the crease pattern (its sides 1-2 and 3-0 meet)" },
+    { R"({"vertices_coords": [[0,0],[2,0],[2,2],[1,0],[0,2]], "faces_vertices": [[0,1,2,3,4]]})",
+      "faces_vertices[0] crosses or touches itself" },  // vertex 3 on side 0-1: a pinch
+    { R"({"vertices_coords": [[1,0],[0.309,0.951],[-0.809,0.588],[-0.809,-0.588],[0.309,-0.951]],
+         "faces_vertices": [[0,2,4,1,3]]})",
+      "faces_vertices[0] winds around twice in the crease pattern" },
+    { R"({"vertices_coords": [[0,0],[2,0],[1,0],[1,2]], "faces_vertices": [[0,1,2,3]]})",
+      "faces_vertices[0] doubles back on itself in the crease pattern (at vertex 1)" },
     { R"({"vertices_coords": [[0,0],[1,0],[0,1],[5,5]], "faces_vertices": [[0,1,2]]})",
       "vertex 3 (vertices_coords[3]) is used by no face" },
     { R"({"vertices_coords": [[0,0],[1,0],[1,1],[0,1]], "faces_vertices": [[0,1,3],[1,3,2]]})",
@@ -533,7 +545,7 @@ TEST(FoldIo, RejectsBrokenFilesNamingTheField)
          "faces_vertices": [[0,1,4],[0,4,3],[0,3,2],[0,2,1]]})",
       "folded form is not developable at vertex" },
     { "{" + square_coords + "," + square_faces + R"(, "file_frames": {}})",
-      "file_frames is {}, not an array" },
+      "file_frames is an object, not an array" },
     { "{" + square_coords + "," + square_faces + R"(, "file_frames": [{"frame_inherit": true, "frame_parent": 4}]})",
       "file_frames[0]: frame_parent is 4 but there are 2 frames" },
     { "{" + square_coords + "," + square_faces +
@@ -580,6 +592,272 @@ TEST(FoldIo, WritingReplacesAnExistingFile)
   const Expected<Paper> loaded = loadPaper(path);
   ASSERT_TRUE(loaded.ok()) << loaded.message();
   EXPECT_DOUBLE_EQ(9.0, loaded->sheet_area);
+  std::filesystem::remove_all(folder);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Concave faces
+
+/// An L-shaped face (area 3) with a square (area 1) on its right, and the L above the square.
+const char* const kConcaveFile = R"({
+  "vertices_coords": [[0,0],[2,0],[2,1],[1,1],[1,2],[0,2],[3,0],[3,1]],
+  "edges_vertices": [[0,1],[1,6],[6,7],[7,2],[2,3],[3,4],[4,5],[5,0],[1,2]],
+  "edges_assignment": ["B","B","B","B","B","B","B","B","V"],
+  "faces_vertices": [[0,1,2,3,4,5],[1,6,7,2]],
+  "faceOrders": [[0,1,1]]
+})";
+
+/// An arrow (chevron) pointing up, concave at (1, 0.5): area 1.5.
+const char* const kArrowFile = R"({
+  "vertices_coords": [[0,0],[1,0.5],[2,0],[1,2]],
+  "faces_vertices": [[0,1,2,3]]
+})";
+
+/// The model of a one-frame file (empty, failing the test, when it does not load).
+Paper onlyFrame(const std::string& text)
+{
+  const FoldDocument document = parseOrFail(text);
+  EXPECT_EQ(1u, document.frames.size());
+  return document.frames.empty() ? Paper{} : document.frames[0];
+}
+
+int splitEdgeCount(const Paper& paper)
+{
+  int count = 0;
+  for (const Edge& edge : paper.edges)
+    count += edge.split;
+  return count;
+}
+
+void expectSplitIntoConvexPieces(const Paper& paper, double area, size_t file_faces)
+{
+  EXPECT_TRUE(checkValidity(paper).ok()) << checkValidity(paper).summary();  // convex, areas, Euler
+  EXPECT_GT(paper.faces.size(), file_faces);
+  EXPECT_EQ(static_cast<size_t>(splitEdgeCount(paper)), paper.faces.size() - file_faces);
+  EXPECT_NEAR(area, paper.sheet_area, 1e-12);
+  EXPECT_NEAR(area, totalFaceArea(paper), 1e-12);
+  for (const Edge& edge : paper.edges)
+    if (edge.split)
+    {
+      EXPECT_TRUE(edge.isCrease());
+      EXPECT_EQ(Assignment::Flat, edge.assignment);
+      EXPECT_EQ(0.0, edge.fold_angle);
+    }
+  expectFacesDoNotOverlap(paper, 1e-12);
+}
+
+TEST(FoldIo, SplitsAConcaveFaceIntoConvexPieces)
+{
+  const Paper paper = onlyFrame(kConcaveFile);
+  expectSplitIntoConvexPieces(paper, 4.0, 2);
+  EXPECT_EQ(3u, paper.faces.size());  // the L in two pieces: one edge from its inner corner
+  // The file's faces keep their numbers; face 0 starts at the file's first vertex and side.
+  EXPECT_EQ(0, paper.faces[0].vertices[0]);
+  EXPECT_EQ(1, paper.faces[0].vertices[1]);
+  EXPECT_EQ((std::vector<int>{ 1, 6, 7, 2 }), paper.faces[1].vertices);
+  // The L lies above the square: both its pieces do.
+  EXPECT_EQ((std::vector<FaceOrder>{ { 1, 0, 1 }, { 1, 2, 1 } }), paper.face_orders);
+
+  const Paper arrow = onlyFrame(kArrowFile);
+  expectSplitIntoConvexPieces(arrow, 1.5, 1);
+  EXPECT_EQ(2u, arrow.faces.size());
+}
+
+TEST(FoldIo, WritesAConcaveFaceBackAsTheFileHadIt)
+{
+  const nlohmann::json file = nlohmann::json::parse(kConcaveFile);
+  const Paper paper = onlyFrame(kConcaveFile);
+  const std::string text = formatFold(paper);
+  const nlohmann::json written = nlohmann::json::parse(text);
+  EXPECT_EQ(file["faces_vertices"], written["faces_vertices"]);
+  EXPECT_EQ(file["edges_vertices"], written["edges_vertices"]);
+  EXPECT_EQ(file["edges_assignment"], written["edges_assignment"]);
+  EXPECT_EQ(file["faceOrders"], written["faceOrders"]);
+  EXPECT_EQ(file["vertices_coords"], written["vertices_coords"]);
+  // And it reads back to the same model, pieces and all.
+  const FoldDocument again = parseOrFail(text);
+  ASSERT_EQ(2u, again.frames.size());
+  expectSamePaper(paper, again.frames[0]);
+  expectSamePaper(paper, again.frames[1]);
+
+  const Paper arrow = onlyFrame(kArrowFile);
+  const nlohmann::json arrow_written = nlohmann::json::parse(formatFold(arrow));
+  EXPECT_EQ(nlohmann::json::parse(kArrowFile)["faces_vertices"], arrow_written["faces_vertices"]);
+  EXPECT_EQ(4u, arrow_written["edges_vertices"].size());
+  expectSamePaper(arrow, onlyFrame(formatFoldSequence({ arrow })));
+}
+
+TEST(FoldIo, AConcaveFaceCreasedSinceStillWritesAValidFold)
+{
+  Paper paper = onlyFrame(kConcaveFile);
+  // Across the L's lower arm and the square, then up its left arm: both cut its pieces.
+  for (const auto& [a, b] :
+       { std::pair{ Vec3(-0.1, 0.5, 0), Vec3(3.1, 0.5, 0) }, std::pair{ Vec3(0.5, -0.1, 0), Vec3(0.5, 2.1, 0) } })
+  {
+    CreaseRequest request;
+    request.start = a;
+    request.end = b;
+    const Expected<CreaseResult> creased = crease(paper, request);
+    ASSERT_TRUE(creased.ok()) << creased.message();
+  }
+  ASSERT_TRUE(checkValidity(paper).ok()) << checkValidity(paper).summary();
+  const nlohmann::json written = nlohmann::json::parse(formatFold(paper));
+  // The pieces still joined by flat split edges are written as one face each, without them.
+  size_t joined = 0;
+  for (const Edge& edge : paper.edges)
+    joined += edge.split;
+  EXPECT_GT(joined, 0u);
+  EXPECT_EQ(paper.edges.size() - joined, written["edges_vertices"].size());
+  EXPECT_EQ(paper.faces.size() - joined, written["faces_vertices"].size());
+  const FoldDocument again = parseOrFail(written.dump());
+  ASSERT_EQ(2u, again.frames.size());
+  for (const Paper& frame : again.frames)
+  {
+    EXPECT_TRUE(checkValidity(frame).ok()) << checkValidity(frame).summary();
+    EXPECT_NEAR(4.0, frame.sheet_area, 1e-12);
+    for (size_t v = 0; v < paper.vertices.size(); ++v)
+      EXPECT_EQ(paper.vertices[v].crease_pattern, frame.vertices[v].crease_pattern);
+  }
+}
+
+TEST(FoldIo, CreasingAlongASplitEdgeMakesItACrease)
+{
+  Paper paper = onlyFrame(kArrowFile);
+  int split = -1;
+  for (size_t e = 0; e < paper.edges.size(); ++e)
+    if (paper.edges[e].split)
+      split = static_cast<int>(e);
+  ASSERT_GE(split, 0);
+  const Edge edge = paper.edges[split];
+  const Vec3 a = paper.vertices[edge.vertices[0]].folded, b = paper.vertices[edge.vertices[1]].folded;
+  CreaseRequest request;
+  request.start = a + 0.1 * (a - b);
+  request.end = b + 0.1 * (b - a);
+  const Expected<CreaseResult> creased = crease(paper, request);
+  ASSERT_TRUE(creased.ok()) << creased.message();
+  EXPECT_EQ(std::vector<int>{ split }, creased->new_edges);
+  EXPECT_FALSE(paper.edges[split].split);
+  EXPECT_EQ(Assignment::Unassigned, paper.edges[split].assignment);
+  // Now a crease of the model: written as an edge between two faces.
+  const nlohmann::json written = nlohmann::json::parse(formatFold(paper));
+  EXPECT_EQ(2u, written["faces_vertices"].size());
+  EXPECT_EQ(5u, written["edges_vertices"].size());
+}
+
+// ---------------------------------------------------------------------------------------------
+// Messages never quote the file
+
+TEST(FoldIo, NoMessageQuotesWhatTheFileHolds)
+{
+  // Each text holds the marker Qz7 where the reader trips over it: as a stray byte, in a
+  // string where a number or array belongs, as a key, a number too large, bad UTF-8.
+  const std::vector<std::string> texts{
+    "Qz7",
+    "{\"vertices_coords\": Qz7}",
+    "[1, 2, Qz7",
+    "{\"a\": 1}\nQz7",
+    "\"Qz7\"",
+    "[\"Qz7\"]",
+    "{\"vertices_coords\": \"Qz7\", \"faces_vertices\": []}",
+    "{\"vertices_coords\": [[0,0],[1,\"Qz7\"],[0,1]], \"faces_vertices\": [[0,1,2]]}",
+    "{\"vertices_coords\": [[0,0],[1,0],[0,1]], \"edges_vertices\": [[0,1],[1,2],[2,0]],"
+    " \"edges_assignment\": [\"B\",\"Qz7\",\"B\"]}",
+    "{\"vertices_coords\": [[0,0],[1,0],[0,1]], \"faces_vertices\": [[0,1,2]], \"file_title\": [\"Qz7\"]}",
+    "{\"vertices_coords\": [[0,0],[1,0],[0,1]], \"faces_vertices\": [[0,1,\"Qz7\"]]}",
+    "{\"vertices_coords\": [[0,0],[1,0],[0,1]], \"faces_vertices\": [[0,1,2]], \"faceOrders\": [[0,0,\"Qz7\"]]}",
+    "{\"vertices_coords\": [[0,0],[1,0],[0,1]], \"faces_vertices\": [[0,1,2]], \"file_frames\": [\"Qz7\"]}",
+    "{\"vertices_coords\": [[0,0],[1,0],[0,1]], \"faces_vertices\": [[0,1,2]], \"file_frames\": [{\"frame_inherit\":"
+    " \"Qz7\"}]}",
+    "{\"vertices_coords\": [[0,0],[1,0],[0,1]], \"edges_vertices\": [[0,1],[1,2],[2,0]],"
+    " \"edges_foldAngle\": [0, 1234567, 0]}",
+    "{\"vertices_coords\": [[0,0],[1e999,0],[0,1]], \"faces_vertices\": [[0,1,2]]}",
+    "{\"vertices_coords\": [[0,0],[1,0],[0,1]], \"faces_vertices\": [[0,1,2]], \"frame_title\": \"Qz7\xff\"}",
+    "{\"Qz7\": [1, 2,, 3]}",
+  };
+  const std::filesystem::path folder = scratchFolder("quotes");
+  for (const std::string& text : texts)
+  {
+    const Expected<FoldDocument> parsed = parseFold(text);
+    ASSERT_FALSE(parsed.ok()) << text;
+    const std::string path = (folder / "secret.fold").string();
+    std::ofstream(path, std::ios::binary) << text;
+    for (const std::string& message : { parsed.message(), readFoldFile(path).message(), loadPaper(path).message() })
+    {
+      EXPECT_FALSE(message.empty()) << text;
+      EXPECT_THAT(message, ::testing::Not(HasSubstr("Qz7"))) << text;
+      EXPECT_THAT(message, ::testing::Not(HasSubstr("last read"))) << text;
+      EXPECT_THAT(message, ::testing::Not(HasSubstr("1234567"))) << text;
+      EXPECT_THAT(message, ::testing::Not(HasSubstr("1e999"))) << text;
+    }
+  }
+  // A syntax error says where instead.
+  const std::string where = parseFold("{\"a\": 1,\n  \"b\": Qz7}").message();
+  EXPECT_THAT(where, HasSubstr("invalid JSON: syntax error at line 2, column 8"));
+  std::filesystem::remove_all(folder);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Writing files safely
+
+std::string contentOf(const std::filesystem::path& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+TEST(FoldIo, WritingNeverFollowsALinkPlantedAtTheTemporaryName)
+{
+  const std::filesystem::path folder = scratchFolder("planted");
+  const std::filesystem::path victim = folder / "victim.txt", path = folder / "x.fold";
+  std::ofstream(victim) << "keep me";
+  std::filesystem::create_symlink(victim, folder / "x.fold.tmp");
+  const Status written = writeTextFile(path.string(), "new");
+  ASSERT_TRUE(written.ok()) << written.message();
+  EXPECT_EQ("new", contentOf(path));
+  EXPECT_EQ("keep me", contentOf(victim));
+  EXPECT_TRUE(std::filesystem::is_symlink(folder / "x.fold.tmp"));
+  // Nothing else is left in the folder.
+  EXPECT_EQ(3, std::distance(std::filesystem::directory_iterator(folder), std::filesystem::directory_iterator()));
+  std::filesystem::remove_all(folder);
+}
+
+TEST(FoldIo, WritingRefusesALinkAFolderOrAReadOnlyFile)
+{
+  const std::filesystem::path folder = scratchFolder("refused");
+  const std::filesystem::path victim = folder / "victim.txt";
+  std::ofstream(victim) << "keep me";
+  const auto expectRefused = [&](const std::filesystem::path& path, const std::string& words) {
+    const Status written = writeTextFile(path.string(), "new");
+    EXPECT_FALSE(written.ok()) << path;
+    EXPECT_THAT(written.message(), HasSubstr("cannot write " + path.string() + ": " + words));
+    EXPECT_EQ("keep me", contentOf(victim));
+  };
+  // A link at the target: rename would replace the link, not the file it names.
+  std::filesystem::create_symlink(victim, folder / "link.fold");
+  expectRefused(folder / "link.fold", "it is a symbolic link");
+  EXPECT_TRUE(std::filesystem::is_symlink(folder / "link.fold"));
+  std::filesystem::create_directory(folder / "folder.fold");
+  expectRefused(folder / "folder.fold", "not a regular file");
+  ASSERT_EQ(0, ::mkfifo((folder / "fifo.fold").c_str(), 0600));
+  expectRefused(folder / "fifo.fold", "not a regular file");
+  // No write permission for anyone: refused even as root, whom access() lets write anything.
+  ASSERT_EQ(0, ::chmod(victim.c_str(), 0444));
+  expectRefused(victim, "the file is read-only");
+  EXPECT_EQ(4, std::distance(std::filesystem::directory_iterator(folder), std::filesystem::directory_iterator()));
+  std::filesystem::remove_all(folder);
+}
+
+TEST(FoldIo, WritingKeepsTheReplacedFilesPermissions)
+{
+  const std::filesystem::path folder = scratchFolder("mode");
+  const std::filesystem::path path = folder / "x.fold";
+  std::ofstream(path) << "old";
+  ASSERT_EQ(0, ::chmod(path.c_str(), 0640));
+  ASSERT_TRUE(writeTextFile(path.string(), "new").ok());
+  EXPECT_EQ("new", contentOf(path));
+  struct stat written;
+  ASSERT_EQ(0, ::stat(path.c_str(), &written));
+  EXPECT_EQ(0640u, written.st_mode & 07777);
   std::filesystem::remove_all(folder);
 }
 

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "test_models.h"
+#include "virtual_origami/core/fold_io.h"
 #include "virtual_origami/core/metrics.h"
 #include "virtual_origami/core/reference_patterns.h"
 #include "virtual_origami/core/rotate.h"
@@ -251,4 +252,32 @@ TEST(Rotate, OneLargeTurnFollowsADegree4VertexLikeSmallTurns)
     EXPECT_LT(edgeStrain(once).max, 1e-9);
     expectValid(once);
   }
+}
+
+TEST(Rotate, TurningAboutAnEdgeThatSplitAConcaveFaceMakesItACrease)
+{
+  // An arrow-shaped face, concave at (1, 0.5): read as two convex pieces joined by a flat edge
+  // added only to split it (Edge::split), which a FOLD written from it leaves out. Turned
+  // about, that edge is a crease like any other.
+  const Expected<FoldDocument> arrow =
+      parseFold(R"({"vertices_coords": [[0,0],[1,0.5],[2,0],[1,2]], "faces_vertices": [[0,1,2,3]]})");
+  ASSERT_TRUE(arrow.ok()) << arrow.message();
+  Paper paper = arrow->frames[0];
+  ASSERT_EQ(2u, paper.faces.size());
+  const int split = paper.findEdge(1, 3);  // from the inner corner to the tip
+  ASSERT_GE(split, 0);
+  ASSERT_TRUE(paper.edges[split].split);
+  RotateRequest request;
+  request.face = 0;
+  request.axis_edge = split;
+  request.angle = M_PI / 2;
+  const Expected<RotateResult> r = rotate(paper, request);
+  ASSERT_TRUE(r.ok()) << r.message();
+  EXPECT_FALSE(paper.edges[split].split);
+  EXPECT_EQ(Assignment::Valley, paper.edges[split].assignment);
+  expectValid(paper);
+  const Expected<FoldDocument> written = parseFold(formatFold(paper));
+  ASSERT_TRUE(written.ok()) << written.message();
+  EXPECT_EQ(2u, written->frames[1].faces.size());
+  EXPECT_NEAR(M_PI / 2, written->frames[1].edges[written->frames[1].findEdge(1, 3)].fold_angle, 1e-9);
 }

@@ -47,6 +47,10 @@ struct Edge
   /// faces[0] lies left of vertices[0]→vertices[1] in the crease pattern, faces[1] right;
   /// -1 where there is none (a boundary edge). Derived by linkTopology().
   std::array<int, 2> faces{ -1, -1 };
+  /// Added on reading a file only to make one of its concave faces convex (assignment F, flat):
+  /// not a crease of the file. Writing joins the faces across it back into the file's face
+  /// while it stays flat; creasing along it or turning about it makes it a crease.
+  bool split = false;
 
   bool isCrease() const { return faces[0] >= 0 && faces[1] >= 0; }
   int otherVertex(int v) const { return vertices[0] == v ? vertices[1] : vertices[0]; }
