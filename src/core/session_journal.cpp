@@ -62,7 +62,12 @@ json paperToJson(const Paper& paper)
     folded.push_back({ v.folded.x(), v.folded.y(), v.folded.z() });
   }
   for (const Edge& e : paper.edges)
-    edges.push_back({ e.vertices[0], e.vertices[1], std::string(1, assignmentLetter(e.assignment)), e.fold_angle });
+  {
+    json edge = { e.vertices[0], e.vertices[1], std::string(1, assignmentLetter(e.assignment)), e.fold_angle };
+    if (e.split)
+      edge.push_back(true);  // only the edges that split a concave face carry the flag
+    edges.push_back(edge);
+  }
   for (const Face& f : paper.faces)
     faces.push_back(f.vertices);
   for (const FaceOrder& o : paper.face_orders)
@@ -101,6 +106,7 @@ Expected<Paper> paperFromJson(const json& j)
         return Expected<Paper>::failure("unknown assignment " + e.at(2).dump());
       edge.assignment = *assignment;
       edge.fold_angle = e.at(3).get<double>();
+      edge.split = e.size() > 4 && e.at(4).get<bool>();
       paper.edges.push_back(edge);
     }
     for (const json& f : j.at("faces"))

@@ -31,6 +31,7 @@ PaperState toMessage(const core::Paper& paper, uint64_t revision, const Pins& pi
     edge.fold_angle = e.fold_angle;
     edge.face_left = e.faces[0];
     edge.face_right = e.faces[1];
+    edge.split = e.split;
     state.edges.push_back(edge);
   }
   for (const core::Face& f : paper.faces)
@@ -83,6 +84,7 @@ core::Expected<core::Paper> fromMessage(const PaperState& state)
     edge.vertices = { e.v0, e.v1 };
     edge.assignment = *assignment;
     edge.fold_angle = e.fold_angle;
+    edge.split = e.split;
     paper.edges.push_back(edge);
   }
   for (const Face& f : state.faces)

@@ -1,6 +1,8 @@
 #include "virtual_origami/solvers/rigid_faces.h"
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <sstream>
 
 #include <Eigen/Geometry>
@@ -10,15 +12,33 @@ namespace virtual_origami::core
 {
 std::vector<RigidFace> rigidFaces(const Paper& paper)
 {
+  // The convex pieces of a concave face of a loaded file (joined by split edges) are one rigid
+  // body: the split edges are no hinges.
+  std::vector<int> group(paper.faces.size());
+  for (size_t f = 0; f < group.size(); ++f)
+    group[f] = static_cast<int>(f);
+  const std::function<int(int)> root = [&](int f) { return group[f] == f ? f : group[f] = root(group[f]); };
+  for (const Edge& e : paper.edges)
+    if (e.split && e.isCrease())
+      group[root(e.faces[0])] = root(e.faces[1]);
+  std::vector<std::vector<int>> members(paper.faces.size());
+  for (size_t f = 0; f < group.size(); ++f)
+    members[root(static_cast<int>(f))].push_back(static_cast<int>(f));
+
   std::vector<RigidFace> faces;
   faces.reserve(paper.faces.size());
-  for (const Face& face : paper.faces)
+  for (const std::vector<int>& body : members)
   {
+    if (body.empty())
+      continue;
     RigidFace rigid;
-    rigid.vertices = face.vertices;
-    rigid.rest.resize(2, static_cast<Eigen::Index>(face.vertices.size()));
-    for (size_t k = 0; k < face.vertices.size(); ++k)
-      rigid.rest.col(static_cast<Eigen::Index>(k)) = paper.vertices[face.vertices[k]].crease_pattern;
+    for (int f : body)
+      for (int v : paper.faces[f].vertices)
+        if (std::find(rigid.vertices.begin(), rigid.vertices.end(), v) == rigid.vertices.end())
+          rigid.vertices.push_back(v);
+    rigid.rest.resize(2, static_cast<Eigen::Index>(rigid.vertices.size()));
+    for (size_t k = 0; k < rigid.vertices.size(); ++k)
+      rigid.rest.col(static_cast<Eigen::Index>(k)) = paper.vertices[rigid.vertices[k]].crease_pattern;
     rigid.rest.colwise() -= rigid.rest.rowwise().mean();
     faces.push_back(std::move(rigid));
   }

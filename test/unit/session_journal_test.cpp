@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <csignal>
 #include <cstring>
 #include <filesystem>
@@ -13,6 +14,7 @@
 #include <regex>
 
 #include "test_models.h"
+#include "virtual_origami/core/fold_io.h"
 #include "virtual_origami/core/session_journal.h"
 
 using namespace virtual_origami::core;
@@ -164,6 +166,20 @@ TEST(SessionJournal, PaperJsonIsBitExact)
   EXPECT_TRUE(back.value() == paper);
   EXPECT_FALSE(parsePaperJson("{").ok());
   EXPECT_FALSE(parsePaperJson("{\"vertices_crease_pattern\": []}").ok());
+}
+
+TEST(SessionJournal, EdgesThatSplitAConcaveFaceStaySplit)
+{
+  const Expected<Paper> loaded = [] {
+    const Expected<FoldDocument> doc = parseFold(R"({"vertices_coords": [[0,0],[2,0],[2,1],[1,1],[1,2],[0,2]],
+        "faces_vertices": [[0,1,2,3,4,5]]})");
+    return doc ? Expected<Paper>(doc->frames.back()) : Expected<Paper>::failure(doc.message());
+  }();
+  ASSERT_TRUE(loaded) << loaded.message();
+  ASSERT_TRUE(std::any_of(loaded->edges.begin(), loaded->edges.end(), [](const Edge& e) { return e.split; }));
+  const Expected<Paper> back = parsePaperJson(formatPaperJson(*loaded));
+  ASSERT_TRUE(back.ok()) << back.message();
+  EXPECT_TRUE(back.value() == *loaded);  // operator== compares the flag
 }
 
 namespace

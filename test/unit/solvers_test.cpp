@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "test_models.h"
+#include "virtual_origami/core/fold_io.h"
 #include "virtual_origami/core/metrics.h"
 #include "virtual_origami/core/reference_patterns.h"
 #include "virtual_origami/core/rotate.h"
@@ -243,5 +244,45 @@ TEST(SolverFactory, EverySolverLeavesARestingModelAlone)
     EXPECT_TRUE(report.converged) << name << ": " << report.message;
     EXPECT_EQ(report.iterations, 0) << name;
     EXPECT_TRUE(copy == paper) << name;
+  }
+}
+
+TEST(Solvers, AConcaveFaceOfAFileStaysOneRigidFace)
+{
+  // An L-shaped sheet: one concave face, loaded as convex pieces joined by split edges.
+  const Expected<FoldDocument> doc = parseFold(R"({"vertices_coords": [[0,0],[2,0],[2,1],[1,1],[1,2],[0,2]],
+      "edges_vertices": [[0,1],[1,2],[2,3],[3,4],[4,5],[5,0]], "edges_assignment": ["B","B","B","B","B","B"],
+      "faces_vertices": [[0,1,2,3,4,5]]})");
+  ASSERT_TRUE(doc) << doc.message();
+  const Paper flat = doc->frames.back();
+  ASSERT_GT(flat.faces.size(), 1u);
+  int split = -1;
+  for (size_t e = 0; e < flat.edges.size(); ++e)
+    if (flat.edges[e].split)
+      split = static_cast<int>(e);
+  ASSERT_GE(split, 0);
+  // Bend the sheet 30° along a split edge: every piece keeps its shape, the face does not.
+  const Edge& hinge = flat.edges[split];
+  const Vec3 a = flat.vertices[hinge.vertices[0]].folded, b = flat.vertices[hinge.vertices[1]].folded;
+  const Eigen::AngleAxisd turn(M_PI / 6, (b - a).normalized());
+  Paper bent = flat;
+  std::vector<char> fixed(flat.vertices.size(), 0);
+  const std::vector<char> moving = walkFaces(flat, hinge.faces[1], {}, [&](int e) { return e != split; });
+  for (size_t f = 0; f < flat.faces.size(); ++f)
+    for (int v : flat.faces[f].vertices)
+    {
+      if (!moving[f])
+        fixed[v] = 1;
+      else if (!fixed[v] && v != hinge.vertices[0] && v != hinge.vertices[1])
+        bent.vertices[v].folded = a + turn * (flat.vertices[v].folded - a);
+    }
+  for (const std::string& name : { "newton", "shape_matching" })
+  {
+    Paper solved = bent;
+    const std::unique_ptr<ShapeSolver> solver = makeSolver(name);
+    const SolveReport report = solver->solve(solved, fixed);
+    EXPECT_TRUE(report.converged) << name << ": " << report.message;
+    for (size_t v = 0; v < solved.vertices.size(); ++v)
+      EXPECT_NEAR((solved.vertices[v].folded - flat.vertices[v].folded).norm(), 0.0, 1e-6) << name << " vertex " << v;
   }
 }
