@@ -78,8 +78,8 @@ class Bench
 public:
   Bench() : nh_("/origami"), start_(Clock::now())
   {
-    state_sub_ = nh_.subscribe<virtual_origami::PaperState>(
-        "state", 10, [this](const virtual_origami::PaperState::ConstPtr& s) {
+    state_sub_ =
+        nh_.subscribe<virtual_origami::PaperState>("state", 10, [this](const virtual_origami::PaperState::ConstPtr& s) {
           std::lock_guard<std::mutex> lock(mutex_);
           state_ = s;
         });
@@ -117,7 +117,7 @@ public:
           return c.response.message;
         };
     const std::function<std::string(const std_srvs::Trigger&, bool&)> undo_answer = [](const std_srvs::Trigger& t,
-                                                                                        bool& ok) {
+                                                                                       bool& ok) {
       ok = t.response.success;
       return t.response.message;
     };
@@ -180,7 +180,10 @@ public:
     return seconds() - t0;
   }
 
-  double seconds() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
+  double seconds() const
+  {
+    return std::chrono::duration<double>(Clock::now() - start_).count();
+  }
   std::vector<Sample> samples() const
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -210,8 +213,8 @@ bool setUp(Bench& bench)
     }
   std_srvs::Trigger reset;
   ros::service::call(bench.nh_.resolveName("reset"), reset);
-  for (auto c : { creaseRequest(0.5, -0.1, 0.5, 1.1), creaseRequest(0.5, 0.5, 1.0, 0.8),
-                  creaseRequest(0.5, 0.5, 0.0, 0.9) })
+  for (auto c :
+       { creaseRequest(0.5, -0.1, 0.5, 1.1), creaseRequest(0.5, 0.5, 1.0, 0.8), creaseRequest(0.5, 0.5, 0.0, 0.9) })
   {
     if (!ros::service::call(bench.nh_.resolveName("crease"), c) || !c.response.success)
     {
@@ -254,10 +257,10 @@ int main(int argc, char** argv)
   ros::init(argc, argv, "contention_bench");
   ros::NodeHandle pnh("~");
   const std::string prefix = pnh.param<std::string>("csv_prefix", "docs/bench/contention");
-  const int pairs = pnh.param("crease_pairs", 1000);     // crease + undo, per creasing thread
-  const int rotations = pnh.param("rotations", 10);       // per rotating thread (mixed phases)
-  const double paced = pnh.param("paced_pause", 1.0);    // seconds between a creasing client's pairs
-  const int alone = pnh.param("rotations_alone", 10);     // per rotating thread (rotate_alone)
+  const int pairs = pnh.param("crease_pairs", 1000);   // crease + undo, per creasing thread
+  const int rotations = pnh.param("rotations", 10);    // per rotating thread (mixed phases)
+  const double paced = pnh.param("paced_pause", 1.0);  // seconds between a creasing client's pairs
+  const int alone = pnh.param("rotations_alone", 10);  // per rotating thread (rotate_alone)
   const double angle = pnh.param("angle", 0.3);
   ros::AsyncSpinner spinner(1);
   spinner.start();
@@ -281,8 +284,8 @@ int main(int argc, char** argv)
   }
   // All four at once: the creasing clients go on until the rotating clients are done, so
   // that every turn is made while creases commit; back to back, then at a person's pace.
-  for (const auto& [phase, pause] : { std::make_pair(std::string("mixed"), 0.0),
-                                      std::make_pair(std::string("mixed_paced"), paced) })
+  for (const auto& [phase, pause] :
+       { std::make_pair(std::string("mixed"), 0.0), std::make_pair(std::string("mixed_paced"), paced) })
   {
     std::atomic<bool> stop{ false };
     const double t0 = bench.seconds();

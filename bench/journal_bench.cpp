@@ -74,17 +74,24 @@ Paper gridPaper(int w)
 
 std::string fileSystemOf(const std::string& path)
 {
-  struct statfs s{};
+  struct statfs s
+  {};
   if (::statfs(path.c_str(), &s) != 0)
     return "unknown";
   switch (static_cast<unsigned long>(s.f_type))
   {
-    case 0xEF53: return "ext4";
-    case 0x01021994: return "tmpfs";
-    case 0x9123683E: return "btrfs";
-    case 0x58465342: return "xfs";
-    case 0x794C7630: return "overlayfs";
-    default: return "other";
+    case 0xEF53:
+      return "ext4";
+    case 0x01021994:
+      return "tmpfs";
+    case 0x9123683E:
+      return "btrfs";
+    case 0x58465342:
+      return "xfs";
+    case 0x794C7630:
+      return "overlayfs";
+    default:
+      return "other";
   }
 }
 }  // namespace
@@ -179,8 +186,8 @@ int main(int argc, char** argv)
     csv << paper.vertices.size() << ',' << paper.edges.size() << ',' << paper.faces.size() << ',' << appends << ','
         << line << ',' << percentile(on, 0.5) << ',' << percentile(on, 0.95) << ',' << percentile(on, 1.0) << ','
         << percentile(off, 0.5) << ',' << percentile(off, 0.95) << ',' << percentile(off, 1.0) << ','
-        << percentile(fsync_ms, 0.5) << ',' << percentile(fsync_ms, 0.95) << ',' << percentile(format_ms, 0.5)
-        << ',' << fs << '\n';
+        << percentile(fsync_ms, 0.5) << ',' << percentile(fsync_ms, 0.95) << ',' << percentile(format_ms, 0.5) << ','
+        << fs << '\n';
     std::printf("%7zu vertices, %2d appends of %9ju bytes: sync on median %8.3f ms p95 %8.3f ms; off median "
                 "%8.3f ms p95 %8.3f ms; fsync alone median %7.3f ms p95 %7.3f ms; formatting %8.3f ms\n",
                 paper.vertices.size(), appends, line, percentile(on, 0.5), percentile(on, 0.95), percentile(off, 0.5),

@@ -67,8 +67,8 @@ Expected<std::string> DataFolder::resolve(const std::string& path) const
   const fs::path given(path);
   for (const fs::path& part : given)
     if (part == "..")
-      return Expected<std::string>::failure("\"" + path + "\" climbs out with \"..\": name a file inside the data folder " +
-                                            root_string_);
+      return Expected<std::string>::failure(
+          "\"" + path + "\" climbs out with \"..\": name a file inside the data folder " + root_string_);
   const fs::path absolute = given.is_absolute() ? given : root_ / given;
   // Follows every symlink that exists, the file's own included: a link planted inside the
   // folder that points out of it is refused like the path it points to.

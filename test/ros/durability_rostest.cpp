@@ -30,7 +30,12 @@ void crashOnly(const std::function<void()>& meanwhile)
   ASSERT_EQ(::kill(pid, SIGKILL), 0);
   if (meanwhile)
     meanwhile();
-  ASSERT_TRUE(waitFor([&] { const int now = pidOf("paper_model"); return now > 0 && now != pid; }, 30.0));
+  ASSERT_TRUE(waitFor(
+      [&] {
+        const int now = pidOf("paper_model");
+        return now > 0 && now != pid;
+      },
+      30.0));
   ASSERT_TRUE(ros::service::waitForService("/origami/crease", ros::Duration(30)));
 }
 
@@ -60,8 +65,14 @@ uint64_t creaseLines(PaperClient& client, int n, double from)
 /// A stopped process continues when this goes out of scope, whatever the test did.
 struct Stopped
 {
-  explicit Stopped(int pid) : pid_(pid) { ok = ::kill(pid_, SIGSTOP) == 0; }
-  ~Stopped() { ::kill(pid_, SIGCONT); }
+  explicit Stopped(int pid) : pid_(pid)
+  {
+    ok = ::kill(pid_, SIGSTOP) == 0;
+  }
+  ~Stopped()
+  {
+    ::kill(pid_, SIGCONT);
+  }
   int pid_;
   bool ok = false;
 };
@@ -170,10 +181,12 @@ TEST(Durability, AStoppedSolverHoldsUpNoOtherClient)
   }
   // The solver goes on: so does folding.
   bool rotated = false;
-  waitFor([&] {
-    rotated = client.rotate(-1, axis, 0.9, 0.9, 0.3).response.success;
-    return rotated;
-  }, 30.0);
+  waitFor(
+      [&] {
+        rotated = client.rotate(-1, axis, 0.9, 0.9, 0.3).response.success;
+        return rotated;
+      },
+      30.0);
   EXPECT_TRUE(rotated);
 }
 

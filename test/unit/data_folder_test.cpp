@@ -24,7 +24,10 @@ protected:
     ASSERT_TRUE(opened) << opened.message();
     folder_ = std::make_unique<DataFolder>(*opened);
   }
-  void TearDown() override { fs::remove_all(base_); }
+  void TearDown() override
+  {
+    fs::remove_all(base_);
+  }
 
   fs::path base_;
   std::unique_ptr<DataFolder> folder_;
@@ -44,10 +47,10 @@ TEST_F(DataFolderTest, RelativePathsResolveInTheDataFolder)
 
 TEST_F(DataFolderTest, PathsOutsideAreRefused)
 {
-  for (const std::string& path : { std::string("/etc/passwd"), std::string("/etc/x.fold"),
-                                   (base_ / "outside" / "secret.fold").string(), std::string("../outside/secret.fold"),
-                                   std::string("models/../../outside/secret.fold"), std::string("a/../b.fold"),
-                                   std::string("") })
+  for (const std::string& path :
+       { std::string("/etc/passwd"), std::string("/etc/x.fold"), (base_ / "outside" / "secret.fold").string(),
+         std::string("../outside/secret.fold"), std::string("models/../../outside/secret.fold"),
+         std::string("a/../b.fold"), std::string("") })
   {
     const Expected<std::string> resolved = folder_->resolve(path);
     EXPECT_FALSE(resolved) << path << " resolved to " << (resolved ? *resolved : "");

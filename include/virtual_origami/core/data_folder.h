@@ -25,7 +25,10 @@ public:
   /// followed. The answer is the path with every symlink resolved.
   Expected<std::string> resolve(const std::string& path) const;
 
-  const std::string& root() const { return root_string_; }
+  const std::string& root() const
+  {
+    return root_string_;
+  }
 
 private:
   std::filesystem::path root_;
