@@ -20,10 +20,10 @@
 #include <string>
 #include <vector>
 
-#include "virtual_origami/core/reference_patterns.h"
 #include "virtual_origami/core/session.h"
 #include "virtual_origami/core/session_journal.h"
-#include "virtual_origami/core/validity.h"
+
+#include "grid_paper.h"
 
 using namespace virtual_origami::core;
 
@@ -38,38 +38,6 @@ double percentile(std::vector<double> v, double p)
 {
   std::sort(v.begin(), v.end());
   return v[std::min(v.size() - 1, static_cast<size_t>(p * (v.size() - 1) + 0.5))];
-}
-
-/// A flat unit sheet of w × w square faces, every inner edge a flat ('F') crease.
-Paper gridPaper(int w)
-{
-  std::vector<Vec2> vertices;
-  std::vector<std::vector<int>> faces;
-  for (int j = 0; j <= w; ++j)
-    for (int i = 0; i <= w; ++i)
-      vertices.emplace_back(double(i) / w, double(j) / w);
-  for (int j = 0; j < w; ++j)
-    for (int i = 0; i < w; ++i)
-    {
-      const int v = j * (w + 1) + i;
-      faces.push_back({ v, v + 1, v + w + 2, v + w + 1 });
-    }
-  Expected<Paper> paper = patternPaper(vertices, faces);
-  if (!paper)
-  {
-    std::fprintf(stderr, "journal_bench: grid %d: %s\n", w, paper.message().c_str());
-    std::exit(1);
-  }
-  for (Edge& e : paper->edges)
-    if (e.isCrease())
-      e.assignment = Assignment::Flat;
-  const ValidityReport report = checkValidity(*paper);
-  if (!report.ok())
-  {
-    std::fprintf(stderr, "journal_bench: grid %d is not valid: %s\n", w, report.summary().c_str());
-    std::exit(1);
-  }
-  return *paper;
 }
 
 std::string fileSystemOf(const std::string& path)
@@ -123,7 +91,7 @@ int main(int argc, char** argv)
   const std::vector<std::pair<int, int>> sizes{ { 9, 50 }, { 31, 50 }, { 99, 50 }, { 315, 50 } };
   for (const auto& [w, appends] : sizes)
   {
-    const Paper paper = gridPaper(w);
+    const Paper paper = virtual_origami::bench::gridPaper(w, "journal_bench");
     // The formatting alone, timed directly (the JSON an append writes holds this and the operation).
     std::vector<double> format_ms;
     for (int i = 0; i < std::min(appends, 10); ++i)

@@ -20,9 +20,9 @@
 #include <vector>
 
 #include "virtual_origami/core/fold_io.h"
-#include "virtual_origami/core/reference_patterns.h"
 #include "virtual_origami/core/session.h"
-#include "virtual_origami/core/validity.h"
+
+#include "grid_paper.h"
 
 using namespace virtual_origami::core;
 
@@ -48,38 +48,6 @@ double peakBytes()
     if (line.rfind("VmHWM:", 0) == 0)
       return 1024.0 * std::stod(line.substr(6));
   return 0;
-}
-
-/// A flat unit sheet of w × w square faces, every inner edge a flat ('F') crease.
-Paper gridPaper(int w)
-{
-  std::vector<Vec2> vertices;
-  std::vector<std::vector<int>> faces;
-  for (int j = 0; j <= w; ++j)
-    for (int i = 0; i <= w; ++i)
-      vertices.emplace_back(double(i) / w, double(j) / w);
-  for (int j = 0; j < w; ++j)
-    for (int i = 0; i < w; ++i)
-    {
-      const int v = j * (w + 1) + i;
-      faces.push_back({ v, v + 1, v + w + 2, v + w + 1 });
-    }
-  Expected<Paper> paper = patternPaper(vertices, faces);
-  if (!paper)
-  {
-    std::fprintf(stderr, "memory_bench: grid %d: %s\n", w, paper.message().c_str());
-    std::exit(1);
-  }
-  for (Edge& e : paper->edges)
-    if (e.isCrease())
-      e.assignment = Assignment::Flat;
-  const ValidityReport report = checkValidity(*paper);
-  if (!report.ok())
-  {
-    std::fprintf(stderr, "memory_bench: grid %d is not valid: %s\n", w, report.summary().c_str());
-    std::exit(1);
-  }
-  return *paper;
 }
 
 struct Measured
@@ -114,7 +82,7 @@ Measured sessionCase(int w, int history, double limit_mb)
   {
     // The paper the session is built from goes with the lambda: what is left is the session's.
     const Session session = [&] {
-      const Paper paper = gridPaper(w);
+      const Paper paper = virtual_origami::bench::gridPaper(w, "memory_bench");
       Session s(paper);
       s.setHistoryLimit(static_cast<size_t>(limit_mb * kMB));
       for (int i = 0; i < history; ++i)
@@ -242,7 +210,12 @@ int main(int argc, char** argv)
   // The FOLD file is written by a child too: the parent never holds a large heap to hand down.
   const std::string fold = (dir / "grid_100k.fold").string();
   inChild([&] {
-    const Status written = writeTextFile(fold, formatFold(gridPaper(315), "memory_bench grid"));
+    const Status written = writeTextFile(fold, formatFold(virtual_origami::bench::gridPaper(315, "memory_bench"), "memo"
+                                                                                                                  "ry_"
+                                                                                                                  "benc"
+                                                                                                                  "h "
+                                                                                                                  "gri"
+                                                                                                                  "d"));
     if (!written)
     {
       std::fprintf(stderr, "memory_bench: %s\n", written.message().c_str());
