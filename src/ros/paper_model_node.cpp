@@ -13,6 +13,7 @@
 
 #include "virtual_origami/core/fold_io.h"
 #include "virtual_origami/core/obj_export.h"
+#include "virtual_origami/core/oripa_io.h"
 #include "virtual_origami/ros/remote_solver.h"
 
 namespace virtual_origami
@@ -568,8 +569,11 @@ bool PaperModelNode::load(Load::Request& req, Load::Response& res)
 {
   // Read and checked outside the lock: a large file does not hold up other clients.
   const core::Expected<std::string> path = folder_->resolve(req.path);
-  const core::Expected<core::Paper> paper =
-      path ? core::loadPaper(*path) : core::Expected<core::Paper>::failure(path.message());
+  // ORIPA's crease patterns as designers keep them, scaled to the sheet's size; else FOLD.
+  const bool oripa = hasSuffix(req.path, ".cp") || hasSuffix(req.path, ".opx");
+  const core::Expected<core::Paper> paper = !path ? core::Expected<core::Paper>::failure(path.message()) :
+                                            oripa ? core::readCreasePatternFile(*path, size_) :
+                                                    core::loadPaper(*path);
   std::lock_guard<std::mutex> lock(mutex_);
   core::Expected<core::Change> change = paper ? core::computeLoad(session_.revision(), *paper, req.path) :
                                                 core::Expected<core::Change>::failure(paper.message());

@@ -237,6 +237,42 @@ TEST_F(Services, SaveAndLoad)
   expectRefused(client_.call<Load>("load", load).response, back);
 }
 
+TEST_F(Services, LoadsOripaCreasePatterns)
+{
+  const std::string data = core::defaultDataFolder();
+  // A preliminary base as ORIPA writes it: the square's outline (1), the diagonals valley (3),
+  // the horizontal mountain (2), the vertical in a mountain half and a valley half.
+  std::ofstream(data + "/preliminary.cp") << "1 -200 -200 200 -200\n1 200 -200 200 200\n1 200 200 -200 200\n"
+                                             "1 -200 200 -200 -200\n3 -200 -200 200 200\n3 -200 200 200 -200\n"
+                                             "2 -200 0 200 0\n2 0 -200 0 0\n3 0 0 0 200\n";
+  Load::Request load;
+  load.path = "preliminary.cp";
+  const Load loaded = client_.call<Load>("load", load);
+  ASSERT_TRUE(loaded.response.success) << loaded.response.message;
+  const PaperState& state = client_.stateAt(base_ + 1);
+  EXPECT_EQ(state.faces.size(), 8u);
+  int mountains = 0, valleys = 0;
+  for (const Edge& e : state.edges)
+  {
+    mountains += e.assignment == "M";
+    valleys += e.assignment == "V";
+  }
+  EXPECT_EQ(mountains, 3);
+  EXPECT_EQ(valleys, 5);
+  for (const geometry_msgs::Point& p : state.vertices_crease_pattern)  // the sheet's 1 × 1 square
+  {
+    EXPECT_GE(p.x, -1e-12);
+    EXPECT_LE(p.x, 1 + 1e-12);
+  }
+  // A malformed line is refused by its number, and nothing changes.
+  std::ofstream(data + "/bad.cp") << "1 -200 -200 200 -200\n7 200 -200 200 200\n";
+  load.path = "bad.cp";
+  const Load bad = client_.call<Load>("load", load);
+  EXPECT_FALSE(bad.response.success);
+  EXPECT_NE(bad.response.message.find("line 2"), std::string::npos) << bad.response.message;
+  EXPECT_EQ(client_.state().revision, base_ + 1);
+}
+
 TEST_F(Services, FilesStayInTheDataFolder)
 {
   namespace fs = std::filesystem;
