@@ -181,13 +181,14 @@ void PaperModelNode::restoreOrStart(ros::NodeHandle& private_nh, const std::stri
       const std::string kept = core::keepAsideName(path);
       std::error_code error;
       std::filesystem::rename(path, kept, error);
+      if (error)  // starting afresh would write over it
+        throw std::runtime_error("cannot keep the journal " + path + " aside as " + kept + ": " + error.message() +
+                                 "; nothing was started, so that it is not overwritten");
       if (!recovered)
         ROS_ERROR("paper_model: %s; kept it as %s and started afresh", recovered.message().c_str(), kept.c_str());
       else
         ROS_INFO("paper_model: resume is off and %s is from another launch: a new session; the last one is kept as %s",
                  path.c_str(), kept.c_str());
-      if (error)
-        ROS_ERROR("paper_model: cannot keep %s aside: %s", path.c_str(), error.message().c_str());
     }
   }
   else
