@@ -442,14 +442,28 @@ Status SessionJournal::start(const std::string& path, const Session& session, co
   return success();
 }
 
+JournalEvent journalEvent(const Operation& op, const Paper* state_after)
+{
+  json event{ { "operation", operationToJson(op) } };
+  if (state_after)
+    event["paper"] = paperToJson(*state_after);
+  return JournalEvent{ op, state_after != nullptr, journalLine(event) };
+}
+
 Status SessionJournal::append(const Operation& op, const Paper* state_after)
 {
+  return append(journalEvent(op, state_after));
+}
+
+Status SessionJournal::append(const JournalEvent& event)
+{
+  const Operation& op = event.operation;
   if (!healthy_)
     return failure("the journal " + path_ + " takes no event until it is started again: " +
                    (failure_.empty() ? std::string("it was never started") : failure_));
   // The journal refuses what its reader would drop, so that what it acknowledged is read back.
   const bool step = stepsThroughHistory(op.kind);
-  if (step != (state_after == nullptr))
+  if (step == event.has_state)
     return failure(std::string("a journaled ") + kindName(op.kind) +
                    (step ? " carries no state" : " must carry the state it makes"));
   if (op.revision != revision_ + 1 || revision_ == std::numeric_limits<uint64_t>::max())
@@ -460,10 +474,7 @@ Status SessionJournal::append(const Operation& op, const Paper* state_after)
   if (op.kind == Operation::Kind::Redo && redo_depth_ == 0)
     return failure("the journal has nothing to redo");
 
-  json event{ { "operation", operationToJson(op) } };
-  if (!step)
-    event["paper"] = paperToJson(*state_after);
-  const Status written = writeEvent(journalLine(event));
+  const Status written = writeEvent(event.line);
   if (!written)
     return written;
   if (op.kind == Operation::Kind::Undo)
@@ -488,6 +499,11 @@ Status SessionJournal::append(const Operation& op, const Paper* state_after)
 
 Status SessionJournal::append(const Session& before, const Operation& op, const Paper* state_after)
 {
+  return append(before, journalEvent(op, state_after));
+}
+
+Status SessionJournal::append(const Session& before, const JournalEvent& event)
+{
   if (path_.empty())
     return failure("the journal was never started");
   if (!healthy_ || !inStepWith(before))
@@ -497,7 +513,7 @@ Status SessionJournal::append(const Session& before, const Operation& op, const 
     if (!started)
       return started;
   }
-  return append(op, state_after);
+  return append(event);
 }
 
 Status SessionJournal::record(const Session& session)

@@ -202,12 +202,15 @@ void PaperModelNode::restoreOrStart(ros::NodeHandle& private_nh, const std::stri
     ROS_ERROR("paper_model: %s; every change is refused until the journal can be written", started.message().c_str());
 }
 
-core::Status PaperModelNode::commit(core::Change change, const std::string& what, const ros::Time& stamp)
+core::Status PaperModelNode::commit(core::Change change, const std::string& what, const ros::Time& stamp,
+                                   const core::JournalEvent* event)
 {
   if (change.base_revision != session_.revision())
     return core::failure("the model changed while this was computed; try again");
   // Journaled first: an operation answered `success` survives a crash.
-  const core::Status journaled = journal_.append(session_, change.operation, change.next ? &*change.next : nullptr);
+  const core::Status journaled =
+      event ? journal_.append(session_, *event) :
+              journal_.append(session_, change.operation, change.next ? &*change.next : nullptr);
   if (!journaled)
   {
     ROS_ERROR("paper_model: %s", journaled.message().c_str());
@@ -249,6 +252,10 @@ core::Expected<core::Computed<Result>> PaperModelNode::computeAndCommit(
     if (!last)
       lock.unlock();
     Answer computed = compute(std::move(workspace));
+    // The journal line of a large model takes longer to write out than to append: outside too.
+    std::optional<core::JournalEvent> event;
+    if (computed && commit_it && !last)
+      event = core::journalEvent(computed->change.operation, &*computed->change.next);
     if (!last)
       lock.lock();
     revision = session_.revision();  // answered with the revision this call made or found
@@ -262,7 +269,7 @@ core::Expected<core::Computed<Result>> PaperModelNode::computeAndCommit(
       session_.setPreview(std::move(computed->change));
       return computed;
     }
-    const core::Status committed = commit(std::move(computed->change), what, stamp);
+    const core::Status committed = commit(std::move(computed->change), what, stamp, event ? &*event : nullptr);
     revision = session_.revision();
     if (!committed)
       return Answer::failure(committed.message());
@@ -575,10 +582,25 @@ bool PaperModelNode::load(Load::Request& req, Load::Response& res)
   const core::Expected<core::Paper> paper = !path ? core::Expected<core::Paper>::failure(path.message()) :
                                             oripa ? core::readCreasePatternFile(*path, size_) :
                                                     core::loadPaper(*path);
+  // So is its journal line, for the revision it will most likely make.
+  uint64_t base = 0;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    base = session_.revision();
+  }
+  core::Expected<core::Change> change =
+      paper ? core::computeLoad(base, *paper, req.path) : core::Expected<core::Change>::failure(paper.message());
+  std::optional<core::JournalEvent> event;
+  if (change)
+    event = core::journalEvent(change->operation, &*change->next);
   std::lock_guard<std::mutex> lock(mutex_);
-  core::Expected<core::Change> change = paper ? core::computeLoad(session_.revision(), *paper, req.path) :
-                                                core::Expected<core::Change>::failure(paper.message());
-  const core::Status status = change ? commit(std::move(*change), "loaded") : core::failure(change.message());
+  if (change && change->base_revision != session_.revision())  // another client came first
+  {
+    change = core::computeLoad(session_.revision(), std::move(*change->next), req.path);
+    event.reset();
+  }
+  const core::Status status =
+      change ? commit(std::move(*change), "loaded", ros::Time(0), event ? &*event : nullptr) : core::failure(change.message());
   res.success = status.ok();
   res.message = status ? "loaded " + req.path : status.message();
   if (status)

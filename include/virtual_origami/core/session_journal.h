@@ -15,6 +15,16 @@ namespace virtual_origami::core
 std::string formatPaperJson(const Paper& paper);
 Expected<Paper> parsePaperJson(const std::string& text);
 
+/// One operation's journal line, serialised ahead: for a large model that is most of an
+/// append's cost, and a node does it outside its lock, so the append under the lock only writes.
+struct JournalEvent
+{
+  Operation operation;
+  bool has_state = false;  // a commit carries the state it makes; an undo or redo none
+  std::string line;
+};
+JournalEvent journalEvent(const Operation& op, const Paper* state_after);
+
 /// Appends a session's events to a file: a header line with the whole history so far, then
 /// for each operation logged after it a commit (with the state it made) or an undo/redo.
 ///
@@ -36,6 +46,9 @@ public:
   /// The same for `before`, the session `op` is about to change. A journal that is unhealthy
   /// or out of step with `before` is first started again from it.
   Status append(const Session& before, const Operation& op, const Paper* state_after);
+  /// The same with the line serialised ahead (journalEvent).
+  Status append(const JournalEvent& event);
+  Status append(const Session& before, const JournalEvent& event);
   /// Appends the operations `session` logged since the journal last wrote, after they were
   /// committed: a commit's event carries the session's current state, so call it after every
   /// operation. A journal that is unhealthy or cannot catch up is started again from `session`.

@@ -54,7 +54,9 @@ private:
 
   /// Journals a change and commits it, then announces it on `operations` and publishes the
   /// state; refused (nothing changed) when the journal cannot record it. Holds `mutex_`.
-  core::Status commit(core::Change change, const std::string& what, const ros::Time& stamp = ros::Time(0));
+  /// `event`: its journal line when it was serialised ahead, outside the lock.
+  core::Status commit(core::Change change, const std::string& what, const ros::Time& stamp = ros::Time(0),
+                      const core::JournalEvent* event = nullptr);
   /// Computes an operation on a copy of the model outside the lock, then commits it (or shows it
   /// as the preview) if nobody changed the model meanwhile; computed again when somebody did,
   /// the last of `solve_attempts_` tries under the lock, so that it lands.
