@@ -408,22 +408,18 @@ bool PaperModelNode::crease(Crease::Request& req, Crease::Response& res)
   if (req.has_eye)
     request.eye = toVec3(req.eye);
   request.snap = req.snap;
-  std::lock_guard<std::mutex> lock(mutex_);  // a crease needs no solver: computed under the lock
-  auto result = core::computeCrease(session_.workspace(), request);
-  core::Status status = result ? core::success() : core::failure(result.message());
+  // Computed on a copy like a solve: the journal line of a large model is written out meanwhile.
+  const auto result = computeAndCommit<core::CreaseResult>(
+      [&](core::Workspace workspace) { return core::computeCrease(std::move(workspace), request); }, true, "creased",
+      res.revision);
+  res.success = result.ok();
   if (result)
   {
     res.new_edges.assign(result->result.new_edges.begin(), result->result.new_edges.end());
     res.message = "creased " + std::to_string(result->result.split_faces.size()) + " faces";
-    status = commit(std::move(result->change), res.message);
   }
-  res.success = status.ok();
-  if (!status)
-  {
-    res.new_edges.clear();
-    res.message = status.message();
-  }
-  res.revision = session_.revision();
+  else
+    res.message = result.message();
   return true;
 }
 
