@@ -179,6 +179,18 @@ visualization_msgs::MarkerArray rotationDragMarkers(const core::RotationRing& ri
   return array;
 }
 
+visualization_msgs::MarkerArray namedAxisMarkers(const core::Vec3& a, const core::Vec3& b,
+                                                 const InteractionStyle& style, const ros::Time& stamp)
+{
+  visualization_msgs::MarkerArray array;
+  Marker axis = baseMarker(style, stamp, "named_axis", Marker::LINE_LIST);
+  axis.scale.x = 2.5 * style.line_width;
+  axis.color = rgba(0.9f, 0.3f, 0.0f);
+  axis.points = { toPoint(a), toPoint(b) };
+  array.markers.push_back(axis);
+  return array;
+}
+
 visualization_msgs::MarkerArray messageMarker(const std::string& text, const core::Vec3& at,
                                               const InteractionStyle& style, const ros::Time& stamp)
 {

@@ -9,6 +9,7 @@
 #include <virtual_origami/PinVertex.h>
 #include <virtual_origami/Rotate.h>
 
+#include "virtual_origami/core/axis.h"
 #include "virtual_origami/core/layers.h"
 #include "virtual_origami/ros/conversions.h"
 
@@ -176,15 +177,19 @@ void InteractionNode::press(const Feedback& feedback)
   pose_at_press_ = toVec3(feedback.pose.position);
   pointer_stamp_ = feedback.header.stamp;
   angle_ = previewed_angle_ = 0.0;
+  reach_ = 0.0;
   previewed_ = false;
   ring_.reset();
+  ring_refusal_.clear();
+  crease_at_press_ = -1;
   if (mode_ == Mode::Rotate)
   {
-    core::Expected<core::RotationRing> ring = core::rotationRing(*paper_, press_, view_direction_);
+    crease_at_press_ = core::creaseNear(*paper_, press_, snap_.radius);
+    core::Expected<core::RotationRing> ring = core::rotationRing(*paper_, press_, view_direction_, -1, namedAxis());
     if (!ring)
     {
-      tell(ring.message(), press_);
-      return;  // the drag goes on in rviz, but turns nothing
+      ring_refusal_ = ring.message();
+      return;  // the drag goes on in rviz, but turns nothing; said on release
     }
     ring_ = *ring;
   }
@@ -198,6 +203,7 @@ void InteractionNode::move(const Feedback& feedback)
   // The drag plane carries the marker along: the pointer is the press moved as far as it.
   pointer_ = press_ + (toVec3(feedback.pose.position) - pose_at_press_);
   pointer_stamp_ = feedback.header.stamp;
+  reach_ = std::max(reach_, (pointer_ - press_).norm());
   moved_ = true;
 }
 
@@ -206,14 +212,13 @@ void InteractionNode::updateDrag()
   const ros::WallTime start = ros::WallTime::now();
   moved_ = false;
   if (mode_ == Mode::Crease)
-    markers_pub_.publish(
-        creaseDragMarkers(core::creaseDrag(*paper_, press_, pointer_, snap_), style_, ros::Time::now()));
+    showMarkers(creaseDragMarkers(core::creaseDrag(*paper_, press_, pointer_, snap_), style_, ros::Time::now()));
   else if (ring_)
   {
     angle_ = core::ringAngle(*ring_, pointer_, view_direction_, angle_);
     if (!previewed_ || std::abs(angle_ - previewed_angle_) > 1e-4)
       previewRotation(angle_);
-    markers_pub_.publish(rotationDragMarkers(*ring_, angle_, style_, ros::Time::now()));
+    showMarkers(rotationDragMarkers(*ring_, angle_, style_, ros::Time::now()));
   }
   ++applied_;
   applied_stamp_ = pointer_stamp_;
@@ -223,7 +228,7 @@ void InteractionNode::updateDrag()
 bool InteractionNode::previewRotation(double angle)
 {
   Rotate srv;
-  srv.request.face = ring_->face;
+  srv.request.face = turningFace();
   srv.request.axis_edge = ring_->axis_edge;
   srv.request.click = toPoint(ring_->press);
   srv.request.angle = angle;
@@ -246,9 +251,14 @@ void InteractionNode::release()
   if (moved_)
     updateDrag();
   dragging_ = false;
-  markers_pub_.publish(clearedMarkers(style_, ros::Time::now()));
+  showMarkers(clearedMarkers(style_, ros::Time::now()));
   std::string message;
-  if (mode_ == Mode::Crease)
+  const bool clicked = reach_ < min_crease_length_ * paper_->scale();
+  if (mode_ == Mode::Rotate && clicked)
+    click();
+  else if (mode_ == Mode::Rotate && !ring_)
+    message = ring_refusal_;
+  else if (mode_ == Mode::Crease)
   {
     const core::CreaseDrag drag = core::creaseDrag(*paper_, press_, pointer_, snap_);
     if (drag.length() >= min_crease_length_ * paper_->scale())
@@ -266,7 +276,7 @@ void InteractionNode::release()
     // The angle last shown is the one committed; a press without a turn commits nothing.
     const double angle = previewed_ ? previewed_angle_ : 0.0;
     Rotate srv;
-    srv.request.face = ring_->face;
+    srv.request.face = turningFace();
     srv.request.axis_edge = ring_->axis_edge;
     srv.request.click = toPoint(ring_->press);
     srv.request.angle = angle;
@@ -284,6 +294,67 @@ void InteractionNode::release()
     showPaper();
   else
     server_.applyChanges();
+}
+
+void InteractionNode::click()
+{
+  const int named = namedAxis();
+  if (crease_at_press_ >= 0 && crease_at_press_ != named)
+  {
+    const core::Edge& crease = paper_->edges[crease_at_press_];
+    named_axis_ = crease.vertices;
+    tell("the axis: this crease. Drag a face to turn it about the crease; click off the creases for the "
+         "automatic axis",
+         press_);
+  }
+  else if (named >= 0)
+  {
+    named_axis_ = { -1, -1 };
+    tell("the automatic axis again", press_);
+  }
+  else if (!ring_)
+    tell(ring_refusal_, press_);
+  showMarkers(clearedMarkers(style_, ros::Time::now()));
+}
+
+int InteractionNode::turningFace() const
+{
+  // rotate turns a face about a crease of its own: about a crease named elsewhere, the face
+  // of the flap next to it.
+  const core::Edge& hinge = paper_->edges[ring_->axis_edge];
+  if (hinge.faces[0] == ring_->face || hinge.faces[1] == ring_->face)
+    return ring_->face;
+  for (int f : hinge.faces)
+    if (std::count(ring_->moving_faces.begin(), ring_->moving_faces.end(), f))
+      return f;
+  return ring_->face;
+}
+
+int InteractionNode::namedAxis() const
+{
+  if (!paper_ || named_axis_[0] < 0)
+    return -1;
+  for (size_t e = 0; e < paper_->edges.size(); ++e)
+  {
+    const core::Edge& edge = paper_->edges[e];
+    if (edge.isCrease() && ((edge.vertices[0] == named_axis_[0] && edge.vertices[1] == named_axis_[1]) ||
+                            (edge.vertices[0] == named_axis_[1] && edge.vertices[1] == named_axis_[0])))
+      return static_cast<int>(e);
+  }
+  return -1;
+}
+
+void InteractionNode::showMarkers(visualization_msgs::MarkerArray array)
+{
+  const int named = mode_ == Mode::Rotate ? namedAxis() : -1;
+  if (named >= 0)
+  {
+    const core::Edge& edge = paper_->edges[named];
+    const visualization_msgs::MarkerArray axis = namedAxisMarkers(
+        paper_->vertices[edge.vertices[0]].folded, paper_->vertices[edge.vertices[1]].folded, style_, ros::Time::now());
+    array.markers.insert(array.markers.end(), axis.markers.begin(), axis.markers.end());
+  }
+  markers_pub_.publish(array);
 }
 
 void InteractionNode::menu(Action action, const Feedback& feedback)
@@ -355,6 +426,7 @@ void InteractionNode::setMode(Mode mode)
   mode_ = mode;
   dragging_ = false;
   showPaper();
+  showMarkers(clearedMarkers(style_, ros::Time::now()));
 }
 
 void InteractionNode::tell(const std::string& text, const core::Vec3& at)

@@ -249,6 +249,70 @@ TEST_F(Interaction, DraggingAHalfTurnsItAboutTheCrease)
   EXPECT_EQ(guidesShown(), 0u);
 }
 
+TEST_F(Interaction, EveryPressOnAHalfStartsATurn)
+{
+  creaseDiagonal();
+  menu("Rotate mode");
+  const PaperState before = client_.state();
+  // Issue 23: 7 of 10 such presses were refused ("no crease on the line through the click
+  // and its centre"). Each press is dragged half way to the crease: from above, 45°.
+  const std::vector<core::Vec3> presses = {
+    p3(0.95, 0.05), p3(0.5, 0.04), p3(0.96, 0.5),  p3(0.3, 0.1), p3(0.9, 0.7),
+    p3(0.6, 0.3),   p3(0.2, 0.04), p3(0.97, 0.88), p3(0.7, 0.1), p3(0.8, 0.45)
+  };
+  for (const core::Vec3& press : presses)
+  {
+    const core::Vec3 foot = p3(0.5 * (press.x() + press.y()), 0.5 * (press.x() + press.y()));
+    drag(press, press + 0.5 * (foot - press), 6);
+    const PaperState& turned = client_.stateAt(base_ + 1);
+    ASSERT_EQ(turned.revision, base_ + 1)
+        << "the press at (" << press.x() << ", " << press.y() << ") turned nothing: " << status_.message;
+    const int axis = creaseBetween(turned, vertexAt(turned, 0, 0), vertexAt(turned, 1, 1));
+    ASSERT_GE(axis, 0);
+    EXPECT_NEAR(turned.edges[axis].fold_angle, M_PI / 4, 1e-6) << press.transpose();
+    ASSERT_TRUE(client_.trigger("undo").response.success);
+    base_ += 2;
+    EXPECT_EQ(client_.stateAt(base_).vertices_folded, before.vertices_folded);
+    ASSERT_TRUE(waitFor([&] { return status_.revision == base_; }, 10));
+  }
+}
+
+TEST_F(Interaction, AClickOnACreaseNamesTheAxis)
+{
+  creaseDiagonal();
+  ASSERT_TRUE(client_.crease(0.5, 0, 0.5, 1).response.success);
+  ++base_;
+  ASSERT_TRUE(waitFor([&] { return status_.revision == base_; }, 10));
+  menu("Rotate mode");
+  const auto creaseThrough = [&](const PaperState& s, double x0, double y0, double x1, double y1) {
+    return creaseBetween(s, vertexAt(s, x0, y0), vertexAt(s, x1, y1));
+  };
+  // A click on the vertical crease names it: the drag from the lower right, whose automatic
+  // axis is the diagonal, turns the right half about the vertical crease instead.
+  drag(p3(0.505, 0.8), p3(0.505, 0.8), 1);
+  EXPECT_EQ(client_.state().revision, base_);
+  EXPECT_TRUE(shown_.count("named_axis"));
+  EXPECT_NE(status_.message.find("axis"), std::string::npos) << status_.message;
+  drag(p3(0.9, 0.2), p3(0.7, 0.2), 6);  // from 0.4 to 0.2 off the axis: 45°
+  const PaperState turned = client_.stateAt(base_ + 1);
+  EXPECT_NEAR(std::abs(turned.edges[creaseThrough(turned, 0.5, 0, 0.5, 0.5)].fold_angle), M_PI / 4, 1e-6);
+  EXPECT_NEAR(std::abs(turned.edges[creaseThrough(turned, 0.5, 0.5, 0.5, 1)].fold_angle), M_PI / 4, 1e-6);
+  EXPECT_NEAR(turned.edges[creaseThrough(turned, 0, 0, 0.5, 0.5)].fold_angle, 0.0, 1e-9);
+  EXPECT_NEAR(turned.edges[creaseThrough(turned, 0.5, 0.5, 1, 1)].fold_angle, 0.0, 1e-9);
+  ASSERT_TRUE(client_.trigger("undo").response.success);
+  base_ += 2;
+  client_.stateAt(base_);
+  ASSERT_TRUE(waitFor([&] { return status_.revision == base_; }, 10));
+  EXPECT_TRUE(shown_.count("named_axis"));  // named until released
+  // A click off the creases goes back to the automatic axis: the same drag turns the diagonal.
+  drag(p3(0.8, 0.4), p3(0.8, 0.4), 1);
+  EXPECT_FALSE(shown_.count("named_axis"));
+  drag(p3(0.9, 0.2), p3(0.7, 0.2), 6);
+  const PaperState& automatic = client_.stateAt(base_ + 1);
+  EXPECT_GT(std::abs(automatic.edges[creaseThrough(automatic, 0.5, 0.5, 1, 1)].fold_angle), 0.1);
+  EXPECT_NEAR(automatic.edges[creaseThrough(automatic, 0.5, 0, 0.5, 0.5)].fold_angle, 0.0, 1e-9);
+}
+
 TEST_F(Interaction, MenuUndoRestoresThePreviousState)
 {
   creaseDiagonal();

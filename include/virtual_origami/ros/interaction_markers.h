@@ -49,6 +49,10 @@ visualization_msgs::MarkerArray creaseDragMarkers(const core::CreaseDrag& drag, 
 visualization_msgs::MarkerArray rotationDragMarkers(const core::RotationRing& ring, double angle,
                                                     const InteractionStyle& style, const ros::Time& stamp);
 
+/// The crease named as the axis by hand, highlighted until it is released (namespace `named_axis`).
+visualization_msgs::MarkerArray namedAxisMarkers(const core::Vec3& a, const core::Vec3& b,
+                                                 const InteractionStyle& style, const ros::Time& stamp);
+
 /// A short text for the user at `at` (why a drag was refused, what the menu did).
 visualization_msgs::MarkerArray messageMarker(const std::string& text, const core::Vec3& at,
                                               const InteractionStyle& style, const ros::Time& stamp);
