@@ -19,6 +19,9 @@ namespace
 {
 using interactive_markers::MenuHandler;
 
+/// A turn smaller than this (radians) is no turn: nothing is previewed or committed.
+constexpr double kNoTurn = 1e-3;
+
 /// Calls a service; false (and the reason in `message`) when it cannot be reached.
 template <class Service>
 bool call(ros::ServiceClient& client, Service& srv, std::string& message)
@@ -216,8 +219,12 @@ void InteractionNode::updateDrag()
   else if (ring_)
   {
     angle_ = core::ringAngle(*ring_, pointer_, view_direction_, angle_);
-    if (!previewed_ || std::abs(angle_ - previewed_angle_) > 1e-4)
-      previewRotation(angle_);
+    // No preview of no turn: paper_model draws it from a rotated copy, which does not keep
+    // the order of the layers the turn would part (a click redrew a 4-layer stack at 2
+    // heights). Back at no turn after a preview, the preview of 0 puts the paper back.
+    if (std::abs(angle_) > kNoTurn ? !previewed_ || std::abs(angle_ - previewed_angle_) > 1e-4 :
+                                     previewed_ && previewed_angle_ != 0.0)
+      previewRotation(std::abs(angle_) > kNoTurn ? angle_ : 0.0);
     showMarkers(rotationDragMarkers(*ring_, angle_, style_, ros::Time::now()));
   }
   ++applied_;
@@ -273,16 +280,22 @@ void InteractionNode::release()
   }
   else if (ring_)
   {
-    // The angle last shown is the one committed; a press without a turn commits nothing.
+    // The angle last shown is the one committed; a press without a turn commits nothing
+    // and draws nothing new.
     const double angle = previewed_ ? previewed_angle_ : 0.0;
-    Rotate srv;
-    srv.request.face = turningFace();
-    srv.request.axis_edge = ring_->axis_edge;
-    srv.request.click = toPoint(ring_->press);
-    srv.request.angle = angle;
-    srv.request.commit = std::abs(angle) > 1e-3;
-    if (call(rotate_, srv, message) && !srv.response.success)
-      message = srv.response.message;
+    if (std::abs(angle) > kNoTurn)
+    {
+      Rotate srv;
+      srv.request.face = turningFace();
+      srv.request.axis_edge = ring_->axis_edge;
+      srv.request.click = toPoint(ring_->press);
+      srv.request.angle = angle;
+      srv.request.commit = true;
+      if (call(rotate_, srv, message) && !srv.response.success)
+        message = srv.response.message;
+    }
+    else if (previewed_ && previewed_angle_ != 0.0)
+      previewRotation(0.0);
   }
   if (!message.empty())
     tell(message, pointer_);

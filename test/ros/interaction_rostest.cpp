@@ -74,7 +74,12 @@ protected:
         "interaction/update_full", 10,
         [this](const visualization_msgs::InteractiveMarkerInit::ConstPtr& init) { init_ = *init; });
     paper_markers_sub_ = client_.nh().subscribe<visualization_msgs::MarkerArray>(
-        "markers", 100, [this](const visualization_msgs::MarkerArray::ConstPtr&) { ++paper_markers_; });
+        "markers", 100, [this](const visualization_msgs::MarkerArray::ConstPtr& array) {
+          ++paper_markers_;
+          for (const auto& m : array->markers)
+            if (m.ns == "front")
+              front_ = m;
+        });
     ASSERT_TRUE(client_.trigger("reset").response.success);
     base_ = client_.state().revision;
     ASSERT_TRUE(waitFor([&] { return feedback_pub_.getNumSubscribers() > 0; }, 30));
@@ -162,7 +167,32 @@ protected:
     EXPECT_EQ(client_.state().revision, base_);
   }
 
+  /// Square → half → quarter (seed Fig. 15's case): four layers over [0, .5]², folded flat
+  /// through the services.
+  void quarterFold()
+  {
+    ASSERT_TRUE(client_.crease(0.5, 0, 0.5, 1).response.success);
+    const Rotate half = client_.rotate(-1, -1, 0.75, 0.5, M_PI);
+    ASSERT_TRUE(half.response.success) << half.response.message;
+    ASSERT_TRUE(client_.crease(0, 0.5, 0.5, 0.5).response.success);
+    const Rotate quarter = client_.rotate(-1, -1, 0.25, 0.9, M_PI);
+    ASSERT_TRUE(quarter.response.success) << quarter.response.message;
+    base_ += 4;
+    client_.stateAt(base_);
+    ASSERT_TRUE(waitFor([&] { return status_.revision == base_; }, 10));
+  }
+
+  /// The heights the paper's front sides are drawn at (in 0.1 mm).
+  std::set<long> frontHeights()
+  {
+    std::set<long> heights;
+    for (const auto& p : front_.points)
+      heights.insert(std::lround(p.z * 1e4));
+    return heights;
+  }
+
   PaperClient client_;
+  visualization_msgs::Marker front_;  // the paper's front sides as paper_model last drew them
   ros::Publisher feedback_pub_;
   ros::Subscriber status_sub_, guides_sub_, paper_markers_sub_, init_sub_;
   visualization_msgs::InteractiveMarkerInit init_;
@@ -311,6 +341,40 @@ TEST_F(Interaction, AClickOnACreaseNamesTheAxis)
   const PaperState& automatic = client_.stateAt(base_ + 1);
   EXPECT_GT(std::abs(automatic.edges[creaseThrough(automatic, 0.5, 0.5, 1, 1)].fold_angle), 0.1);
   EXPECT_NEAR(automatic.edges[creaseThrough(automatic, 0.5, 0, 0.5, 0.5)].fold_angle, 0.0, 1e-9);
+}
+
+TEST_F(Interaction, AClickOnAStackDrawsNothingNew)
+{
+  quarterFold();
+  ASSERT_TRUE(waitFor([&] { return frontHeights().size() == 4; }, 10)) << frontHeights().size() << " heights";
+  menu("Rotate mode");
+  const int drawn = paper_markers_;
+  const auto heights = frontHeights();
+  // Issue 23: a click in rotate mode redrew the four layers at two heights (a preview of no
+  // turn), the revision unchanged.
+  drag(p3(0.2, 0.3), p3(0.2, 0.3), 1);
+  expectUnchanged();
+  EXPECT_EQ(paper_markers_, drawn) << "the paper was drawn anew without a change";
+  EXPECT_EQ(frontHeights(), heights);
+}
+
+TEST_F(Interaction, APreviewIsDrawnAsItsCommitIs)
+{
+  quarterFold();
+  menu("Rotate mode");
+  visualization_msgs::Marker previewed;
+  const int drawn = paper_markers_;
+  // The flap over the crease y = .5 lifted by 45° and released there.
+  drag(p3(0.25, 0.1), p3(0.25, 0.3), 8, [&] {
+    EXPECT_TRUE(waitFor([&] { return paper_markers_ > drawn; }, 5));  // previews drawn
+    ros::WallDuration(0.3).sleep();                                   // the last pose's too
+    ros::spinOnce();
+    previewed = front_;
+  });
+  client_.stateAt(base_ + 1);
+  ASSERT_TRUE(waitFor([&] { return front_.header.stamp > previewed.header.stamp; }, 10));
+  EXPECT_EQ(front_.points, previewed.points);
+  EXPECT_GT(frontHeights().size(), 4u);  // the flap stands off the table
 }
 
 TEST_F(Interaction, MenuUndoRestoresThePreviousState)
