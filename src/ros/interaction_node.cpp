@@ -12,6 +12,7 @@
 #include "virtual_origami/core/axis.h"
 #include "virtual_origami/core/layers.h"
 #include "virtual_origami/ros/conversions.h"
+#include "virtual_origami/ros/interaction_text.h"
 
 namespace virtual_origami
 {
@@ -21,6 +22,8 @@ using interactive_markers::MenuHandler;
 
 /// A turn smaller than this (radians) is no turn: nothing is previewed or committed.
 constexpr double kNoTurn = 1e-3;
+/// Characters per line of a message: a short column stays inside the view.
+constexpr size_t kMessageWidth = 32;
 
 /// Calls a service; false (and the reason in `message`) when it cannot be reached.
 template <class Service>
@@ -316,14 +319,14 @@ void InteractionNode::click()
   {
     const core::Edge& crease = paper_->edges[crease_at_press_];
     named_axis_ = crease.vertices;
-    tell("the axis: this crease. Drag a face to turn it about the crease; click off the creases for the "
-         "automatic axis",
+    tell("The axis: this crease. Drag a part of the paper to turn it about the crease; click off the "
+         "creases for the automatic axis.",
          press_);
   }
   else if (named >= 0)
   {
     named_axis_ = { -1, -1 };
-    tell("the automatic axis again", press_);
+    tell("The automatic axis again.", press_);
   }
   else if (!ring_)
     tell(ring_refusal_, press_);
@@ -445,8 +448,10 @@ void InteractionNode::setMode(Mode mode)
 void InteractionNode::tell(const std::string& text, const core::Vec3& at)
 {
   ROS_INFO("interaction: %s", text.c_str());
-  message_ = text;
-  markers_pub_.publish(messageMarker(text, at + core::Vec3(0, 0, 0.05), style_, ros::Time::now()));
+  message_ = forTheUser(text);
+  const std::string lines = wrapLines(message_, kMessageWidth);
+  const core::Vec3 anchor = paper_ ? messageAnchor(*paper_, at, lines, style_) : at;
+  markers_pub_.publish(messageMarker(lines, anchor, style_, ros::Time::now()));
 }
 
 void InteractionNode::publishStatus(const ros::TimerEvent&)

@@ -2,8 +2,10 @@
 // the server's feedback topic), checked on the paper's `state`.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
+#include <regex>
 #include <set>
 
 #include <virtual_origami/InteractionStatus.h>
@@ -68,7 +70,11 @@ protected:
             if (m.action == visualization_msgs::Marker::DELETEALL)
               shown_.clear();
             else if (m.action == visualization_msgs::Marker::ADD)
+            {
               shown_.insert(m.ns);
+              if (m.ns == "message")
+                said_ = m;
+            }
         });
     init_sub_ = client_.nh().subscribe<visualization_msgs::InteractiveMarkerInit>(
         "interaction/update_full", 10,
@@ -191,7 +197,36 @@ protected:
     return heights;
   }
 
+  /// The last text said to the user refuses the drag in the user's words, in short lines,
+  /// over the sheet.
+  void expectSaidOverTheSheet(const std::string& starting)
+  {
+    ASSERT_TRUE(waitFor([&] { return !said_.text.empty(); }, 5));
+    std::string unwrapped = said_.text;
+    std::replace(unwrapped.begin(), unwrapped.end(), '\n', ' ');
+    EXPECT_EQ(unwrapped.rfind(starting, 0), 0u) << unwrapped;
+    EXPECT_EQ(status_.message, unwrapped);
+    EXPECT_EQ(unwrapped.find("seed"), std::string::npos) << unwrapped;
+    EXPECT_FALSE(std::regex_search(unwrapped, std::regex("(face|edge) [0-9]"))) << unwrapped;  // no numbers
+    size_t line = 0, longest = 0;
+    for (char c : said_.text)
+    {
+      line = c == '\n' ? 0 : line + 1;
+      longest = std::max(longest, line);
+    }
+    EXPECT_LE(longest, 32u) << said_.text;
+    // Centred over the sheet far enough for the longest line, whichever way the view turns it.
+    const double half = 0.3 * said_.scale.z * static_cast<double>(longest);
+    for (double c : { said_.pose.position.x, said_.pose.position.y })
+    {
+      EXPECT_GE(c, half - 1e-9);
+      EXPECT_LE(c, 1.0 - half + 1e-9);
+    }
+    EXPECT_GT(said_.pose.position.z, 0.0);
+  }
+
   PaperClient client_;
+  visualization_msgs::Marker said_;   // the last message marker shown
   visualization_msgs::Marker front_;  // the paper's front sides as paper_model last drew them
   ros::Publisher feedback_pub_;
   ros::Subscriber status_sub_, guides_sub_, paper_markers_sub_, init_sub_;
@@ -254,6 +289,42 @@ TEST_F(Interaction, AnEdgeDivisionGuideShowsWhileDragging)
   const PaperState& state = client_.stateAt(base_ + 1);
   EXPECT_GE(vertexAt(state, 0.5, 0), 0);
   EXPECT_GE(vertexAt(state, 0.5, 1), 0);
+}
+
+TEST_F(Interaction, ASnappedDirectionThatEndsInsideTheSheetCreasesAcrossIt)
+{
+  menu("Crease mode");
+  // Issue 23: from a corner towards 22.5°, released inside the sheet: the end snapped to the
+  // ray short of the edge, and the crease was refused.
+  const double a = M_PI / 8;
+  drag(p3(0.008, 0.006), p3(0.85 * std::cos(a) + 0.004, 0.85 * std::sin(a) - 0.004), 10);
+  const PaperState& state = client_.stateAt(base_ + 1);
+  const int corner = vertexAt(state, 0, 0);
+  int end = -1;
+  for (size_t v = 0; v < state.vertices_crease_pattern.size(); ++v)
+    if ((creasePattern(state, static_cast<int>(v)) - p3(1, std::tan(a))).norm() < 1e-9)
+      end = static_cast<int>(v);
+  ASSERT_GE(end, 0) << "no vertex where the 22.5° ray leaves the sheet";
+  EXPECT_GE(creaseBetween(state, corner, end), 0);
+  EXPECT_EQ(state.faces.size(), 2u);
+}
+
+TEST_F(Interaction, ARefusalSpeaksToTheUserOverTheSheet)
+{
+  menu("Crease mode");
+  said_ = {};
+  drag(p3(0.3, 0.3), p3(0.6, 0.4), 6);  // inside the face: no crease across it
+  expectUnchanged();
+  expectSaidOverTheSheet("Not creased: a crease runs across a face");
+  said_ = {};
+  drag(p3(1.06, 0.1), p3(1.08, 0.9), 6);  // on the margin past the right edge, missing the paper
+  expectUnchanged();
+  expectSaidOverTheSheet("Not creased: the line does not cross the paper");
+  menu("Rotate mode");
+  said_ = {};
+  drag(p3(0.95, 0.05), p3(0.6, 0.4), 6);  // no crease yet
+  expectUnchanged();
+  expectSaidOverTheSheet("This part has no crease to turn about yet");
 }
 
 TEST_F(Interaction, DraggingAHalfTurnsItAboutTheCrease)
