@@ -265,7 +265,7 @@ void InteractionNode::release()
   std::string message;
   const bool clicked = reach_ < min_crease_length_ * paper_->scale();
   if (mode_ == Mode::Rotate && clicked)
-    click();
+    message = click();
   else if (mode_ == Mode::Rotate && !ring_)
     message = ring_refusal_;
   else if (mode_ == Mode::Crease)
@@ -302,6 +302,8 @@ void InteractionNode::release()
   }
   if (!message.empty())
     tell(message, pointer_);
+  else
+    message_.clear();  // done, or nothing to do: an earlier refusal no longer applies
   // rviz keeps the marker where the drag left it: put it back under the sheet.
   geometry_msgs::Pose identity;
   identity.orientation.w = 1.0;
@@ -312,25 +314,25 @@ void InteractionNode::release()
     server_.applyChanges();
 }
 
-void InteractionNode::click()
+std::string InteractionNode::click()
 {
   const int named = namedAxis();
+  std::string message;
   if (crease_at_press_ >= 0 && crease_at_press_ != named)
   {
-    const core::Edge& crease = paper_->edges[crease_at_press_];
-    named_axis_ = crease.vertices;
-    tell("The axis: this crease. Drag a part of the paper to turn it about the crease; click off the "
-         "creases for the automatic axis.",
-         press_);
+    named_axis_ = paper_->edges[crease_at_press_].vertices;
+    message = "The axis: this crease. Drag a part of the paper to turn it about the crease; click off the "
+              "creases for the automatic axis.";
   }
   else if (named >= 0)
   {
     named_axis_ = { -1, -1 };
-    tell("The automatic axis again.", press_);
+    message = "The automatic axis again.";
   }
   else if (!ring_)
-    tell(ring_refusal_, press_);
+    message = ring_refusal_;
   showMarkers(clearedMarkers(style_, ros::Time::now()));
+  return message;
 }
 
 int InteractionNode::turningFace() const

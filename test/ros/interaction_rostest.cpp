@@ -327,6 +327,45 @@ TEST_F(Interaction, ARefusalSpeaksToTheUserOverTheSheet)
   expectSaidOverTheSheet("This part has no crease to turn about yet");
 }
 
+TEST_F(Interaction, ARefusalIsForgottenOnTheNextSuccess)
+{
+  menu("Crease mode");
+  drag(p3(0.3, 0.3), p3(0.6, 0.4), 6);  // refused: not across a face
+  ASSERT_TRUE(waitFor([&] { return !status_.message.empty(); }, 5));
+  drag(p3(0.012, 0.018), p3(0.986, 0.991), 10);  // the diagonal, creased
+  client_.stateAt(base_ + 1);
+  const int seen = statuses_;
+  ASSERT_TRUE(waitFor([&] { return statuses_ > seen && status_.revision == base_ + 1; }, 10));
+  EXPECT_EQ(status_.message, "");
+  EXPECT_FALSE(shown_.count("message"));
+}
+
+TEST_F(Interaction, FaceOrdersSayWhichLayerLiesAbove)
+{
+  // msg/FaceOrder.msg: `above` +1 when `other` lies on the side `face`'s front normal points to.
+  ASSERT_TRUE(client_.crease(0.5, 0, 0.5, 1).response.success);
+  const Rotate valley = client_.rotate(-1, -1, 0.75, 0.5, M_PI);  // the right half up and over the left
+  ASSERT_TRUE(valley.response.success) << valley.response.message;
+  const PaperState& state = client_.stateAt(base_ + 2);
+  ASSERT_FALSE(state.face_orders.empty());
+  const auto moved = [&](int f) {
+    double x = 0;
+    for (int v : state.faces[f].vertices)
+      x += creasePattern(state, v).x() / static_cast<double>(state.faces[f].vertices.size());
+    return x > 0.5;
+  };
+  const auto normalZ = [&](int f) {
+    const auto& vs = state.faces[f].vertices;
+    return (folded(state, vs[1]) - folded(state, vs[0])).cross(folded(state, vs[2]) - folded(state, vs[0])).z();
+  };
+  for (const FaceOrder& o : state.face_orders)
+  {
+    ASSERT_NE(moved(o.face), moved(o.other));
+    const double other_higher = moved(o.other) ? 1.0 : -1.0;  // the turned half lies on top
+    EXPECT_EQ(o.above, normalZ(o.face) * other_higher > 0 ? 1 : -1) << o.face << " " << o.other;
+  }
+}
+
 TEST_F(Interaction, DraggingAHalfTurnsItAboutTheCrease)
 {
   creaseDiagonal();

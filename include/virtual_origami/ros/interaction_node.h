@@ -69,7 +69,7 @@ private:
   void updateDrag();
   /// A press and release without a drag in rotate mode: on a crease it names the axis, off
   /// every crease it goes back to the automatic axis.
-  void click();
+  std::string click();  // what to tell the user
   /// The face the rotate requests name: the pressed one, or about a crease named elsewhere
   /// the face of the turning flap next to it.
   int turningFace() const;
