@@ -1,5 +1,6 @@
 #include "virtual_origami/core/snap.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -78,6 +79,29 @@ std::vector<Vec3> angleDivisions(const Paper& paper, int face, int vertex, int n
   return dirs;
 }
 
+/// How far the ray from `p` (a vertex of the convex face) along `dir` runs inside the face:
+/// where it leaves it. 0 when it does not enter it.
+double exitAlong(const Paper& paper, int face, const Vec3& p, const Vec3& dir)
+{
+  const std::vector<int>& vs = paper.faces[face].vertices;
+  const Vec3 n = paper.faceNormal(face);
+  const double tolerance = 1e-12 * paper.scale();
+  double exit = 0.0;
+  for (size_t i = 0; i < vs.size(); ++i)
+  {
+    const Vec3& a = paper.vertices[vs[i]].folded;
+    const Vec3& b = paper.vertices[vs[(i + 1) % vs.size()]].folded;
+    const double across = dir.cross(b - a).dot(n);
+    if (std::abs(across) < 1e-12)
+      continue;  // parallel to this side
+    const double t = (a - p).cross(b - a).dot(n) / across;
+    const double s = (p + t * dir - a).dot(b - a) / (b - a).squaredNorm();
+    if (t > tolerance && s >= -1e-9 && s <= 1 + 1e-9)
+      exit = std::max(exit, t);
+  }
+  return exit;
+}
+
 bool snapToAngleDivision(const Paper& paper, const Vec3& cursor, const SnapSettings& settings, int start, Snap& snap)
 {
   const Vec3& p = paper.vertices[start].folded;
@@ -103,14 +127,16 @@ bool snapToAngleDivision(const Paper& paper, const Vec3& cursor, const SnapSetti
           snap.face = f;
           snap.divisions = n;
           snap.index = static_cast<int>(k) + 1;
-          snap.point = p + t * dirs[k];
+          // Extended to where it leaves the face: a crease from the vertex that ends short of
+          // the far side would not cut the face, and would be refused.
+          snap.point = p + std::max(t, exitAlong(paper, f, p, dirs[k])) * dirs[k];
         }
       }
     }
   if (snap.kind != SnapKind::AngleDivision)
     return false;
   for (const Vec3& dir : angleDivisions(paper, snap.face, start, snap.divisions))
-    snap.guide_lines.push_back({ p, p + reach * dir });
+    snap.guide_lines.push_back({ p, p + std::max(reach, exitAlong(paper, snap.face, p, dir)) * dir });
   return true;
 }
 }  // namespace

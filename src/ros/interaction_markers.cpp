@@ -179,6 +179,18 @@ visualization_msgs::MarkerArray rotationDragMarkers(const core::RotationRing& ri
   return array;
 }
 
+visualization_msgs::MarkerArray namedAxisMarkers(const core::Vec3& a, const core::Vec3& b,
+                                                 const InteractionStyle& style, const ros::Time& stamp)
+{
+  visualization_msgs::MarkerArray array;
+  Marker axis = baseMarker(style, stamp, "named_axis", Marker::LINE_LIST);
+  axis.scale.x = 2.5 * style.line_width;
+  axis.color = rgba(0.9f, 0.3f, 0.0f);
+  axis.points = { toPoint(a), toPoint(b) };
+  array.markers.push_back(axis);
+  return array;
+}
+
 visualization_msgs::MarkerArray messageMarker(const std::string& text, const core::Vec3& at,
                                               const InteractionStyle& style, const ros::Time& stamp)
 {
@@ -191,6 +203,38 @@ visualization_msgs::MarkerArray messageMarker(const std::string& text, const cor
   m.lifetime = ros::Duration(4.0);
   array.markers.push_back(m);
   return array;
+}
+
+core::Vec3 messageAnchor(const core::Paper& paper, const core::Vec3& at, const std::string& text,
+                         const InteractionStyle& style)
+{
+  if (paper.vertices.empty())
+    return at;
+  core::Vec3 lo = paper.vertices[0].folded, hi = lo;
+  for (const core::Vertex& v : paper.vertices)
+  {
+    lo = lo.cwiseMin(v.folded);
+    hi = hi.cwiseMax(v.folded);
+  }
+  size_t lines = 1, longest = 0, line = 0;
+  for (char c : text)
+  {
+    if (c == '\n')
+    {
+      ++lines;
+      line = 0;
+    }
+    else if ((static_cast<unsigned char>(c) & 0xC0) != 0x80)  // a character, not a UTF-8 continuation
+      longest = std::max(longest, ++line);
+  }
+  // rviz draws its font about 0.6 of the line height wide per character; which way the lines
+  // run depends on the view, so they must fit both ways.
+  const double half = 0.3 * style.text_size * static_cast<double>(longest);
+  core::Vec3 anchor = at.allFinite() ? at : core::Vec3(0.5 * (lo + hi));
+  for (int i = 0; i < 2; ++i)
+    anchor[i] = hi[i] - lo[i] <= 2 * half ? 0.5 * (lo[i] + hi[i]) : std::clamp(anchor[i], lo[i] + half, hi[i] - half);
+  anchor.z() = hi.z() + style.text_size * (0.5 * static_cast<double>(lines) + 1.0);
+  return anchor;
 }
 
 visualization_msgs::MarkerArray clearedMarkers(const InteractionStyle& style, const ros::Time& stamp)

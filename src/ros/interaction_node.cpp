@@ -9,14 +9,21 @@
 #include <virtual_origami/PinVertex.h>
 #include <virtual_origami/Rotate.h>
 
+#include "virtual_origami/core/axis.h"
 #include "virtual_origami/core/layers.h"
 #include "virtual_origami/ros/conversions.h"
+#include "virtual_origami/ros/interaction_text.h"
 
 namespace virtual_origami
 {
 namespace
 {
 using interactive_markers::MenuHandler;
+
+/// A turn smaller than this (radians) is no turn: nothing is previewed or committed.
+constexpr double kNoTurn = 1e-3;
+/// Characters per line of a message: a short column stays inside the view.
+constexpr size_t kMessageWidth = 32;
 
 /// Calls a service; false (and the reason in `message`) when it cannot be reached.
 template <class Service>
@@ -176,15 +183,19 @@ void InteractionNode::press(const Feedback& feedback)
   pose_at_press_ = toVec3(feedback.pose.position);
   pointer_stamp_ = feedback.header.stamp;
   angle_ = previewed_angle_ = 0.0;
+  reach_ = 0.0;
   previewed_ = false;
   ring_.reset();
+  ring_refusal_.clear();
+  crease_at_press_ = -1;
   if (mode_ == Mode::Rotate)
   {
-    core::Expected<core::RotationRing> ring = core::rotationRing(*paper_, press_, view_direction_);
+    crease_at_press_ = core::creaseNear(*paper_, press_, snap_.radius);
+    core::Expected<core::RotationRing> ring = core::rotationRing(*paper_, press_, view_direction_, -1, namedAxis());
     if (!ring)
     {
-      tell(ring.message(), press_);
-      return;  // the drag goes on in rviz, but turns nothing
+      ring_refusal_ = ring.message();
+      return;  // the drag goes on in rviz, but turns nothing; said on release
     }
     ring_ = *ring;
   }
@@ -198,6 +209,7 @@ void InteractionNode::move(const Feedback& feedback)
   // The drag plane carries the marker along: the pointer is the press moved as far as it.
   pointer_ = press_ + (toVec3(feedback.pose.position) - pose_at_press_);
   pointer_stamp_ = feedback.header.stamp;
+  reach_ = std::max(reach_, (pointer_ - press_).norm());
   moved_ = true;
 }
 
@@ -206,14 +218,17 @@ void InteractionNode::updateDrag()
   const ros::WallTime start = ros::WallTime::now();
   moved_ = false;
   if (mode_ == Mode::Crease)
-    markers_pub_.publish(
-        creaseDragMarkers(core::creaseDrag(*paper_, press_, pointer_, snap_), style_, ros::Time::now()));
+    showMarkers(creaseDragMarkers(core::creaseDrag(*paper_, press_, pointer_, snap_), style_, ros::Time::now()));
   else if (ring_)
   {
     angle_ = core::ringAngle(*ring_, pointer_, view_direction_, angle_);
-    if (!previewed_ || std::abs(angle_ - previewed_angle_) > 1e-4)
-      previewRotation(angle_);
-    markers_pub_.publish(rotationDragMarkers(*ring_, angle_, style_, ros::Time::now()));
+    // No preview of no turn: paper_model draws it from a rotated copy, which does not keep
+    // the order of the layers the turn would part (a click redrew a 4-layer stack at 2
+    // heights). Back at no turn after a preview, the preview of 0 puts the paper back.
+    if (std::abs(angle_) > kNoTurn ? !previewed_ || std::abs(angle_ - previewed_angle_) > 1e-4 :
+                                     previewed_ && previewed_angle_ != 0.0)
+      previewRotation(std::abs(angle_) > kNoTurn ? angle_ : 0.0);
+    showMarkers(rotationDragMarkers(*ring_, angle_, style_, ros::Time::now()));
   }
   ++applied_;
   applied_stamp_ = pointer_stamp_;
@@ -223,7 +238,7 @@ void InteractionNode::updateDrag()
 bool InteractionNode::previewRotation(double angle)
 {
   Rotate srv;
-  srv.request.face = ring_->face;
+  srv.request.face = turningFace();
   srv.request.axis_edge = ring_->axis_edge;
   srv.request.click = toPoint(ring_->press);
   srv.request.angle = angle;
@@ -246,9 +261,14 @@ void InteractionNode::release()
   if (moved_)
     updateDrag();
   dragging_ = false;
-  markers_pub_.publish(clearedMarkers(style_, ros::Time::now()));
+  showMarkers(clearedMarkers(style_, ros::Time::now()));
   std::string message;
-  if (mode_ == Mode::Crease)
+  const bool clicked = reach_ < min_crease_length_ * paper_->scale();
+  if (mode_ == Mode::Rotate && clicked)
+    message = click();
+  else if (mode_ == Mode::Rotate && !ring_)
+    message = ring_refusal_;
+  else if (mode_ == Mode::Crease)
   {
     const core::CreaseDrag drag = core::creaseDrag(*paper_, press_, pointer_, snap_);
     if (drag.length() >= min_crease_length_ * paper_->scale())
@@ -263,19 +283,27 @@ void InteractionNode::release()
   }
   else if (ring_)
   {
-    // The angle last shown is the one committed; a press without a turn commits nothing.
+    // The angle last shown is the one committed; a press without a turn commits nothing
+    // and draws nothing new.
     const double angle = previewed_ ? previewed_angle_ : 0.0;
-    Rotate srv;
-    srv.request.face = ring_->face;
-    srv.request.axis_edge = ring_->axis_edge;
-    srv.request.click = toPoint(ring_->press);
-    srv.request.angle = angle;
-    srv.request.commit = std::abs(angle) > 1e-3;
-    if (call(rotate_, srv, message) && !srv.response.success)
-      message = srv.response.message;
+    if (std::abs(angle) > kNoTurn)
+    {
+      Rotate srv;
+      srv.request.face = turningFace();
+      srv.request.axis_edge = ring_->axis_edge;
+      srv.request.click = toPoint(ring_->press);
+      srv.request.angle = angle;
+      srv.request.commit = true;
+      if (call(rotate_, srv, message) && !srv.response.success)
+        message = srv.response.message;
+    }
+    else if (previewed_ && previewed_angle_ != 0.0)
+      previewRotation(0.0);
   }
   if (!message.empty())
     tell(message, pointer_);
+  else
+    message_.clear();  // done, or nothing to do: an earlier refusal no longer applies
   // rviz keeps the marker where the drag left it: put it back under the sheet.
   geometry_msgs::Pose identity;
   identity.orientation.w = 1.0;
@@ -284,6 +312,67 @@ void InteractionNode::release()
     showPaper();
   else
     server_.applyChanges();
+}
+
+std::string InteractionNode::click()
+{
+  const int named = namedAxis();
+  std::string message;
+  if (crease_at_press_ >= 0 && crease_at_press_ != named)
+  {
+    named_axis_ = paper_->edges[crease_at_press_].vertices;
+    message = "The axis: this crease. Drag a part of the paper to turn it about the crease; click off the "
+              "creases for the automatic axis.";
+  }
+  else if (named >= 0)
+  {
+    named_axis_ = { -1, -1 };
+    message = "The automatic axis again.";
+  }
+  else if (!ring_)
+    message = ring_refusal_;
+  showMarkers(clearedMarkers(style_, ros::Time::now()));
+  return message;
+}
+
+int InteractionNode::turningFace() const
+{
+  // rotate turns a face about a crease of its own: about a crease named elsewhere, the face
+  // of the flap next to it.
+  const core::Edge& hinge = paper_->edges[ring_->axis_edge];
+  if (hinge.faces[0] == ring_->face || hinge.faces[1] == ring_->face)
+    return ring_->face;
+  for (int f : hinge.faces)
+    if (std::count(ring_->moving_faces.begin(), ring_->moving_faces.end(), f))
+      return f;
+  return ring_->face;
+}
+
+int InteractionNode::namedAxis() const
+{
+  if (!paper_ || named_axis_[0] < 0)
+    return -1;
+  for (size_t e = 0; e < paper_->edges.size(); ++e)
+  {
+    const core::Edge& edge = paper_->edges[e];
+    if (edge.isCrease() && ((edge.vertices[0] == named_axis_[0] && edge.vertices[1] == named_axis_[1]) ||
+                            (edge.vertices[0] == named_axis_[1] && edge.vertices[1] == named_axis_[0])))
+      return static_cast<int>(e);
+  }
+  return -1;
+}
+
+void InteractionNode::showMarkers(visualization_msgs::MarkerArray array)
+{
+  const int named = mode_ == Mode::Rotate ? namedAxis() : -1;
+  if (named >= 0)
+  {
+    const core::Edge& edge = paper_->edges[named];
+    const visualization_msgs::MarkerArray axis = namedAxisMarkers(
+        paper_->vertices[edge.vertices[0]].folded, paper_->vertices[edge.vertices[1]].folded, style_, ros::Time::now());
+    array.markers.insert(array.markers.end(), axis.markers.begin(), axis.markers.end());
+  }
+  markers_pub_.publish(array);
 }
 
 void InteractionNode::menu(Action action, const Feedback& feedback)
@@ -355,13 +444,16 @@ void InteractionNode::setMode(Mode mode)
   mode_ = mode;
   dragging_ = false;
   showPaper();
+  showMarkers(clearedMarkers(style_, ros::Time::now()));
 }
 
 void InteractionNode::tell(const std::string& text, const core::Vec3& at)
 {
   ROS_INFO("interaction: %s", text.c_str());
-  message_ = text;
-  markers_pub_.publish(messageMarker(text, at + core::Vec3(0, 0, 0.05), style_, ros::Time::now()));
+  message_ = forTheUser(text);
+  const std::string lines = wrapLines(message_, kMessageWidth);
+  const core::Vec3 anchor = paper_ ? messageAnchor(*paper_, at, lines, style_) : at;
+  markers_pub_.publish(messageMarker(lines, anchor, style_, ros::Time::now()));
 }
 
 void InteractionNode::publishStatus(const ros::TimerEvent&)

@@ -2,8 +2,10 @@
 // the server's feedback topic), checked on the paper's `state`.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
+#include <regex>
 #include <set>
 
 #include <virtual_origami/InteractionStatus.h>
@@ -68,13 +70,22 @@ protected:
             if (m.action == visualization_msgs::Marker::DELETEALL)
               shown_.clear();
             else if (m.action == visualization_msgs::Marker::ADD)
+            {
               shown_.insert(m.ns);
+              if (m.ns == "message")
+                said_ = m;
+            }
         });
     init_sub_ = client_.nh().subscribe<visualization_msgs::InteractiveMarkerInit>(
         "interaction/update_full", 10,
         [this](const visualization_msgs::InteractiveMarkerInit::ConstPtr& init) { init_ = *init; });
     paper_markers_sub_ = client_.nh().subscribe<visualization_msgs::MarkerArray>(
-        "markers", 100, [this](const visualization_msgs::MarkerArray::ConstPtr&) { ++paper_markers_; });
+        "markers", 100, [this](const visualization_msgs::MarkerArray::ConstPtr& array) {
+          ++paper_markers_;
+          for (const auto& m : array->markers)
+            if (m.ns == "front")
+              front_ = m;
+        });
     ASSERT_TRUE(client_.trigger("reset").response.success);
     base_ = client_.state().revision;
     ASSERT_TRUE(waitFor([&] { return feedback_pub_.getNumSubscribers() > 0; }, 30));
@@ -162,7 +173,61 @@ protected:
     EXPECT_EQ(client_.state().revision, base_);
   }
 
+  /// Square → half → quarter (seed Fig. 15's case): four layers over [0, .5]², folded flat
+  /// through the services.
+  void quarterFold()
+  {
+    ASSERT_TRUE(client_.crease(0.5, 0, 0.5, 1).response.success);
+    const Rotate half = client_.rotate(-1, -1, 0.75, 0.5, M_PI);
+    ASSERT_TRUE(half.response.success) << half.response.message;
+    ASSERT_TRUE(client_.crease(0, 0.5, 0.5, 0.5).response.success);
+    const Rotate quarter = client_.rotate(-1, -1, 0.25, 0.9, M_PI);
+    ASSERT_TRUE(quarter.response.success) << quarter.response.message;
+    base_ += 4;
+    client_.stateAt(base_);
+    ASSERT_TRUE(waitFor([&] { return status_.revision == base_; }, 10));
+  }
+
+  /// The heights the paper's front sides are drawn at (in 0.1 mm).
+  std::set<long> frontHeights()
+  {
+    std::set<long> heights;
+    for (const auto& p : front_.points)
+      heights.insert(std::lround(p.z * 1e4));
+    return heights;
+  }
+
+  /// The last text said to the user refuses the drag in the user's words, in short lines,
+  /// over the sheet.
+  void expectSaidOverTheSheet(const std::string& starting)
+  {
+    ASSERT_TRUE(waitFor([&] { return !said_.text.empty(); }, 5));
+    std::string unwrapped = said_.text;
+    std::replace(unwrapped.begin(), unwrapped.end(), '\n', ' ');
+    EXPECT_EQ(unwrapped.rfind(starting, 0), 0u) << unwrapped;
+    EXPECT_EQ(status_.message, unwrapped);
+    EXPECT_EQ(unwrapped.find("seed"), std::string::npos) << unwrapped;
+    EXPECT_FALSE(std::regex_search(unwrapped, std::regex("(face|edge) [0-9]"))) << unwrapped;  // no numbers
+    size_t line = 0, longest = 0;
+    for (char c : said_.text)
+    {
+      line = c == '\n' ? 0 : line + 1;
+      longest = std::max(longest, line);
+    }
+    EXPECT_LE(longest, 32u) << said_.text;
+    // Centred over the sheet far enough for the longest line, whichever way the view turns it.
+    const double half = 0.3 * said_.scale.z * static_cast<double>(longest);
+    for (double c : { said_.pose.position.x, said_.pose.position.y })
+    {
+      EXPECT_GE(c, half - 1e-9);
+      EXPECT_LE(c, 1.0 - half + 1e-9);
+    }
+    EXPECT_GT(said_.pose.position.z, 0.0);
+  }
+
   PaperClient client_;
+  visualization_msgs::Marker said_;   // the last message marker shown
+  visualization_msgs::Marker front_;  // the paper's front sides as paper_model last drew them
   ros::Publisher feedback_pub_;
   ros::Subscriber status_sub_, guides_sub_, paper_markers_sub_, init_sub_;
   visualization_msgs::InteractiveMarkerInit init_;
@@ -226,6 +291,81 @@ TEST_F(Interaction, AnEdgeDivisionGuideShowsWhileDragging)
   EXPECT_GE(vertexAt(state, 0.5, 1), 0);
 }
 
+TEST_F(Interaction, ASnappedDirectionThatEndsInsideTheSheetCreasesAcrossIt)
+{
+  menu("Crease mode");
+  // Issue 23: from a corner towards 22.5°, released inside the sheet: the end snapped to the
+  // ray short of the edge, and the crease was refused.
+  const double a = M_PI / 8;
+  drag(p3(0.008, 0.006), p3(0.85 * std::cos(a) + 0.004, 0.85 * std::sin(a) - 0.004), 10);
+  const PaperState& state = client_.stateAt(base_ + 1);
+  const int corner = vertexAt(state, 0, 0);
+  int end = -1;
+  for (size_t v = 0; v < state.vertices_crease_pattern.size(); ++v)
+    if ((creasePattern(state, static_cast<int>(v)) - p3(1, std::tan(a))).norm() < 1e-9)
+      end = static_cast<int>(v);
+  ASSERT_GE(end, 0) << "no vertex where the 22.5° ray leaves the sheet";
+  EXPECT_GE(creaseBetween(state, corner, end), 0);
+  EXPECT_EQ(state.faces.size(), 2u);
+}
+
+TEST_F(Interaction, ARefusalSpeaksToTheUserOverTheSheet)
+{
+  menu("Crease mode");
+  said_ = {};
+  drag(p3(0.3, 0.3), p3(0.6, 0.4), 6);  // inside the face: no crease across it
+  expectUnchanged();
+  expectSaidOverTheSheet("Not creased: a crease runs across a face");
+  said_ = {};
+  drag(p3(1.06, 0.1), p3(1.08, 0.9), 6);  // on the margin past the right edge, missing the paper
+  expectUnchanged();
+  expectSaidOverTheSheet("Not creased: the line does not cross the paper");
+  menu("Rotate mode");
+  said_ = {};
+  drag(p3(0.95, 0.05), p3(0.6, 0.4), 6);  // no crease yet
+  expectUnchanged();
+  expectSaidOverTheSheet("This part has no crease to turn about yet");
+}
+
+TEST_F(Interaction, ARefusalIsForgottenOnTheNextSuccess)
+{
+  menu("Crease mode");
+  drag(p3(0.3, 0.3), p3(0.6, 0.4), 6);  // refused: not across a face
+  ASSERT_TRUE(waitFor([&] { return !status_.message.empty(); }, 5));
+  drag(p3(0.012, 0.018), p3(0.986, 0.991), 10);  // the diagonal, creased
+  client_.stateAt(base_ + 1);
+  const int seen = statuses_;
+  ASSERT_TRUE(waitFor([&] { return statuses_ > seen && status_.revision == base_ + 1; }, 10));
+  EXPECT_EQ(status_.message, "");
+  EXPECT_FALSE(shown_.count("message"));
+}
+
+TEST_F(Interaction, FaceOrdersSayWhichLayerLiesAbove)
+{
+  // msg/FaceOrder.msg: `above` +1 when `other` lies on the side `face`'s front normal points to.
+  ASSERT_TRUE(client_.crease(0.5, 0, 0.5, 1).response.success);
+  const Rotate valley = client_.rotate(-1, -1, 0.75, 0.5, M_PI);  // the right half up and over the left
+  ASSERT_TRUE(valley.response.success) << valley.response.message;
+  const PaperState& state = client_.stateAt(base_ + 2);
+  ASSERT_FALSE(state.face_orders.empty());
+  const auto moved = [&](int f) {
+    double x = 0;
+    for (int v : state.faces[f].vertices)
+      x += creasePattern(state, v).x() / static_cast<double>(state.faces[f].vertices.size());
+    return x > 0.5;
+  };
+  const auto normalZ = [&](int f) {
+    const auto& vs = state.faces[f].vertices;
+    return (folded(state, vs[1]) - folded(state, vs[0])).cross(folded(state, vs[2]) - folded(state, vs[0])).z();
+  };
+  for (const FaceOrder& o : state.face_orders)
+  {
+    ASSERT_NE(moved(o.face), moved(o.other));
+    const double other_higher = moved(o.other) ? 1.0 : -1.0;  // the turned half lies on top
+    EXPECT_EQ(o.above, normalZ(o.face) * other_higher > 0 ? 1 : -1) << o.face << " " << o.other;
+  }
+}
+
 TEST_F(Interaction, DraggingAHalfTurnsItAboutTheCrease)
 {
   creaseDiagonal();
@@ -247,6 +387,104 @@ TEST_F(Interaction, DraggingAHalfTurnsItAboutTheCrease)
   EXPECT_GT(folded(after, moving).z(), 0.6);
   EXPECT_TRUE(folded(after, staying).isApprox(folded(before, staying)));
   EXPECT_EQ(guidesShown(), 0u);
+}
+
+TEST_F(Interaction, EveryPressOnAHalfStartsATurn)
+{
+  creaseDiagonal();
+  menu("Rotate mode");
+  const PaperState before = client_.state();
+  // Issue 23: 7 of 10 such presses were refused ("no crease on the line through the click
+  // and its centre"). Each press is dragged half way to the crease: from above, 45°.
+  const std::vector<core::Vec3> presses = {
+    p3(0.95, 0.05), p3(0.5, 0.04), p3(0.96, 0.5),  p3(0.3, 0.1), p3(0.9, 0.7),
+    p3(0.6, 0.3),   p3(0.2, 0.04), p3(0.97, 0.88), p3(0.7, 0.1), p3(0.8, 0.45)
+  };
+  for (const core::Vec3& press : presses)
+  {
+    const core::Vec3 foot = p3(0.5 * (press.x() + press.y()), 0.5 * (press.x() + press.y()));
+    drag(press, press + 0.5 * (foot - press), 6);
+    const PaperState& turned = client_.stateAt(base_ + 1);
+    ASSERT_EQ(turned.revision, base_ + 1)
+        << "the press at (" << press.x() << ", " << press.y() << ") turned nothing: " << status_.message;
+    const int axis = creaseBetween(turned, vertexAt(turned, 0, 0), vertexAt(turned, 1, 1));
+    ASSERT_GE(axis, 0);
+    EXPECT_NEAR(turned.edges[axis].fold_angle, M_PI / 4, 1e-6) << press.transpose();
+    ASSERT_TRUE(client_.trigger("undo").response.success);
+    base_ += 2;
+    EXPECT_EQ(client_.stateAt(base_).vertices_folded, before.vertices_folded);
+    ASSERT_TRUE(waitFor([&] { return status_.revision == base_; }, 10));
+  }
+}
+
+TEST_F(Interaction, AClickOnACreaseNamesTheAxis)
+{
+  creaseDiagonal();
+  ASSERT_TRUE(client_.crease(0.5, 0, 0.5, 1).response.success);
+  ++base_;
+  ASSERT_TRUE(waitFor([&] { return status_.revision == base_; }, 10));
+  menu("Rotate mode");
+  const auto creaseThrough = [&](const PaperState& s, double x0, double y0, double x1, double y1) {
+    return creaseBetween(s, vertexAt(s, x0, y0), vertexAt(s, x1, y1));
+  };
+  // A click on the vertical crease names it: the drag from the lower right, whose automatic
+  // axis is the diagonal, turns the right half about the vertical crease instead.
+  drag(p3(0.505, 0.8), p3(0.505, 0.8), 1);
+  EXPECT_EQ(client_.state().revision, base_);
+  EXPECT_TRUE(shown_.count("named_axis"));
+  EXPECT_NE(status_.message.find("axis"), std::string::npos) << status_.message;
+  drag(p3(0.9, 0.2), p3(0.7, 0.2), 6);  // from 0.4 to 0.2 off the axis: 45°
+  const PaperState turned = client_.stateAt(base_ + 1);
+  EXPECT_NEAR(std::abs(turned.edges[creaseThrough(turned, 0.5, 0, 0.5, 0.5)].fold_angle), M_PI / 4, 1e-6);
+  EXPECT_NEAR(std::abs(turned.edges[creaseThrough(turned, 0.5, 0.5, 0.5, 1)].fold_angle), M_PI / 4, 1e-6);
+  EXPECT_NEAR(turned.edges[creaseThrough(turned, 0, 0, 0.5, 0.5)].fold_angle, 0.0, 1e-9);
+  EXPECT_NEAR(turned.edges[creaseThrough(turned, 0.5, 0.5, 1, 1)].fold_angle, 0.0, 1e-9);
+  ASSERT_TRUE(client_.trigger("undo").response.success);
+  base_ += 2;
+  client_.stateAt(base_);
+  ASSERT_TRUE(waitFor([&] { return status_.revision == base_; }, 10));
+  EXPECT_TRUE(shown_.count("named_axis"));  // named until released
+  // A click off the creases goes back to the automatic axis: the same drag turns the diagonal.
+  drag(p3(0.8, 0.4), p3(0.8, 0.4), 1);
+  EXPECT_FALSE(shown_.count("named_axis"));
+  drag(p3(0.9, 0.2), p3(0.7, 0.2), 6);
+  const PaperState& automatic = client_.stateAt(base_ + 1);
+  EXPECT_GT(std::abs(automatic.edges[creaseThrough(automatic, 0.5, 0.5, 1, 1)].fold_angle), 0.1);
+  EXPECT_NEAR(automatic.edges[creaseThrough(automatic, 0.5, 0, 0.5, 0.5)].fold_angle, 0.0, 1e-9);
+}
+
+TEST_F(Interaction, AClickOnAStackDrawsNothingNew)
+{
+  quarterFold();
+  ASSERT_TRUE(waitFor([&] { return frontHeights().size() == 4; }, 10)) << frontHeights().size() << " heights";
+  menu("Rotate mode");
+  const int drawn = paper_markers_;
+  const auto heights = frontHeights();
+  // Issue 23: a click in rotate mode redrew the four layers at two heights (a preview of no
+  // turn), the revision unchanged.
+  drag(p3(0.2, 0.3), p3(0.2, 0.3), 1);
+  expectUnchanged();
+  EXPECT_EQ(paper_markers_, drawn) << "the paper was drawn anew without a change";
+  EXPECT_EQ(frontHeights(), heights);
+}
+
+TEST_F(Interaction, APreviewIsDrawnAsItsCommitIs)
+{
+  quarterFold();
+  menu("Rotate mode");
+  visualization_msgs::Marker previewed;
+  const int drawn = paper_markers_;
+  // The flap over the crease y = .5 lifted by 45° and released there.
+  drag(p3(0.25, 0.1), p3(0.25, 0.3), 8, [&] {
+    EXPECT_TRUE(waitFor([&] { return paper_markers_ > drawn; }, 5));  // previews drawn
+    ros::WallDuration(0.3).sleep();                                   // the last pose's too
+    ros::spinOnce();
+    previewed = front_;
+  });
+  client_.stateAt(base_ + 1);
+  ASSERT_TRUE(waitFor([&] { return front_.header.stamp > previewed.header.stamp; }, 10));
+  EXPECT_EQ(front_.points, previewed.points);
+  EXPECT_GT(frontHeights().size(), 4u);  // the flap stands off the table
 }
 
 TEST_F(Interaction, MenuUndoRestoresThePreviousState)

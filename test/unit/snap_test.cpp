@@ -47,10 +47,10 @@ TEST(Snap, ToAngleDivisionsFromAStartVertex)
   EXPECT_EQ(diagonal.kind, SnapKind::AngleDivision);
   EXPECT_EQ(diagonal.vertex, 0);
   EXPECT_EQ(diagonal.divisions, 2);
-  EXPECT_NEAR(diagonal.point.x(), diagonal.point.y(), 1e-15);
-  EXPECT_NEAR(diagonal.point.norm(), p3(0.6, 0.62).dot(Vec3(1, 1, 0).normalized()), 1e-12);
+  EXPECT_TRUE(diagonal.point.isApprox(p3(1, 1), 1e-12));  // on to where the direction leaves the face
   ASSERT_EQ(diagonal.guide_lines.size(), 1u);
   EXPECT_TRUE(diagonal.guide_lines[0].a.isApprox(p3(0, 0)));
+  EXPECT_TRUE(diagonal.guide_lines[0].b.isApprox(p3(1, 1), 1e-12));
 
   const double a = M_PI / 8;  // 22.5°
   const Snap eighth = snapPoint(paper, p3(0.5 * std::cos(a) + 0.005, 0.5 * std::sin(a)), SnapSettings{}, 0);
@@ -58,9 +58,28 @@ TEST(Snap, ToAngleDivisionsFromAStartVertex)
   EXPECT_EQ(eighth.divisions, 4);
   EXPECT_EQ(eighth.index, 1);
   EXPECT_NEAR(std::atan2(eighth.point.y(), eighth.point.x()), a, 1e-12);
+  EXPECT_NEAR(eighth.point.x(), 1.0, 1e-12);  // at the right side
   EXPECT_EQ(eighth.guide_lines.size(), 3u);
   // Without a start vertex the angle rule is off.
   EXPECT_EQ(snapPoint(paper, p3(0.6, 0.62), SnapSettings{}).kind, SnapKind::None);
+}
+
+TEST(Snap, ASnappedDirectionEndingInsideTheSheetCreasesAcrossIt)
+{
+  // Issue 23: a drag from a corner that ended just inside the sheet snapped to the 22.5° ray,
+  // and the crease to its end was refused, short of the edge.
+  Paper paper = Paper::square(1.0);
+  const double a = M_PI / 8;
+  const Vec3 end = p3(0.9 * std::cos(a) + 0.004, 0.9 * std::sin(a) - 0.003);  // inside the sheet
+  const Snap snapped = snapPoint(paper, end, SnapSettings{}, 0);
+  ASSERT_EQ(snapped.kind, SnapKind::AngleDivision);
+  EXPECT_TRUE(snapped.point.isApprox(p3(1, std::tan(a)), 1e-12));
+  creaseLine(paper, paper.vertices[0].folded, snapped.point);
+  EXPECT_EQ(paper.faces.size(), 2u);
+  // Past the edge the cursor's own distance stays: the line may go on over other layers.
+  const Snap beyond = snapPoint(Paper::square(1.0), p3(1.3 * std::cos(a), 1.3 * std::sin(a) + 0.01), SnapSettings{}, 0);
+  ASSERT_EQ(beyond.kind, SnapKind::AngleDivision);
+  EXPECT_NEAR(beyond.point.norm(), 1.3, 0.01);
 }
 
 TEST(Snap, FarFromEverythingStaysPut)

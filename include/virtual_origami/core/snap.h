@@ -10,8 +10,8 @@ namespace virtual_origami::core
 {
 struct SnapSettings
 {
-  double radius = 0.03;                    // in the paper's length unit
-  std::vector<int> edge_divisions{ 2, 4 };  // n for the edge division points
+  double radius = 0.03;                      // in the paper's length unit
+  std::vector<int> edge_divisions{ 2, 4 };   // n for the edge division points
   std::vector<int> angle_divisions{ 2, 4 };  // n for the angle division directions
 };
 
@@ -34,17 +34,19 @@ struct Snap
 {
   Vec3 point = Vec3::Zero();
   SnapKind kind = SnapKind::None;
-  int vertex = -1;     // Vertex: the vertex; AngleDivision: the start vertex
-  int edge = -1;       // EdgeDivision: the edge
-  int face = -1;       // AngleDivision: the face whose angle is divided
-  int divisions = 0;   // n of the division snapped to
-  int index = 0;       // k of k/n
-  std::vector<Vec3> guide_points;      // EdgeDivision: all division points of the edge
-  std::vector<Segment3> guide_lines;   // AngleDivision: the division directions
+  int vertex = -1;                    // Vertex: the vertex; AngleDivision: the start vertex
+  int edge = -1;                      // EdgeDivision: the edge
+  int face = -1;                      // AngleDivision: the face whose angle is divided
+  int divisions = 0;                  // n of the division snapped to
+  int index = 0;                      // k of k/n
+  std::vector<Vec3> guide_points;     // EdgeDivision: all division points of the edge
+  std::vector<Segment3> guide_lines;  // AngleDivision: the division directions, across the face
 };
 
 /// Snaps a cursor point (in the `paper` frame, on the folded surface). `start_vertex`, when
-/// not -1, is the vertex the line starts at and enables the angle rule.
+/// not -1, is the vertex the line starts at and enables the angle rule; a direction snapped
+/// to goes on to where it leaves the face (or to the cursor, when that lies farther), so a
+/// line that ends inside the face still creases it all the way across.
 Snap snapPoint(const Paper& paper, const Vec3& cursor, const SnapSettings& settings, int start_vertex = -1);
 
 }  // namespace virtual_origami::core

@@ -49,9 +49,20 @@ visualization_msgs::MarkerArray creaseDragMarkers(const core::CreaseDrag& drag, 
 visualization_msgs::MarkerArray rotationDragMarkers(const core::RotationRing& ring, double angle,
                                                     const InteractionStyle& style, const ros::Time& stamp);
 
-/// A short text for the user at `at` (why a drag was refused, what the menu did).
+/// The crease named as the axis by hand, highlighted until it is released (namespace `named_axis`).
+visualization_msgs::MarkerArray namedAxisMarkers(const core::Vec3& a, const core::Vec3& b,
+                                                 const InteractionStyle& style, const ros::Time& stamp);
+
+/// A short text for the user at `at` (why a drag was refused, what the menu did), one or more
+/// lines.
 visualization_msgs::MarkerArray messageMarker(const std::string& text, const core::Vec3& at,
                                               const InteractionStyle& style, const ros::Time& stamp);
+
+/// Where a text said about `at` stays over the paper, which the view shows: `at` moved inside
+/// the paper's extent far enough for the text's lines to fit (centred there when they do not),
+/// over its highest point.
+core::Vec3 messageAnchor(const core::Paper& paper, const core::Vec3& at, const std::string& text,
+                         const InteractionStyle& style);
 
 /// Removes every marker of the interaction (a DELETEALL).
 visualization_msgs::MarkerArray clearedMarkers(const InteractionStyle& style, const ros::Time& stamp);

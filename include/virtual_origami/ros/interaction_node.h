@@ -5,6 +5,7 @@
 // paper: rotate previews with commit false while dragging, one committed call on release.
 #pragma once
 
+#include <array>
 #include <deque>
 #include <memory>
 #include <mutex>
@@ -66,6 +67,16 @@ private:
   void move(const Feedback& feedback);
   void release();
   void updateDrag();
+  /// A press and release without a drag in rotate mode: on a crease it names the axis, off
+  /// every crease it goes back to the automatic axis.
+  std::string click();  // what to tell the user
+  /// The face the rotate requests name: the pressed one, or about a crease named elsewhere
+  /// the face of the turning flap next to it.
+  int turningFace() const;
+  /// The named axis, found again after a change (its end vertices keep their ids); -1 if gone.
+  int namedAxis() const;
+  /// The drag's markers (or none) with the named axis highlighted.
+  void showMarkers(visualization_msgs::MarkerArray array);
   void menu(Action action, const Feedback& feedback);
   void setMode(Mode mode);
   void showPaper();
@@ -105,8 +116,12 @@ private:
   bool moved_ = false;
   core::Vec3 press_ = core::Vec3::Zero(), pointer_ = core::Vec3::Zero();
   core::Vec3 pose_at_press_ = core::Vec3::Zero();
+  double reach_ = 0.0;  // how far the pointer went from the press: a click goes nowhere
   ros::Time pointer_stamp_;
   std::optional<core::RotationRing> ring_;
+  std::string ring_refusal_;  // why the press turns nothing, said on release unless it names an axis
+  int crease_at_press_ = -1;
+  std::array<int, 2> named_axis_{ -1, -1 };  // the end vertices of the crease named by hand
   double angle_ = 0.0, previewed_angle_ = 0.0;
   bool previewed_ = false;
 

@@ -1,0 +1,69 @@
+#include "virtual_origami/ros/interaction_text.h"
+
+#include <cctype>
+#include <regex>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+namespace virtual_origami
+{
+std::string forTheUser(const std::string& message)
+{
+  // Phrases of paper_model's and the drag geometry's messages, and what they mean to someone
+  // folding with the mouse.
+  static const std::vector<std::pair<std::string, std::string>> known = {
+    { "does not cross any face completely", "Not creased: a crease runs across a face from side to side. Draw the line "
+                                            "over the whole face." },
+    { "runs along an existing edge", "Not creased: there is a crease or an edge there already." },
+    { "misses the paper", "Not creased: the line does not cross the paper." },
+    { "perpendicular to the face", "Not creased: seen from here the line runs into the paper. Turn the view." },
+    { "has no crease to turn about", "This part has no crease to turn about yet: draw one first (Crease mode, "
+                                     "right-click menu)." },
+    { "no face under the", "Press on the paper to turn a part of it." },
+    { "press is on the axis", "Press farther from the crease: the part turns about it." },
+    { "lies on neither side of edge", "This part does not turn about the chosen crease. Press next to it, or click off "
+                                      "the creases "
+                                      "for the automatic axis." },
+    { "not a crease to turn about", "That edge is not a crease to turn about." },
+    { "past 180 degrees", "Not turned further: the part would pass through the paper beside it." },
+    { "could not restore the face shapes", "Not turned: the rest of the paper cannot follow this turn." },
+    { "a solver is needed", "Not turned: the rest of the paper cannot follow this turn." },
+    { "did not answer", "The paper model does not answer: is paper_model running?" },
+    { "changed while this was computed", "The paper changed meanwhile: please try again." },
+    { "kept changing while this was computed", "The paper changed meanwhile: please try again." },
+  };
+  for (const auto& [phrase, sentence] : known)
+    if (message.find(phrase) != std::string::npos)
+      return sentence;
+  // Otherwise as it is, without references to the papers ("(seed 000 §3.3)", "Fig. 9").
+  std::string text = std::regex_replace(message, std::regex(R"( *\([^()]*\b(seed|Fig\.)[^()]*\))"), "");
+  if (!text.empty())
+    text[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(text[0])));
+  return text;
+}
+
+std::string wrapLines(const std::string& text, size_t width)
+{
+  std::istringstream words(text);
+  std::string word, out;
+  size_t line = 0;
+  while (words >> word)
+  {
+    if (line > 0 && line + 1 + word.size() > width)
+    {
+      out += '\n';
+      line = 0;
+    }
+    else if (line > 0)
+    {
+      out += ' ';
+      ++line;
+    }
+    out += word;
+    line += word.size();
+  }
+  return out;
+}
+
+}  // namespace virtual_origami
