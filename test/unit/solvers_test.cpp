@@ -9,6 +9,7 @@
 #include "virtual_origami/core/metrics.h"
 #include "virtual_origami/core/reference_patterns.h"
 #include "virtual_origami/core/rotate.h"
+#include "virtual_origami/core/session.h"
 #include "virtual_origami/solvers/solver_factory.h"
 
 using namespace virtual_origami::core;
@@ -284,5 +285,42 @@ TEST(Solvers, AConcaveFaceOfAFileStaysOneRigidFace)
     EXPECT_TRUE(report.converged) << name << ": " << report.message;
     for (size_t v = 0; v < solved.vertices.size(); ++v)
       EXPECT_NEAR((solved.vertices[v].folded - flat.vertices[v].folded).norm(), 0.0, 1e-6) << name << " vertex " << v;
+  }
+}
+
+TEST(Solvers, SliverFacesDoNotStallNewton)
+{
+  // A degree-4 vertex, then forty creases across one corner close together (sliver faces with
+  // edges of a thousandth of the sheet), a turn about the half crease after each. The fitted
+  // face rotations once lost eight digits on slivers, and Newton stalled at a strain of 1e-8:
+  // 23 of these 40 turns were refused.
+  Session session;
+  session.setSolver(std::shared_ptr<ShapeSolver>(makeSolver("newton")));
+  const auto crease = [&](double x0, double y0, double x1, double y1) {
+    CreaseRequest r;
+    r.start = p3(x0, y0);
+    r.end = p3(x1, y1);
+    return session.crease(r).ok();
+  };
+  ASSERT_TRUE(crease(0.5, -0.1, 0.5, 1.1));
+  ASSERT_TRUE(crease(0.5, 0.5, 1.0, 0.8));
+  ASSERT_TRUE(crease(0.5, 0.5, 0.0, 0.9));
+  int face = -1, axis = -1;
+  const double golden = 0.6180339887498949;
+  for (int i = 0; i < 40; ++i)
+  {
+    const double c = 0.62 + 0.3 * std::fmod((2 * i + 1) * golden, 1.0);
+    ASSERT_TRUE(crease(c - 0.1, -0.1, 1.1, 1.1 - c)) << "crease " << i;
+    RotateRequest turn;
+    turn.face = face;
+    turn.axis_edge = axis;
+    turn.click = p3(0.75, 0.97);
+    turn.angle = i % 2 ? -0.3 : 0.3;
+    const Expected<RotateResult> turned = session.rotate(turn, true);
+    ASSERT_TRUE(turned) << "turn " << i << ": " << turned.message();
+    face = turned->face;
+    axis = turned->axis_edge;
+    EXPECT_TRUE(turned->used_solver) << "turn " << i;
+    EXPECT_LE(turned->solve.max_strain, 1e-10) << "turn " << i;
   }
 }
