@@ -77,7 +77,8 @@ run_contention() {
 }
 # A slow solver (the seed's scheme, the launch's default), then the default solver.
 step contention_bench run_contention contention
-step contention_bench_newton run_contention contention_newton solver:=newton tolerance:=1e-10 max_iterations:=1000
+step contention_bench_newton run_contention contention_newton solver:=newton tolerance:=1e-10 max_iterations:=1000 \
+  rotations:=100 rotations_alone:=50
 step plot_charts /usr/bin/python3 bench/plot_charts.py "$out" docs/images/bench "$doc"
 children_cpu
 echo "total,$(minus "$(date +%s.%N)" "$run_start"),$(minus "$cpu_now" "$run_cpu")" >>"$pending"

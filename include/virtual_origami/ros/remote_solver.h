@@ -26,6 +26,7 @@ private:
   std::string service_;
   double timeout_;
   static constexpr int kMaxStalledCalls = 4;
+  static constexpr int kCallAttempts = 3;
   std::shared_ptr<std::atomic<int>> stalled_ = std::make_shared<std::atomic<int>>(0);  // calls given up on, still open
 };
 
