@@ -74,7 +74,8 @@ struct Computed
 };
 
 /// What computing an operation needs, copied out of a session (so that the computation may
-/// run while the session serves others).
+/// run while the session serves others). The solver is shared, not copied: computations that
+/// run at once need one that takes concurrent calls (paper_model's RemoteSolver does).
 struct Workspace
 {
   Paper paper;
