@@ -118,9 +118,19 @@ visualization_msgs::InteractiveMarker paperInteractiveMarker(const core::Paper& 
   visualization_msgs::InteractiveMarkerControl control;
   control.name = "drag";
   control.interaction_mode = visualization_msgs::InteractiveMarkerControl::MOVE_PLANE;
-  // The control's x axis is the plane's normal: turned onto z, the mouse drags in the sheet's plane.
-  control.orientation.w = std::sqrt(0.5);
-  control.orientation.y = -std::sqrt(0.5);
+  if (style.view_facing_drag)
+  {
+    // The plane's normal (the control's x axis) towards the camera; the sheet's mesh stays put.
+    control.orientation_mode = visualization_msgs::InteractiveMarkerControl::VIEW_FACING;
+    control.independent_marker_orientation = true;
+    control.orientation.w = 1.0;
+  }
+  else
+  {
+    // The control's x axis is the plane's normal: turned onto z, the mouse drags in the sheet's plane.
+    control.orientation.w = std::sqrt(0.5);
+    control.orientation.y = -std::sqrt(0.5);
+  }
   control.always_visible = true;
   control.markers.push_back(mesh);
   im.controls.push_back(control);

@@ -29,11 +29,14 @@ struct InteractionStyle
   /// The pickable copy floats this far above the sheet (+z): rviz picks the nearest surface,
   /// and the sheet's own markers (layers drawn apart) must not hide it from the mouse.
   double pick_lift = 0.005;
+  /// The drag plane through the grab point faces the view (the pointer stays on the mouse's
+  /// sight line from any view); otherwise it lies along the sheet (z of `frame_id`).
+  bool view_facing_drag = false;
 };
 
 /// The sheet as rviz's Interact tool sees it: its folded faces and a margin around them as a
-/// TRIANGLE_LIST in one MOVE_PLANE control (drag plane normal along z of `frame_id`), lifted
-/// by `pick_lift`: subtract it from the mouse points rviz reports.
+/// TRIANGLE_LIST in one MOVE_PLANE control (drag plane facing the view, or along z of
+/// `frame_id`), lifted by `pick_lift`: subtract it from the mouse points rviz reports.
 visualization_msgs::InteractiveMarker paperInteractiveMarker(const core::Paper& paper, const std::string& description,
                                                              const InteractionStyle& style);
 
