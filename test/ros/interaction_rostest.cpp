@@ -266,6 +266,40 @@ TEST_F(Interaction, TheSheetIsADragPlaneWithAMenu)
   }
 }
 
+TEST_F(Interaction, EveryFaceIsPickableFromBothSides)
+{
+  creaseDiagonal();
+  const Rotate standing = client_.rotate(-1, -1, 0.8, 0.3, M_PI / 2);
+  ASSERT_TRUE(standing.response.success) << standing.response.message;
+  const PaperState& state = client_.stateAt(base_ + 1);
+  const int corner = vertexAt(state, 1, 0);  // up in the air now
+  const core::Vec3 top = folded(state, corner);
+  ASSERT_GT(top.z(), 0.6);
+  const core::Vec3 n = core::Vec3(1, -1, 0).normalized();  // the standing half's normal, up to sign
+  // The sheet's pickable copy holds the standing corner off both sides of its face, as far
+  // each way (issue 23: a copy lifted along z lay in the standing face, and rviz picked the
+  // drawing: 0 of 25 points on it).
+  std::vector<double> offsets;
+  ASSERT_TRUE(waitFor(
+      [&] {
+        offsets.clear();
+        if (!loadMenu())
+          return false;
+        for (const auto& p : marker_.controls[0].markers[0].points)
+        {
+          const core::Vec3 off = toVec3(p) - top;
+          if ((off - off.dot(n) * n).norm() < 1e-9)
+            offsets.push_back(off.dot(n));
+        }
+        return offsets.size() >= 2;
+      },
+      10));
+  const auto [lo, hi] = std::minmax_element(offsets.begin(), offsets.end());
+  EXPECT_LT(*lo, -1e-3);
+  EXPECT_GT(*hi, 1e-3);
+  EXPECT_NEAR(*lo, -*hi, 1e-9);
+}
+
 TEST_F(Interaction, DraggingAlongTheDiagonalCreasesCornerToCorner)
 {
   menu("Crease mode");
