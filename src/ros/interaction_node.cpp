@@ -10,6 +10,7 @@
 #include <virtual_origami/Rotate.h>
 
 #include "virtual_origami/core/axis.h"
+#include "virtual_origami/core/geometry.h"
 #include "virtual_origami/core/layers.h"
 #include "virtual_origami/ros/conversions.h"
 #include "virtual_origami/ros/interaction_text.h"
@@ -40,6 +41,7 @@ InteractionNode::InteractionNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   : nh_(nh)
   // Its own thread takes the feedback as it comes, so a busy service call never makes rviz's
   // events wait in a queue that could drop a release.
+  , tf_listener_(tf_buffer_)
   , server_(private_nh.param<std::string>("server_ns", "interaction"), "", true)
 {
   style_.frame_id = private_nh.param<std::string>("paper_frame", style_.frame_id);
@@ -54,6 +56,9 @@ InteractionNode::InteractionNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   if (private_nh.getParam("view_direction", view) && view.size() == 3)
     view_direction_ = core::Vec3(view[0], view[1], view[2]);
   mode_ = private_nh.param<std::string>("mode", "crease") == "rotate" ? Mode::Rotate : Mode::Crease;
+  camera_frame_ = private_nh.param("camera_frame", camera_frame_);
+  camera_timeout_ = private_nh.param("camera_timeout", camera_timeout_);
+  view_turn_ = private_nh.param("view_turn", view_turn_);
 
   crease_ = nh_.serviceClient<Crease>("crease");
   rotate_ = nh_.serviceClient<Rotate>("rotate");
@@ -77,6 +82,7 @@ InteractionNode::InteractionNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
 
   markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("interaction_markers", 10);
   status_pub_ = nh_.advertise<InteractionStatus>("interaction_status", 10);
+  view_turn_pub_ = nh_.advertise<geometry_msgs::PoseStamped>("view_turn", 1);
   state_sub_ = nh_.subscribe("state", 1, &InteractionNode::stateReceived, this);
   timer_ = nh_.createTimer(ros::Duration(1.0 / private_nh.param("rate", 30.0)), &InteractionNode::handleEvents, this);
   status_timer_ = nh_.createTimer(ros::Duration(1.0), &InteractionNode::publishStatus, this);
@@ -155,6 +161,10 @@ void InteractionNode::showPaper()
     return;
   const std::string description = mode_ == Mode::Crease ? "crease: drag a line" : "rotate: drag a face";
   style_.pick_lift = pick_lift_;
+  // With the camera known the drag plane faces the view: the pointer is on the mouse's sight
+  // line wherever it goes (a plane along the sheet is missed by sight lines above its horizon).
+  camera_known_ = camera(ros::Time::now()).has_value();
+  style_.view_facing_drag = camera_known_;
   server_.insert(paperInteractiveMarker(*paper_, description, style_),
                  [this](const Feedback::ConstPtr& f) { received(f, Action::None); });
   menu_.setCheckState(crease_entry_, mode_ == Mode::Crease ? MenuHandler::CHECKED : MenuHandler::UNCHECKED);
@@ -169,6 +179,86 @@ core::Vec3 InteractionNode::onSheet(const geometry_msgs::Point& mouse_point) con
   return toVec3(mouse_point) - core::Vec3(0, 0, style_.pick_lift);
 }
 
+std::optional<ViewCamera> InteractionNode::camera(const ros::Time& stamp) const
+{
+  geometry_msgs::TransformStamped t;
+  try
+  {
+    // rviz stamps feedback of a frame-following marker with 0: then the latest camera.
+    t = tf_buffer_.lookupTransform(style_.frame_id, camera_frame_, stamp);
+  }
+  catch (const tf2::TransformException&)
+  {
+    try
+    {
+      t = tf_buffer_.lookupTransform(style_.frame_id, camera_frame_, ros::Time(0));
+    }
+    catch (const tf2::TransformException&)
+    {
+      return std::nullopt;
+    }
+  }
+  if ((ros::Time::now() - t.header.stamp).toSec() > camera_timeout_)
+    return std::nullopt;  // rviz is gone (tf keeps a frame's last pose for ever)
+  ViewCamera c;
+  c.eye = core::Vec3(t.transform.translation.x, t.transform.translation.y, t.transform.translation.z);
+  c.axes =
+      Eigen::Quaterniond(t.transform.rotation.w, t.transform.rotation.x, t.transform.rotation.y, t.transform.rotation.z)
+          .normalized()
+          .toRotationMatrix();
+  return c;
+}
+
+core::Vec3 InteractionNode::sight(const std::optional<ViewCamera>& camera, const core::Vec3& point) const
+{
+  if (camera)
+  {
+    const core::Vec3 ray = camera->rayTo(point);
+    if (ray.allFinite())
+      return ray;
+  }
+  return view_direction_.normalized();
+}
+
+core::Vec3 InteractionNode::creaseEnd() const
+{
+  const std::optional<ViewCamera> now = camera(pointer_stamp_);
+  if (!now || press_face_ < 0)
+    return pointer_;
+  return alongSightOnto(*now, pointer_, press_, paper_->faceNormal(press_face_)).value_or(pointer_);
+}
+
+void InteractionNode::turnView()
+{
+  if (!view_turn_ || !press_camera_ || !ring_ || !ring_->edge_on)
+    return;
+  const std::optional<ViewCamera> turned =
+      turnedView(*press_camera_, press_, paper_->faceCentroid(ring_->face), ring_->axis_b - ring_->axis_a);
+  if (!turned)
+    return;
+  geometry_msgs::PoseStamped goal;
+  goal.header.frame_id = style_.frame_id;
+  goal.header.stamp = ros::Time::now();
+  goal.pose.position = toPoint(turned->eye);
+  const Eigen::Quaterniond q(turned->axes);
+  goal.pose.orientation.w = q.w();
+  goal.pose.orientation.x = q.x();
+  goal.pose.orientation.y = q.y();
+  goal.pose.orientation.z = q.z();
+  view_turn_pub_.publish(goal);
+  view_turned_ = true;
+}
+
+void InteractionNode::turnViewBack()
+{
+  if (!view_turned_)
+    return;
+  geometry_msgs::PoseStamped back;  // no frame: the view before the turn
+  back.header.stamp = ros::Time::now();
+  view_turn_pub_.publish(back);
+  view_turned_ = false;
+}
+
 void InteractionNode::press(const Feedback& feedback)
 {
   dragging_ = false;
@@ -179,7 +269,18 @@ void InteractionNode::press(const Feedback& feedback)
                   style_.frame_id.c_str());
   dragging_ = true;
   moved_ = false;
-  press_ = pointer_ = core::onSurface(*paper_, onSheet(feedback.mouse_point), view_direction_);
+  press_camera_ = camera(feedback.header.stamp);
+  if (press_camera_)
+  {
+    // rviz's point lies on the pickable copy, a little towards the eye: along the sight line
+    // onto the face the eye sees there.
+    grab_ = toVec3(feedback.mouse_point);
+    press_ = core::onSurface(*paper_, grab_, sight(press_camera_, grab_));
+  }
+  else
+    grab_ = press_ = core::onSurface(*paper_, onSheet(feedback.mouse_point), view_direction_);
+  pointer_ = grab_;
+  press_face_ = core::faceAt(*paper_, press_, 1e-6 * paper_->scale());
   pose_at_press_ = toVec3(feedback.pose.position);
   pointer_stamp_ = feedback.header.stamp;
   angle_ = previewed_angle_ = 0.0;
@@ -191,13 +292,15 @@ void InteractionNode::press(const Feedback& feedback)
   if (mode_ == Mode::Rotate)
   {
     crease_at_press_ = core::creaseNear(*paper_, press_, snap_.radius);
-    core::Expected<core::RotationRing> ring = core::rotationRing(*paper_, press_, view_direction_, -1, namedAxis());
+    core::Expected<core::RotationRing> ring =
+        core::rotationRing(*paper_, press_, sight(press_camera_, press_), -1, namedAxis());
     if (!ring)
     {
       ring_refusal_ = ring.message();
       return;  // the drag goes on in rviz, but turns nothing; said on release
     }
     ring_ = *ring;
+    turnView();
   }
   updateDrag();
 }
@@ -206,10 +309,12 @@ void InteractionNode::move(const Feedback& feedback)
 {
   if (!dragging_)
     return;
-  // The drag plane carries the marker along: the pointer is the press moved as far as it.
-  pointer_ = press_ + (toVec3(feedback.pose.position) - pose_at_press_);
+  // The drag plane carries the marker along: the pointer is the grab point moved as far as it,
+  // on the line of sight through the mouse.
+  const core::Vec3 moved = toVec3(feedback.pose.position) - pose_at_press_;
+  pointer_ = grab_ + moved;
   pointer_stamp_ = feedback.header.stamp;
-  reach_ = std::max(reach_, (pointer_ - press_).norm());
+  reach_ = std::max(reach_, moved.norm());
   moved_ = true;
 }
 
@@ -218,10 +323,18 @@ void InteractionNode::updateDrag()
   const ros::WallTime start = ros::WallTime::now();
   moved_ = false;
   if (mode_ == Mode::Crease)
-    showMarkers(creaseDragMarkers(core::creaseDrag(*paper_, press_, pointer_, snap_), style_, ros::Time::now()));
+    showMarkers(creaseDragMarkers(core::creaseDrag(*paper_, press_, creaseEnd(), snap_), style_, ros::Time::now()));
   else if (ring_)
   {
-    angle_ = core::ringAngle(*ring_, pointer_, view_direction_, angle_);
+    const std::optional<ViewCamera> now = camera(pointer_stamp_);
+    if (now)
+    {
+      // The view may have turned since the press (turnView): seen from the side now, the face
+      // follows the pointer's sight line onto the ring's plane.
+      const core::Vec3 d = (ring_->axis_b - ring_->axis_a).normalized();
+      ring_->edge_on = std::abs(now->rayTo(ring_->press).dot(d)) < 0.5;
+    }
+    angle_ = core::ringAngle(*ring_, pointer_, sight(now, pointer_), angle_);
     // No preview of no turn: paper_model draws it from a rotated copy, which does not keep
     // the order of the layers the turn would part (a click redrew a 4-layer stack at 2
     // heights). Back at no turn after a preview, the preview of 0 puts the paper back.
@@ -261,6 +374,7 @@ void InteractionNode::release()
   if (moved_)
     updateDrag();
   dragging_ = false;
+  turnViewBack();
   showMarkers(clearedMarkers(style_, ros::Time::now()));
   std::string message;
   const bool clicked = reach_ < min_crease_length_ * paper_->scale();
@@ -270,12 +384,18 @@ void InteractionNode::release()
     message = ring_refusal_;
   else if (mode_ == Mode::Crease)
   {
-    const core::CreaseDrag drag = core::creaseDrag(*paper_, press_, pointer_, snap_);
+    const core::CreaseDrag drag = core::creaseDrag(*paper_, press_, creaseEnd(), snap_);
     if (drag.length() >= min_crease_length_ * paper_->scale())
     {
       Crease srv;
       srv.request.start = toPoint(drag.start.point);
       srv.request.end = toPoint(drag.end.point);
+      if (press_camera_)
+      {
+        // Through stacked layers of a 3D form, the layers under the line as the eye sees them.
+        srv.request.has_eye = true;
+        srv.request.eye = toPoint(press_camera_->eye);
+      }
       srv.request.snap = false;  // snapped here already: what was drawn is what is creased
       if (call(crease_, srv, message) && !srv.response.success)
         message = srv.response.message;  // a refusal says why; a crease shows itself
@@ -443,6 +563,7 @@ void InteractionNode::setMode(Mode mode)
 {
   mode_ = mode;
   dragging_ = false;
+  turnViewBack();
   showPaper();
   showMarkers(clearedMarkers(style_, ros::Time::now()));
 }
@@ -458,6 +579,8 @@ void InteractionNode::tell(const std::string& text, const core::Vec3& at)
 
 void InteractionNode::publishStatus(const ros::TimerEvent&)
 {
+  if (!dragging_ && paper_ && camera(ros::Time::now()).has_value() != camera_known_)
+    showPaper();  // rviz's camera came or went: the drag plane changes with it
   InteractionStatus status;
   status.header.stamp = ros::Time::now();
   status.mode = mode_ == Mode::Crease ? "crease" : "rotate";

@@ -8,6 +8,13 @@ namespace
 {
 using visualization_msgs::InteractiveMarkerFeedback;
 
+/// Where rviz reports a point of the sheet: on the pickable copy, `lift` over it, on the sight
+/// line through it when the eye is known.
+core::Vec3 lifted(const MouseGesture& g, const core::Vec3& p)
+{
+  return p + (g.eye ? Eigen::Vector3d(g.lift * (*g.eye - p).normalized()) : core::Vec3(0, 0, g.lift));
+}
+
 InteractiveMarkerFeedback event(const MouseGesture& g, uint8_t type, const core::Vec3& pointer, bool with_point,
                                 const ros::Time& stamp)
 {
@@ -18,9 +25,10 @@ InteractiveMarkerFeedback event(const MouseGesture& g, uint8_t type, const core:
   f.marker_name = g.marker_name;
   f.control_name = "drag";
   f.event_type = type;
-  f.pose.position = toPoint(pointer - g.press);  // the marker sits at the origin until dragged
+  // The marker sits at the origin until dragged; it moves with the point under the mouse.
+  f.pose.position = toPoint(lifted(g, pointer) - lifted(g, g.press));
   f.pose.orientation.w = 1.0;
-  f.mouse_point = toPoint(pointer + core::Vec3(0, 0, g.lift));
+  f.mouse_point = toPoint(lifted(g, pointer));
   f.mouse_point_valid = with_point;
   return f;
 }

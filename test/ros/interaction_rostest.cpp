@@ -13,7 +13,13 @@
 #include <visualization_msgs/InteractiveMarkerControl.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include <geometry_msgs/PoseStamped.h>
+#include <tf2_ros/transform_broadcaster.h>
+#include <virtual_origami/Operation.h>
+
 #include "ros_test_client.h"
+#include "virtual_origami/ros/conversions.h"
+#include "virtual_origami/ros/interaction_view.h"
 #include "virtual_origami/ros/mouse_feedback.h"
 
 using namespace virtual_origami;
@@ -258,6 +264,40 @@ TEST_F(Interaction, TheSheetIsADragPlaneWithAMenu)
       found |= entry.first.find(title) != std::string::npos;
     EXPECT_TRUE(found) << title;
   }
+}
+
+TEST_F(Interaction, EveryFaceIsPickableFromBothSides)
+{
+  creaseDiagonal();
+  const Rotate standing = client_.rotate(-1, -1, 0.8, 0.3, M_PI / 2);
+  ASSERT_TRUE(standing.response.success) << standing.response.message;
+  const PaperState& state = client_.stateAt(base_ + 1);
+  const int corner = vertexAt(state, 1, 0);  // up in the air now
+  const core::Vec3 top = folded(state, corner);
+  ASSERT_GT(top.z(), 0.6);
+  const core::Vec3 n = core::Vec3(1, -1, 0).normalized();  // the standing half's normal, up to sign
+  // The sheet's pickable copy holds the standing corner off both sides of its face, as far
+  // each way (issue 23: a copy lifted along z lay in the standing face, and rviz picked the
+  // drawing: 0 of 25 points on it).
+  std::vector<double> offsets;
+  ASSERT_TRUE(waitFor(
+      [&] {
+        offsets.clear();
+        if (!loadMenu())
+          return false;
+        for (const auto& p : marker_.controls[0].markers[0].points)
+        {
+          const core::Vec3 off = toVec3(p) - top;
+          if ((off - off.dot(n) * n).norm() < 1e-9)
+            offsets.push_back(off.dot(n));
+        }
+        return offsets.size() >= 2;
+      },
+      10));
+  const auto [lo, hi] = std::minmax_element(offsets.begin(), offsets.end());
+  EXPECT_LT(*lo, -1e-3);
+  EXPECT_GT(*hi, 1e-3);
+  EXPECT_NEAR(*lo, -*hi, 1e-9);
 }
 
 TEST_F(Interaction, DraggingAlongTheDiagonalCreasesCornerToCorner)
@@ -556,6 +596,178 @@ TEST_F(Interaction, AFloodOfPosesIsCoalescedAndTheLatestApplied)
   const PaperState& after = client_.stateAt(base_ + 1);
   const int axis = creaseBetween(after, vertexAt(after, 0, 0), vertexAt(after, 1, 1));
   EXPECT_NEAR(after.edges[axis].fold_angle, M_PI / 2, 1e-6);
+}
+
+namespace
+{
+/// rviz's default view (rviz/origami.rviz): an orbit about (0.5, 0.45, 0.1), 1.7 m away, yaw
+/// 4.2, pitch 0.75, as the ViewCamera display broadcasts it (x right, y down, z along the sight).
+ViewCamera defaultView()
+{
+  const double yaw = 4.2, pitch = 0.75, distance = 1.7;
+  const core::Vec3 focal(0.5, 0.45, 0.1);
+  ViewCamera c;
+  c.eye =
+      focal + distance * core::Vec3(std::cos(yaw) * std::cos(pitch), std::sin(yaw) * std::cos(pitch), std::sin(pitch));
+  const core::Vec3 forward = (focal - c.eye).normalized();
+  const core::Vec3 right = forward.cross(core::Vec3::UnitZ()).normalized();
+  c.axes.col(0) = right;
+  c.axes.col(1) = forward.cross(right);
+  c.axes.col(2) = forward;
+  return c;
+}
+
+/// Where the sight line through `point` meets the table (z = 0).
+core::Vec3 onTable(const ViewCamera& c, const core::Vec3& point)
+{
+  const core::Vec3 ray = point - c.eye;
+  return c.eye + (-c.eye.z() / ray.z()) * ray;
+}
+}  // namespace
+
+TEST(ViewTurn, KeepsThePressInItsPlaceLevelAndSeesTheAxisFromTheSide)
+{
+  const ViewCamera view = defaultView();
+  const core::Vec3 press(0.8, 0.8, 0), centre(2.0 / 3, 2.0 / 3, 0);
+  const core::Vec3 across = core::Vec3(-1, 1, 0).normalized();  // the anti-diagonal: seen edge-on from here
+  ASSERT_LT(std::abs(view.rayTo(press).dot(across)), 0.5);
+  const std::optional<ViewCamera> turned = turnedView(view, press, centre, across);
+  ASSERT_TRUE(turned.has_value());
+  EXPECT_GE(std::abs(turned->rayTo(press).dot(across)), 0.6);
+  EXPECT_NEAR(turned->axes.col(0).z(), 0.0, 1e-12);  // level: an orbit view has no roll
+  EXPECT_TRUE((turned->axes.transpose() * turned->axes).isIdentity(1e-12));
+  EXPECT_NEAR(turned->axes.determinant(), 1.0, 1e-12);
+  const core::Vec3 before = view.axes.transpose() * (press - view.eye);
+  const core::Vec3 after = turned->axes.transpose() * (press - turned->eye);
+  EXPECT_TRUE(after.isApprox(before, 1e-12)) << after.transpose() << " / " << before.transpose();
+  EXPECT_GT(turned->eye.z(), 0.0);
+  // Seen from the side already: no turn.
+  EXPECT_FALSE(turnedView(view, press, centre, core::Vec3(1, 1, 0).normalized()).has_value());
+}
+
+TEST(ViewTurn, SightLinesOntoAPlane)
+{
+  const ViewCamera view = defaultView();
+  const std::optional<core::Vec3> hit =
+      alongSightOnto(view, core::Vec3(0.3, 0.2, 0.5), core::Vec3(0, 0, 0), core::Vec3::UnitZ());
+  ASSERT_TRUE(hit.has_value());
+  EXPECT_NEAR(hit->z(), 0.0, 1e-12);
+  EXPECT_NEAR((*hit - view.eye).normalized().dot(view.rayTo(core::Vec3(0.3, 0.2, 0.5))), 1.0, 1e-12);
+  // A plane behind the eye is not seen.
+  EXPECT_FALSE(alongSightOnto(view, view.eye + view.forward(), view.eye - view.forward(), view.forward()).has_value());
+}
+
+/// The interaction with rviz's camera broadcast as the ViewCamera display does, from the default view.
+class InteractionSeen : public Interaction
+{
+protected:
+  void SetUp() override
+  {
+    view_ = defaultView();
+    camera_timer_ = client_.nh().createWallTimer(ros::WallDuration(1.0 / 30), [this](const ros::WallTimerEvent&) {
+      geometry_msgs::TransformStamped t;
+      t.header.stamp = ros::Time::now();
+      t.header.frame_id = "world";
+      t.child_frame_id = "rviz_camera";
+      t.transform.translation.x = view_.eye.x();
+      t.transform.translation.y = view_.eye.y();
+      t.transform.translation.z = view_.eye.z();
+      const Eigen::Quaterniond q(view_.axes);
+      t.transform.rotation.w = q.w();
+      t.transform.rotation.x = q.x();
+      t.transform.rotation.y = q.y();
+      t.transform.rotation.z = q.z();
+      broadcaster_.sendTransform(t);
+    });
+    turns_sub_ = client_.nh().subscribe<geometry_msgs::PoseStamped>(
+        "view_turn", 10, [this](const geometry_msgs::PoseStamped::ConstPtr& p) { turns_.push_back(*p); });
+    operations_sub_ = client_.nh().subscribe<Operation>(
+        "operations", 100, [this](const Operation::ConstPtr& op) { operations_.push_back(*op); });
+    Interaction::SetUp();
+    gesture_.eye = view_.eye;
+    // With the camera known the drag plane faces the view.
+    ASSERT_TRUE(waitFor([&] { return loadMenu() && viewFacing(); }, 10)) << "the drag plane does not face the view";
+  }
+
+  void TearDown() override
+  {
+    camera_timer_.stop();
+    // Without the camera (gone after camera_timeout) the sheet's drag plane lies along it again.
+    EXPECT_TRUE(waitFor([&] { return loadMenu() && !viewFacing(); }, 10));
+  }
+
+  bool viewFacing()
+  {
+    return !marker_.controls.empty() &&
+           marker_.controls[0].orientation_mode == visualization_msgs::InteractiveMarkerControl::VIEW_FACING &&
+           marker_.controls[0].independent_marker_orientation;
+  }
+
+  ViewCamera view_;
+  tf2_ros::TransformBroadcaster broadcaster_;
+  ros::WallTimer camera_timer_;
+  ros::Subscriber turns_sub_, operations_sub_;
+  std::vector<geometry_msgs::PoseStamped> turns_;
+  std::vector<Operation> operations_;
+};
+
+TEST_F(InteractionSeen, TheTurningFaceFollowsThePointersSightLine)
+{
+  creaseDiagonal();
+  menu("Rotate mode");
+  // Issue 23: in this view the pointer was 237 px from the point it turned (a view from above
+  // assumed). The press (0.8, 0.3) turned 60° about the diagonal lies on the sight line
+  // through the pointer: drag to where that line meets the table.
+  const core::Vec3 press = p3(0.8, 0.3), centre = p3(0.55, 0.55);
+  const core::Vec3 out = (press - centre).normalized();
+  const core::Vec3 turned =
+      centre + (press - centre).norm() * (std::cos(M_PI / 3) * out + std::sin(M_PI / 3) * core::Vec3::UnitZ());
+  drag(press, onTable(view_, turned), 10);
+  const PaperState& after = client_.stateAt(base_ + 1);
+  const int axis = creaseBetween(after, vertexAt(after, 0, 0), vertexAt(after, 1, 1));
+  ASSERT_GE(axis, 0);
+  EXPECT_NEAR(after.edges[axis].fold_angle, M_PI / 3, 1e-6);
+  EXPECT_TRUE(turns_.empty());  // seen from the side: no view turn
+}
+
+TEST_F(InteractionSeen, ACreaseTakesTheEyePoint)
+{
+  menu("Crease mode");
+  drag(p3(0.012, 0.018), p3(0.986, 0.991), 10);
+  client_.stateAt(base_ + 1);
+  ASSERT_TRUE(waitFor([&] { return !operations_.empty() && operations_.back().type == "crease"; }, 5));
+  const Operation& op = operations_.back();
+  EXPECT_TRUE(op.has_eye);
+  EXPECT_NEAR((toVec3(op.eye) - view_.eye).norm(), 0.0, 1e-6);
+  EXPECT_NEAR((toVec3(op.start) - p3(0, 0)).norm(), 0.0, 1e-12);  // snapped to the corners
+  EXPECT_NEAR((toVec3(op.end) - p3(1, 1)).norm(), 0.0, 1e-12);
+}
+
+TEST_F(InteractionSeen, SeenEdgeOnTheViewTurnsForTheDragAndBack)
+{
+  ASSERT_TRUE(client_.crease(1, 0, 0, 1).response.success);  // across this view's line of sight
+  ++base_;
+  ASSERT_TRUE(waitFor([&] { return status_.revision == base_; }, 10));
+  menu("Rotate mode");
+  turns_.clear();
+  const core::Vec3 press = p3(0.8, 0.8);
+  drag(press, p3(0.78, 0.75), 4, [&] {
+    ASSERT_TRUE(waitFor([&] { return !turns_.empty(); }, 5)) << "no view turn";
+    const geometry_msgs::PoseStamped& goal = turns_.front();
+    EXPECT_EQ(goal.header.frame_id, "paper");
+    ViewCamera turned;
+    turned.eye = toVec3(goal.pose.position);
+    turned.axes = Eigen::Quaterniond(goal.pose.orientation.w, goal.pose.orientation.x, goal.pose.orientation.y,
+                                     goal.pose.orientation.z)
+                      .toRotationMatrix();
+    const core::Vec3 across = core::Vec3(-1, 1, 0).normalized();
+    EXPECT_GE(std::abs(turned.rayTo(press).dot(across)), 0.6);  // the axis seen from the side
+    // The press stays under the mouse: its place in the camera's coordinates is kept.
+    EXPECT_TRUE(
+        (turned.axes.transpose() * (press - turned.eye)).isApprox(view_.axes.transpose() * (press - view_.eye), 1e-4));
+  });
+  ASSERT_TRUE(waitFor([&] { return turns_.size() >= 2; }, 5));
+  EXPECT_EQ(turns_.back().header.frame_id, "");  // back to the view before the turn on release
 }
 
 int main(int argc, char** argv)

@@ -26,14 +26,19 @@ struct InteractionStyle
   /// The pickable copy of the sheet, all but invisible (paper_model's markers show the sheet):
   /// rviz gives a marker of alpha 0 a default colour of its own, half opaque.
   float pick_alpha = 0.01f;
-  /// The pickable copy floats this far above the sheet (+z): rviz picks the nearest surface,
-  /// and the sheet's own markers (layers drawn apart) must not hide it from the mouse.
+  /// The pickable copies float this far off both sides of every face (along its normal): rviz
+  /// picks the nearest surface, and the sheet's own markers (layers drawn apart) must not hide
+  /// them from the mouse, from any view.
   double pick_lift = 0.005;
+  /// The drag plane through the grab point faces the view (the pointer stays on the mouse's
+  /// sight line from any view); otherwise it lies along the sheet (z of `frame_id`).
+  bool view_facing_drag = false;
 };
 
-/// The sheet as rviz's Interact tool sees it: its folded faces and a margin around them as a
-/// TRIANGLE_LIST in one MOVE_PLANE control (drag plane normal along z of `frame_id`), lifted
-/// by `pick_lift`: subtract it from the mouse points rviz reports.
+/// The sheet as rviz's Interact tool sees it: its folded faces, each off both its sides by
+/// `pick_lift`, and a margin around them as a TRIANGLE_LIST in one MOVE_PLANE control (drag
+/// plane facing the view, or along z of `frame_id`). rviz reports mouse points on the copies:
+/// along the sight line onto the paper (or, flat and seen from above, `pick_lift` down).
 visualization_msgs::InteractiveMarker paperInteractiveMarker(const core::Paper& paper, const std::string& description,
                                                              const InteractionStyle& style);
 

@@ -13,14 +13,18 @@
 #include <string>
 #include <vector>
 
+#include <geometry_msgs/PoseStamped.h>
 #include <interactive_markers/interactive_marker_server.h>
 #include <interactive_markers/menu_handler.h>
 #include <ros/ros.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
 #include <virtual_origami/PaperState.h>
 #include <visualization_msgs/InteractiveMarkerFeedback.h>
 
 #include "virtual_origami/core/drag.h"
 #include "virtual_origami/ros/interaction_markers.h"
+#include "virtual_origami/ros/interaction_view.h"
 
 namespace virtual_origami
 {
@@ -63,6 +67,17 @@ private:
   void stateReceived(const PaperState::ConstPtr& state);
   /// A point rviz reports on the (lifted) sheet marker, brought down onto the sheet.
   core::Vec3 onSheet(const geometry_msgs::Point& mouse_point) const;
+  /// rviz's camera at `stamp` (the ViewCamera display's tf frame), when it is broadcast;
+  /// the latest one when `stamp` is newer than what tf holds.
+  std::optional<ViewCamera> camera(const ros::Time& stamp) const;
+  /// The line of sight through `point`: from the camera, or `view_direction` without one.
+  core::Vec3 sight(const std::optional<ViewCamera>& camera, const core::Vec3& point) const;
+  /// Where the crease being drawn ends: the pointer on the plane of the pressed face, seen
+  /// from the eye (on the drag plane without a camera).
+  core::Vec3 creaseEnd() const;
+  /// The seed's view turn for the ring just pressed (rviz turns it back on release).
+  void turnView();
+  void turnViewBack();
   void press(const Feedback& feedback);
   void move(const Feedback& feedback);
   void release();
@@ -88,7 +103,13 @@ private:
   InteractionStyle style_;
   core::SnapSettings snap_;
   bool snap_radius_set_ = false;
-  core::Vec3 view_direction_{ 0, 0, -1 };
+  core::Vec3 view_direction_{ 0, 0, -1 };  // without a camera
+  std::string camera_frame_ = "rviz_camera";
+  double camera_timeout_ = 2.0;  // a camera frame older than this (s) is rviz gone
+  bool view_turn_ = true;
+  tf2_ros::Buffer tf_buffer_;
+  tf2_ros::TransformListener tf_listener_;
+  bool camera_known_ = false;  // when the sheet marker was last sent (its drag plane depends on it)
   double min_crease_length_ = 0.01;
   double layer_gap_ = 0.002;  // as paper_model draws coincident layers apart
   double pick_lift_ = 0.004;
@@ -97,7 +118,7 @@ private:
   interactive_markers::MenuHandler menu_;
   interactive_markers::MenuHandler::EntryHandle crease_entry_ = 0, rotate_entry_ = 0;
   ros::Subscriber state_sub_;
-  ros::Publisher markers_pub_, status_pub_;
+  ros::Publisher markers_pub_, status_pub_, view_turn_pub_;
   ros::ServiceClient crease_, rotate_, squash_, undo_, redo_, reset_, pin_;
   ros::Timer timer_, status_timer_;
 
@@ -115,6 +136,10 @@ private:
   bool dragging_ = false;
   bool moved_ = false;
   core::Vec3 press_ = core::Vec3::Zero(), pointer_ = core::Vec3::Zero();
+  core::Vec3 grab_ = core::Vec3::Zero();  // where rviz grabbed the sheet marker: pointer_ is on the ray through it
+  int press_face_ = -1;
+  std::optional<ViewCamera> press_camera_;
+  bool view_turned_ = false;
   core::Vec3 pose_at_press_ = core::Vec3::Zero();
   double reach_ = 0.0;  // how far the pointer went from the press: a click goes nowhere
   ros::Time pointer_stamp_;

@@ -2,6 +2,7 @@
 // tests and tools drive the node exactly as rviz does. Pure functions.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include <ros/time.h>
@@ -20,6 +21,9 @@ struct MouseGesture
   std::string marker_name = "paper";
   core::Vec3 press = core::Vec3::Zero();
   double lift = 0.0;  // how far above the sheet rviz sees the marker (its mesh's z on a flat sheet)
+  /// rviz's eye, when the ViewCamera display broadcasts it: the press's mouse point then lies
+  /// `lift` towards the eye (on the press's sight line), as rviz reports it on the pickable copy.
+  std::optional<core::Vec3> eye;
 
   /// MOUSE_DOWN at the press, MOUSE_UP or POSE_UPDATE with the pointer at `at`, MENU_SELECT of
   /// menu entry `entry` with the right-click at `at`.
