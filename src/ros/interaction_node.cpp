@@ -179,6 +179,14 @@ core::Vec3 InteractionNode::onSheet(const geometry_msgs::Point& mouse_point) con
   return toVec3(mouse_point) - core::Vec3(0, 0, style_.pick_lift);
 }
 
+double InteractionNode::tableHeight() const
+{
+  double z = paper_->vertices.empty() ? 0.0 : paper_->vertices[0].folded.z();
+  for (const core::Vertex& v : paper_->vertices)
+    z = std::min(z, v.folded.z());
+  return z;
+}
+
 std::optional<ViewCamera> InteractionNode::camera(const ros::Time& stamp) const
 {
   geometry_msgs::TransformStamped t;
@@ -223,9 +231,11 @@ core::Vec3 InteractionNode::sight(const std::optional<ViewCamera>& camera, const
 core::Vec3 InteractionNode::creaseEnd() const
 {
   const std::optional<ViewCamera> now = camera(pointer_stamp_);
-  if (!now || press_face_ < 0)
+  if (!now)
     return pointer_;
-  return alongSightOnto(*now, pointer_, press_, paper_->faceNormal(press_face_)).value_or(pointer_);
+  // Off the paper (on the margin) the line is drawn on the table under it.
+  const core::Vec3 normal = press_face_ >= 0 ? paper_->faceNormal(press_face_) : core::Vec3::UnitZ();
+  return alongSightOnto(*now, pointer_, press_, normal).value_or(pointer_);
 }
 
 void InteractionNode::turnView()
@@ -276,6 +286,9 @@ void InteractionNode::press(const Feedback& feedback)
     // onto the face the eye sees there.
     grab_ = toVec3(feedback.mouse_point);
     press_ = core::onSurface(*paper_, grab_, sight(press_camera_, grab_));
+    if (press_ == grab_)  // on no face: on the margin, which lies on the table under the paper
+      press_ =
+          alongSightOnto(*press_camera_, grab_, core::Vec3(0, 0, tableHeight()), core::Vec3::UnitZ()).value_or(grab_);
   }
   else
     grab_ = press_ = core::onSurface(*paper_, onSheet(feedback.mouse_point), view_direction_);

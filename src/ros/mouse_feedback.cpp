@@ -1,5 +1,7 @@
 #include "virtual_origami/ros/mouse_feedback.h"
 
+#include <cmath>
+
 #include "virtual_origami/ros/conversions.h"
 
 namespace virtual_origami
@@ -25,8 +27,18 @@ InteractiveMarkerFeedback event(const MouseGesture& g, uint8_t type, const core:
   f.marker_name = g.marker_name;
   f.control_name = "drag";
   f.event_type = type;
-  // The marker sits at the origin until dragged; it moves with the point under the mouse.
-  f.pose.position = toPoint(lifted(g, pointer) - lifted(g, g.press));
+  // The marker sits at the origin until dragged; it moves with the point under the mouse: with
+  // the eye known, on the drag plane through the grab point facing the eye (rviz's VIEW_FACING
+  // plane), anywhere along the sight line through `pointer`.
+  const core::Vec3 grab = lifted(g, g.press);
+  core::Vec3 on_plane = lifted(g, pointer);
+  if (g.eye && type != InteractiveMarkerFeedback::MENU_SELECT)
+  {
+    const core::Vec3 normal = (*g.eye - grab).normalized(), ray = pointer - *g.eye;
+    if (std::abs(ray.dot(normal)) > 1e-9)
+      on_plane = *g.eye + ((grab - *g.eye).dot(normal) / ray.dot(normal)) * ray;
+  }
+  f.pose.position = toPoint(on_plane - grab);
   f.pose.orientation.w = 1.0;
   f.mouse_point = toPoint(lifted(g, pointer));
   f.mouse_point_valid = with_point;

@@ -1,14 +1,23 @@
 #!/usr/bin/env python3
-"""End-to-end: fold in real rviz with the mouse, as a person would.
+"""End-to-end: fold in real rviz with the mouse, as a person would, in the default view.
 
-Starts Xvfb on a free display and the whole system (origami.launch with rviz and a fixed
-view, test/e2e/e2e.rviz) on a free master port, drives the mouse with xdotool, and checks the
-paper on the `state` topic:
-  1. a drag along the diagonal, pressed and released near (not on) two corners, makes one new
-     crease joining exactly those corners (snapping);
-  2. the menu's "Rotate mode", then a drag from one half across the crease turns that half
-     about the crease by about the dragged angle, and the other half stays;
-  3. the menu's "Undo" brings back the state before the turn.
+Starts Xvfb on a free display and the whole system (origami.launch with rviz and its default
+config, rviz/origami.rviz) on a free master port, drives the mouse with xdotool, and checks the
+paper on the `state` topic. Screen pixels come from rviz's own camera, which the config's
+ViewCamera display broadcasts as the tf frame rviz_camera:
+  0. a click lands where the camera says (the Displays panel closed, the view as broadcast),
+     and changes nothing;
+  1. a drag along the diagonal, pressed at a corner (where the world and paper frames are
+     drawn) and released near the other, makes one crease joining exactly those corners;
+  2. the menu's "Rotate mode", opened at the centre of a half (where paper_model's frame of
+     that face is), then presses all over the half each turn it 60° (the pressed point dragged
+     to where it goes), the pointer on the turning face all along; each turn undone;
+  3. the half turned upright: clicks all over its standing face pick it, and it is grabbed there
+     and turned back down;
+  4. across the line of sight (the anti-diagonal), the view turns for the drag (seed Fig. 11)
+     with the pointer on the turning face, and turns back on release;
+  5. on a quarter fold (four layers), a click in rotate mode changes nothing on screen;
+  6. the menu's "Undo" brings back the state before.
 Screenshots of every step go to the output folder. Exits non-zero on any failure.
 
 Usage: interaction_e2e.py OUTPUT_DIR   (with the devel space's environment, e.g. devel/env.sh)
@@ -23,15 +32,18 @@ import time
 
 import rosgraph
 import rospy
+import tf2_ros
+from std_srvs.srv import Trigger
 from virtual_origami.msg import InteractionStatus, PaperState
-from visualization_msgs.msg import InteractiveMarkerFeedback
+from virtual_origami.srv import Crease, Rotate
+from visualization_msgs.msg import InteractiveMarkerFeedback, MarkerArray
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-# The view of e2e.rviz, an rviz/Orbit camera: 1.9 m from the focal point (0.5, 0.45, 0), pitched
-# 1.1 rad down, from the -y side (yaw -90°), vertical field of view 0.7 rad, in an 800 x 600
-# window at the screen's corner.
-FOCAL, DISTANCE, PITCH, YAW, FOV = (0.5, 0.45, 0.0), 1.9, 1.1, -math.pi / 2, 0.7
-TIME_LIMIT = 240  # seconds for the whole test
+# rviz/origami.rviz: an 1024 x 720 window at the screen's corner, both docks closed; the
+# render panel fills it between the tool bar and the status bar, beside the dock buttons.
+PANEL = (16, 62, 992, 629)  # x, y, width, height in pixels
+FOV = 0.785                 # the view's vertical field of view, radians
+ON_FACE_PX = 3.0            # "the pointer stays on the turning face": within this many pixels
+TIME_LIMIT = 280            # seconds for the whole test
 
 
 class Failure(Exception):
@@ -62,6 +74,11 @@ class System:
         os.environ['DISPLAY'] = self.display
         os.environ['ROS_MASTER_URI'] = 'http://localhost:%d' % self.port
         os.environ['ROS_HOME'] = os.path.join(out, 'ros')
+        # Qt makes /tmp/runtime-<user> without it: everything of the test stays in `out`.
+        runtime = os.path.join(out, 'runtime')
+        os.makedirs(runtime, mode=0o700, exist_ok=True)
+        os.chmod(runtime, 0o700)
+        os.environ['XDG_RUNTIME_DIR'] = runtime
 
     def start(self):
         def log(name):
@@ -72,8 +89,7 @@ class System:
                                            start_new_session=True))
         wait_for(lambda: os.path.exists('/tmp/.X11-unix/X' + self.display[1:]), 20, 'Xvfb did not start')
         self.procs.append(subprocess.Popen(
-            ['roslaunch', '-p', str(self.port), 'virtual_origami', 'origami.launch',
-             'rviz_config:=' + os.path.join(HERE, 'e2e.rviz'),
+            ['roslaunch', '-p', str(self.port), 'virtual_origami', 'origami.launch', 'curved:=false',
              'data_dir:=' + self.out, 'journal:=session.jsonl', 'resume:=false'],
             stdout=log('roslaunch.log'), stderr=subprocess.STDOUT, start_new_session=True))
 
@@ -110,8 +126,37 @@ def _answers(master):
         return False
 
 
+# Small vector helpers (3-tuples).
+def add(a, b):
+    return tuple(x + y for x, y in zip(a, b))
+
+
+def sub(a, b):
+    return tuple(x - y for x, y in zip(a, b))
+
+
+def mul(s, a):
+    return tuple(s * x for x in a)
+
+
+def dot(a, b):
+    return sum(x * y for x, y in zip(a, b))
+
+
+def norm(a):
+    return math.sqrt(dot(a, a))
+
+
+def turned_about(axis_a, axis_b, point, angle):
+    """`point` of the flat sheet turned by `angle` about the line a-b, upwards (a valley seen from above)."""
+    d = mul(1 / norm(sub(axis_b, axis_a)), sub(axis_b, axis_a))
+    foot = add(axis_a, mul(dot(sub(point, axis_a), d), d))
+    out = sub(point, foot)
+    return add(foot, add(mul(math.cos(angle), out), mul(norm(out) * math.sin(angle), (0.0, 0.0, 1.0))))
+
+
 class Checker:
-    """What the product shows on its topics."""
+    """What the product shows on its topics, and rviz's camera."""
 
     def __init__(self):
         master = rosgraph.Master('/interaction_e2e')
@@ -120,9 +165,18 @@ class Checker:
         self.state = None
         self.status = None
         self.presses = []
+        self.front = None  # the paper's front sides as paper_model last drew them
+        self.drawn = 0     # paper drawings received
         rospy.Subscriber('/origami/state', PaperState, self._state)
         rospy.Subscriber('/origami/interaction_status', InteractionStatus, self._status)
         rospy.Subscriber('/origami/interaction/feedback', InteractiveMarkerFeedback, self._feedback)
+        rospy.Subscriber('/origami/markers', MarkerArray, self._markers)
+        self.tf = tf2_ros.Buffer()
+        self.listener = tf2_ros.TransformListener(self.tf)
+        self.crease = rospy.ServiceProxy('/origami/crease', Crease)
+        self.rotate = rospy.ServiceProxy('/origami/rotate', Rotate)
+        self.undo = rospy.ServiceProxy('/origami/undo', Trigger)
+        self.reset = rospy.ServiceProxy('/origami/reset', Trigger)
 
     def _state(self, msg):
         self.state = msg
@@ -134,6 +188,12 @@ class Checker:
         if msg.event_type == InteractiveMarkerFeedback.MOUSE_DOWN and msg.mouse_point_valid:
             self.presses.append((msg.mouse_point.x, msg.mouse_point.y, msg.mouse_point.z))
 
+    def _markers(self, msg):
+        for m in msg.markers:
+            if m.ns == 'front':
+                self.front = m
+                self.drawn += 1
+
     def revision(self):
         return self.state.revision if self.state else None
 
@@ -141,55 +201,82 @@ class Checker:
         wait_for(lambda: self.revision() == revision, 30, '%s: the state stayed at revision %s, expected %d' %
                  (what, self.revision(), revision))
         # ... and the interaction node shows it, so the next press lands on the new sheet.
-        wait_for(lambda: self.status and self.status.revision == revision, 10, what + ': interaction lags')
+        wait_for(lambda: self.status and self.status.revision == revision and not self.status.dragging, 10,
+                 what + ': interaction lags')
         return self.state
 
-
-def dot(a, b):
-    return sum(i * j for i, j in zip(a, b))
+    def camera(self):
+        """rviz's camera now, in the paper frame: the eye and its axes (right, down, forward)."""
+        t = self.tf.lookup_transform('paper', 'rviz_camera', rospy.Time(0), rospy.Duration(5.0)).transform
+        q = (t.rotation.w, t.rotation.x, t.rotation.y, t.rotation.z)
+        w, x, y, z = q
+        columns = ((1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y)),
+                   (2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x)),
+                   (2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)))
+        return (t.translation.x, t.translation.y, t.translation.z), columns
 
 
 class Mouse:
-    """Points on the sheet (the `paper` frame, z = 0) to screen pixels, through the camera."""
+    """Points of the paper frame to screen pixels, through rviz's camera as it is now."""
 
-    def __init__(self, window):
-        x, y, width, height = window
-        # The render panel fills the window below the menu and tool bars, above the status bar,
-        # between the collapsed docks (rviz's layout at this window size): 768 x 509 at (16, 62).
-        self.cx, self.cy = x + 16 + 768 / 2.0, y + 62 + 509 / 2.0
-        self.focal = (509 / 2.0) / math.tan(FOV / 2)  # pixels
-        cp, sp = math.cos(PITCH), math.sin(PITCH)
-        self.eye = tuple(f + DISTANCE * d for f, d in zip(FOCAL, (cp * math.cos(YAW), cp * math.sin(YAW), sp)))
-        self.forward = tuple((f - e) / DISTANCE for f, e in zip(FOCAL, self.eye))
-        self.right = (-math.sin(YAW), math.cos(YAW), 0.0)  # forward x up (z), normalised
-        f, r = self.forward, self.right
-        self.up = (r[1] * f[2] - r[2] * f[1], r[2] * f[0] - r[0] * f[2], r[0] * f[1] - r[1] * f[0])
+    def __init__(self, window, check):
+        self.check = check
+        x, y = window[0], window[1]
+        px, py, w, h = PANEL
+        self.cx, self.cy = x + px + w / 2.0, y + py + h / 2.0
+        self.focal = (h / 2.0) / math.tan(FOV / 2)  # pixels
 
-    def pixel(self, p):
-        v = [c - e for c, e in zip((p[0], p[1], 0.0), self.eye)]
-        depth = dot(v, self.forward)
-        return (int(round(self.cx + self.focal * dot(v, self.right) / depth)),
-                int(round(self.cy - self.focal * dot(v, self.up) / depth)))
+    def pixel(self, p, camera=None):
+        eye, (right, down, forward) = camera or self.check.camera()
+        v = sub(p, eye)
+        depth = dot(v, forward)
+        return (self.cx + self.focal * dot(v, right) / depth, self.cy + self.focal * dot(v, down) / depth)
 
-    def drag(self, start, end, steps=24, during=None):
-        xdotool('mousemove', *self.pixel(start))
+    @staticmethod
+    def move(pixel):
+        xdotool('mousemove', int(round(pixel[0])), int(round(pixel[1])))
+
+    def press(self, p):
+        self.move(self.pixel(p))
         time.sleep(0.3)
         xdotool('mousedown', 1)
-        time.sleep(0.3)
+        time.sleep(0.4)
+
+    def glide(self, start, end, steps=16, during=None):
+        """From pixel `start` to pixel `end`; `during(pixel)` at the middle and the end."""
         for i in range(1, steps + 1):
             t = i / steps
-            xdotool('mousemove', *self.pixel((start[0] + t * (end[0] - start[0]), start[1] + t * (end[1] - start[1]))))
+            at = (start[0] + t * (end[0] - start[0]), start[1] + t * (end[1] - start[1]))
+            self.move(at)
             time.sleep(0.05)
-        time.sleep(0.5)
-        if during:
-            during()
+            if during and i in (steps // 2, steps):
+                time.sleep(0.4)  # the node shows the latest pose at its rate; rviz draws it
+                during((int(round(at[0])), int(round(at[1]))))
+
+    def release(self):
+        time.sleep(0.3)
         xdotool('mouseup', 1)
         time.sleep(0.3)
         self.away()
 
+    def drag(self, start, end, steps=24, during=None):
+        self.press(start)
+        self.glide(self.pixel(start), self.pixel(end), steps)
+        time.sleep(0.5)
+        if during:
+            during()
+        self.release()
+
+    def click(self, p):
+        self.move(self.pixel(p))
+        time.sleep(0.3)
+        xdotool('click', 1)
+        time.sleep(0.5)
+        self.away()
+
     def menu(self, at, entry, shot=None):
         """Right-click at `at`, then pick the `entry`-th item (from 1) with the keyboard."""
-        xdotool('mousemove', *self.pixel(at))
+        self.move(self.pixel(at))
         time.sleep(0.3)
         xdotool('click', 3)
         time.sleep(1.0)
@@ -203,7 +290,7 @@ class Mouse:
         self.away()
 
     def away(self):
-        xdotool('mousemove', *self.pixel((1.3, -0.1)))  # off the sheet and its margin, in the view
+        self.move((self.cx - PANEL[2] / 2.0 + 20, self.cy - PANEL[3] / 2.0 + 20))  # the view's top left: no paper
 
 
 def vertex_at(state, x, y):
@@ -220,16 +307,37 @@ def edge_between(state, a, b):
     return -1
 
 
+def distance_to_triangle(q, a, b, c):
+    """Pixels from q to the triangle abc (0 inside)."""
+    def cross(o, p, r):
+        return (p[0] - o[0]) * (r[1] - o[1]) - (p[1] - o[1]) * (r[0] - o[0])
+    s1, s2, s3 = cross(a, b, q), cross(b, c, q), cross(c, a, q)
+    if (s1 >= 0 and s2 >= 0 and s3 >= 0) or (s1 <= 0 and s2 <= 0 and s3 <= 0):
+        return 0.0
+
+    def to_segment(p, r):
+        d = (r[0] - p[0], r[1] - p[1])
+        length2 = d[0] * d[0] + d[1] * d[1]
+        t = 0.0 if length2 == 0 else max(0.0, min(1.0, ((q[0] - p[0]) * d[0] + (q[1] - p[1]) * d[1]) / length2))
+        return math.hypot(q[0] - p[0] - t * d[0], q[1] - p[1] - t * d[1])
+    return min(to_segment(a, b), to_segment(b, c), to_segment(c, a))
+
+
 def run(out):
     shots = []
-
-    def shot(name):
-        path = os.path.join(out, name)
-        crop = '%dx%d+%d+%d' % (window[2], window[3], window[0], window[1]) if window else '1024x768+0+0'
-        subprocess.run(['import', '-window', 'root', '-crop', crop, '+repage', path], check=True)
-        shots.append(path)
-
     window = []
+
+    def shot(name, crop=None):
+        path = os.path.join(out, name)
+        box = crop or (window[2], window[3], window[0], window[1])
+        subprocess.run(['import', '-window', 'root', '-crop', '%dx%d+%d+%d' % box, '+repage', path], check=True)
+        shots.append(path)
+        return path
+
+    def view_shot(name):
+        """The render panel only (the status bar counts frames per second)."""
+        return shot(name, (PANEL[2], PANEL[3], window[0] + PANEL[0], window[1] + PANEL[1]))
+
     check = Checker()
     wait_for(lambda: check.state is not None, 60, 'no state from paper_model')
     base = check.revision()
@@ -246,75 +354,210 @@ def run(out):
         return False
 
     wait_for(find_window, 60, 'no rviz window')
-    mouse = Mouse(window)
+    mouse = Mouse(window, check)
+    try:
+        start_camera = check.camera()
+    except Exception as e:
+        raise Failure('rviz does not broadcast its camera (the ViewCamera display): %s' % e)
     time.sleep(5)  # rviz draws the sheet and takes the interactive marker
     mouse.away()
     shot('00_start.png')
 
-    # The view is as assumed when a click lands where it should (a click creases nothing).
-    xdotool('mousemove', *mouse.pixel((0.5, 0.5)))
-    time.sleep(0.3)
-    xdotool('click', 1)
+    # 0. A click lands where the camera says: the view is as broadcast, the render panel as
+    # assumed (the Displays panel closed). A click creases nothing.
+    mouse.click((0.5, 0.5, 0.0))
     wait_for(lambda: check.presses, 10, 'a click on the sheet did not reach the interaction node')
-    px, py, pz = check.presses[-1]
-    print('view check: clicked (0.5, 0.5), rviz reports (%.4f, %.4f, %.4f)' % (px, py, pz))
-    if math.hypot(px - 0.5, py - 0.5) > 0.015:
-        raise Failure('the view is not as assumed: clicked (0.5, 0.5), rviz reports (%.4f, %.4f)' % (px, py))
+    reported = check.presses[-1]
+    off = math.hypot(*sub(mouse.pixel(reported), mouse.pixel((0.5, 0.5, 0.0)))[:2])
+    print('view check: clicked (0.5, 0.5), rviz reports (%.4f, %.4f, %.4f), %.1f px from the click' %
+          (reported + (off,)))
+    if off > 3:
+        raise Failure('the view is not as broadcast or the render panel not where assumed (the Displays panel '
+                      'open?): clicked (0.5, 0.5), rviz reports a point %.1f px away' % off)
     time.sleep(0.5)
     if check.revision() != base:
         raise Failure('a click changed the paper')
 
-    # 1. Crease: a drag along the diagonal, from near corner (0, 0) to near corner (1, 1).
-    mouse.drag((0.008, 0.012), (0.992, 0.99), during=lambda: shot('01_crease_drag.png'))
-    creased = check.wait_revision(base + 1, 'crease')
+    # 1. Crease: from the corner (0, 0), where the world and paper frames are drawn, to near (1, 1).
+    mouse.drag((0.0, 0.0, 0.0), (0.992, 0.99, 0.0), during=lambda: shot('01_crease_drag.png'))
+    creased = check.wait_revision(base + 1, 'crease (pressed at the frames drawn at the corner)')
     shot('02_creased.png')
     a, b = vertex_at(creased, 0, 0), vertex_at(creased, 1, 1)
     diagonal = edge_between(creased, a, b)
     if diagonal < 0 or len(creased.faces) != 2 or len(creased.vertices_crease_pattern) != 4:
         raise Failure('the crease does not join exactly corners (0, 0) and (1, 1): %d vertices, %d faces' %
                       (len(creased.vertices_crease_pattern), len(creased.faces)))
-    print('crease: edge %d joins corners (0, 0) and (1, 1)' % diagonal)
+    print('crease: edge %d joins corners (0, 0) and (1, 1), pressed at the corner' % diagonal)
+    revision = base + 1
 
-    # 2. Rotate: the menu's rotate mode, then a drag from the lower-right half across the crease.
-    mouse.menu((0.7, 0.6), 2, shot=lambda: shot('03_menu.png'))
-    wait_for(lambda: check.status.mode == 'rotate', 10, 'the menu did not switch to rotate mode')
-    press, release = (0.8, 0.3), (0.5, 0.6)
-    mouse.drag(press, release, during=lambda: shot('04_rotate_drag.png'))
-    turned = check.wait_revision(base + 2, 'rotate')
-    shot('05_turned.png')
-    # Seen from above, the pointer's distance from the crease sets the angle: the press point
-    # 0°, over the crease 90°, at its mirror image 180°.
-    r = (press[0] - press[1]) / math.sqrt(2)
-    s = (release[0] - release[1]) / math.sqrt(2)
-    dragged = 90.0 * (1 - s / r)
-    angle = math.degrees(turned.edges[diagonal].fold_angle)
-    moving, staying = vertex_at(turned, 1, 0), vertex_at(turned, 0, 1)
-    lifted = turned.vertices_folded[moving]
-    print('rotate: dragged %.1f°, the crease turned to %.1f°, corner (1, 0) now at (%.3f, %.3f, %.3f)' %
-          (dragged, angle, lifted.x, lifted.y, lifted.z))
-    if abs(angle - dragged) > 10:
-        raise Failure('the crease turned to %.1f°, the drag asked for %.1f°' % (angle, dragged))
-    if lifted.z < 0.2:
-        raise Failure('the pressed half did not turn up towards the eye')
-    if turned.vertices_folded[staying] != creased.vertices_folded[staying] or \
-       turned.vertices_folded[a] != creased.vertices_folded[a]:
-        raise Failure('the other half moved')
+    # 2. Rotate mode from the menu at the centre of the lower-right half, where its face frame is.
+    mouse.menu((2 / 3.0, 1 / 3.0, 0.0), 2, shot=lambda: shot('03_menu.png'))
+    wait_for(lambda: check.status.mode == 'rotate', 10, 'the menu at the centre of a face did not open')
+    corner_a, corner_b = (0.0, 0.0, 0.0), (1.0, 1.0, 0.0)
+    worst = [0.0]
 
-    # 3. Undo from the menu.
-    mouse.menu((0.2, 0.75), 4)
-    undone = check.wait_revision(base + 3, 'undo')
-    shot('06_undone.png')
-    if undone.vertices_folded != creased.vertices_folded or \
-       [e.fold_angle for e in undone.edges] != [e.fold_angle for e in creased.edges]:
-        raise Failure('undo did not restore the creased, unfolded state')
-    print('undo: the state before the turn is back')
+    def on_turning_face(pixel, what):
+        """The pointer lies on the paper drawn off the table (the turning part) as rviz shows it now."""
+        camera = check.camera()
+        front = check.front
+        best = float('inf')
+        for i in range(0, len(front.points) - 2, 3):
+            tri = front.points[i:i + 3]
+            if max(p.z for p in tri) < 0.02:
+                continue  # on the table: the part that stays
+            best = min(best, distance_to_triangle(pixel, *[mouse.pixel((p.x, p.y, p.z), camera) for p in tri]))
+        worst[0] = max(worst[0], best)
+        if best > ON_FACE_PX:
+            raise Failure('%s: the pointer is %.1f px off the turning face' % (what, best))
+
+    # Presses all over the half, each dragged to where the pressed point goes at 60°.
+    presses = [(0.95, 0.05), (0.5, 0.04), (0.96, 0.5), (0.3, 0.1), (0.85, 0.6)]
+    for i, (x, y) in enumerate(presses):
+        press = (x, y, 0.0)
+        goal = turned_about(corner_a, corner_b, press, math.radians(60))
+        what = 'press at (%.2f, %.2f)' % (x, y)
+        mouse.press(press)
+        mouse.glide(mouse.pixel(press), mouse.pixel(goal), during=lambda at: on_turning_face(at, what))
+        if i == 0:
+            shot('04_rotate_drag.png')
+        mouse.release()
+        turned = check.wait_revision(revision + 1, what)
+        angle = math.degrees(turned.edges[diagonal].fold_angle)
+        print('rotate: %s turned the half to %.1f° (60° dragged)' % (what, angle))
+        if abs(angle - 60) > 4:
+            raise Failure('%s: the half turned to %.1f°, the drag asked for 60°' % (what, angle))
+        if i == 0:
+            shot('05_turned.png')
+        check.undo()
+        revision += 2
+        check.wait_revision(revision, 'undo')
+    print('rotate: the pointer stayed within %.1f px of the turning face' % worst[0])
+
+    # 3. Upright, then grabbed on its standing face and turned back down to 10°.
+    press = (0.8, 0.3, 0.0)
+    mouse.drag(press, turned_about(corner_a, corner_b, press, math.radians(90)))
+    upright = check.wait_revision(revision + 1, 'turning upright')
+    revision += 1
+    shot('06_upright.png')
+    print('upright: the half at %.1f°' % math.degrees(upright.edges[diagonal].fold_angle))
+    # Issue 23: 0 of 25 points on a standing half were picked. Clicks at 9 points over it, off
+    # the crease (a click there would name it as the axis), each reach the node there.
+    picked = 0
+    points = [(x, y) for x in (0.45, 0.65, 0.85) for y in (0.1, 0.2, 0.3) if x - y > 0.2]
+    for x, y in points:
+        target = turned_about(corner_a, corner_b, (x, y, 0.0), upright.edges[diagonal].fold_angle)
+        count = len(check.presses)
+        mouse.click(target)
+        try:
+            wait_for(lambda: len(check.presses) > count, 3, '')
+            picked += norm(sub(check.presses[-1], target)) < 0.02
+        except Failure:
+            pass
+    print('standing face: %d of %d clicks on it picked it' % (picked, len(points)))
+    if picked != len(points):
+        raise Failure('only %d of %d clicks on the standing face picked it' % (picked, len(points)))
+    if check.revision() != revision:
+        raise Failure('clicks on the standing face changed the paper')
+    held = (0.7, 0.2, 0.0)
+    at = turned_about(corner_a, corner_b, held, upright.edges[diagonal].fold_angle)
+    presses_before = len(check.presses)
+    mouse.press(at)
+    wait_for(lambda: len(check.presses) > presses_before, 5, 'a press on the standing face did not reach the '
+             'interaction node (rviz orbited the camera instead)')
+    grabbed = check.presses[-1]
+    if norm(sub(grabbed, at)) > 0.02:
+        raise Failure('the press on the standing face at (%.3f, %.3f, %.3f) was taken at (%.3f, %.3f, %.3f)' %
+                      (at + grabbed))
+    mouse.glide(mouse.pixel(at), mouse.pixel(turned_about(corner_a, corner_b, held, math.radians(10))),
+                during=lambda p: on_turning_face(p, 'the standing face turned back'))
+    mouse.release()
+    back = check.wait_revision(revision + 1, 'the standing face turned back')
+    revision += 1
+    angle = math.degrees(back.edges[diagonal].fold_angle)
+    print('standing face: grabbed %.1f mm from where it was pressed, turned back to %.1f° (10° dragged)' %
+          (1000 * norm(sub(grabbed, at)), angle))
+    if abs(angle - 10) > 4:
+        raise Failure('the standing face turned back to %.1f°, the drag asked for 10°' % angle)
+    shot('07_turned_back.png')
+
+    # 4. Across the line of sight: the anti-diagonal of a fresh sheet, seen edge-on from this view.
+    check.reset()
+    revision += 1
+    check.wait_revision(revision, 'reset')
+    check.crease(start=rospy_point(1, 0), end=rospy_point(0, 1), snap=False)
+    revision += 1
+    anti = check.wait_revision(revision, 'crease across the line of sight')
+    across = edge_between(anti, vertex_at(anti, 1, 0), vertex_at(anti, 0, 1))
+    press = (0.8, 0.8, 0.0)
+    before = check.camera()
+    press_pixel = mouse.pixel(press, before)
+    mouse.press(press)
+    wait_for(lambda: norm(sub(check.camera()[0], before[0])) > 0.05, 5, 'the view did not turn for the drag')
+    turned_view = check.camera()
+    moved = math.hypot(*sub(mouse.pixel(press, turned_view), press_pixel)[:2])
+    if moved > 2:
+        raise Failure('the view turn moved the pressed point %.1f px on the screen' % moved)
+    goal = turned_about((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), press, math.radians(60))
+    mouse.glide(press_pixel, mouse.pixel(goal, turned_view),
+                during=lambda p: on_turning_face(p, 'turning across the line of sight'))
+    shot('08_view_turned.png')
+    mouse.release()
+    turned = check.wait_revision(revision + 1, 'turning across the line of sight')
+    revision += 1
+    angle = math.degrees(turned.edges[across].fold_angle)
+    wait_for(lambda: norm(sub(check.camera()[0], before[0])) < 1e-3, 5, 'the view did not turn back after the drag')
+    print('view turn: the eye moved %.3f m for the drag, the pressed point %.1f px; the half turned to %.1f° '
+          '(60° dragged); the view back after it' % (norm(sub(turned_view[0], before[0])), moved, angle))
+    if abs(angle - 60) > 5:
+        raise Failure('turning across the line of sight: the half turned to %.1f°, the drag asked for 60°' % angle)
+
+    # 5. A quarter fold, four layers; a click in rotate mode changes nothing on screen.
+    check.reset()
+    check.crease(start=rospy_point(0.5, 0), end=rospy_point(0.5, 1), snap=False)
+    check.rotate(face=-1, axis_edge=-1, click=rospy_point(0.75, 0.5), angle=math.pi, commit=True)
+    check.crease(start=rospy_point(0, 0.5), end=rospy_point(0.5, 0.5), snap=False)
+    check.rotate(face=-1, axis_edge=-1, click=rospy_point(0.25, 0.9), angle=math.pi, commit=True)
+    revision += 5
+    check.wait_revision(revision, 'the quarter fold')
+    time.sleep(1.0)
+    mouse.away()
+    time.sleep(0.5)
+    drawn = check.drawn
+    still = view_shot('09_quarter.png')
+    mouse.click((0.2, 0.3, 0.0))
+    time.sleep(1.0)
+    clicked = view_shot('10_quarter_clicked.png')
+    r = subprocess.run(['compare', '-metric', 'AE', still, clicked, 'null:'], capture_output=True, text=True)
+    changed = r.stderr.strip()
+    print('click on the quarter fold: %s pixels changed, %d drawings of the paper, revision %d' %
+          (changed, check.drawn - drawn, check.revision()))
+    if check.revision() != revision:
+        raise Failure('a click on the quarter fold changed the paper')
+    if check.drawn != drawn or changed != '0':
+        raise Failure('a click on the quarter fold changed the screen (%s pixels, %d drawings) without a new '
+                      'revision' % (changed, check.drawn - drawn))
+
+    # 6. Undo from the menu: the second fold comes undone.
+    folded = check.state
+    mouse.menu((0.25, 0.25, 0.0), 4)
+    undone = check.wait_revision(revision + 1, 'undo')
+    shot('11_undone.png')
+    if undone.vertices_folded == folded.vertices_folded:
+        raise Failure('undo did not change the paper back')
+    print('undo: the state before the last fold is back')
     print('screenshots:\n  ' + '\n  '.join(shots))
+
+
+def rospy_point(x, y, z=0.0):
+    from geometry_msgs.msg import Point
+    return Point(x=x, y=y, z=z)
 
 
 def main():
     out = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else 'e2e_output')
     os.makedirs(out, exist_ok=True)
     system = System(out)
+
     def out_of_time(*_):
         raise Failure('over the time limit of %d s' % TIME_LIMIT)
 

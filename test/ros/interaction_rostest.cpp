@@ -743,6 +743,18 @@ TEST_F(InteractionSeen, ACreaseTakesTheEyePoint)
   EXPECT_NEAR((toVec3(op.end) - p3(1, 1)).norm(), 0.0, 1e-12);
 }
 
+TEST_F(InteractionSeen, ALineFromTheMarginIsDrawnOnTheTable)
+{
+  menu("Crease mode");
+  // Pressed just off the corner (on the margin) and released near the opposite corner: both
+  // ends snap to the corners on the table, not to points on the drag plane in the air.
+  drag(p3(-0.02, -0.015), p3(0.985, 0.99), 10);
+  const PaperState& state = client_.stateAt(base_ + 1);
+  ASSERT_GE(creaseBetween(state, vertexAt(state, 0, 0), vertexAt(state, 1, 1)), 0);
+  EXPECT_EQ(state.vertices_crease_pattern.size(), 4u);
+  EXPECT_EQ(state.faces.size(), 2u);
+}
+
 TEST_F(InteractionSeen, SeenEdgeOnTheViewTurnsForTheDragAndBack)
 {
   ASSERT_TRUE(client_.crease(1, 0, 0, 1).response.success);  // across this view's line of sight

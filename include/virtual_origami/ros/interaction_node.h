@@ -70,6 +70,8 @@ private:
   /// rviz's camera at `stamp` (the ViewCamera display's tf frame), when it is broadcast;
   /// the latest one when `stamp` is newer than what tf holds.
   std::optional<ViewCamera> camera(const ros::Time& stamp) const;
+  /// The lowest height of the paper: the table it lies on (the margin's plane).
+  double tableHeight() const;
   /// The line of sight through `point`: from the camera, or `view_direction` without one.
   core::Vec3 sight(const std::optional<ViewCamera>& camera, const core::Vec3& point) const;
   /// Where the crease being drawn ends: the pointer on the plane of the pressed face, seen

@@ -22,7 +22,9 @@ struct MouseGesture
   core::Vec3 press = core::Vec3::Zero();
   double lift = 0.0;  // how far above the sheet rviz sees the marker (its mesh's z on a flat sheet)
   /// rviz's eye, when the ViewCamera display broadcasts it: the press's mouse point then lies
-  /// `lift` towards the eye (on the press's sight line), as rviz reports it on the pickable copy.
+  /// `lift` towards the eye (on the press's sight line), as rviz reports it on the pickable copy,
+  /// and the marker moves on the drag plane facing the eye (the sheet marker's VIEW_FACING
+  /// plane), to where the pointer's sight line meets it.
   std::optional<core::Vec3> eye;
 
   /// MOUSE_DOWN at the press, MOUSE_UP or POSE_UPDATE with the pointer at `at`, MENU_SELECT of
