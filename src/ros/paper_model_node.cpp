@@ -237,7 +237,7 @@ core::Status PaperModelNode::commit(core::Change change, const std::string& what
 template <class Result>
 core::Expected<core::Computed<Result>> PaperModelNode::computeAndCommit(
     const std::function<core::Expected<core::Computed<Result>>(core::Workspace)>& compute, bool commit_it,
-    const std::string& what, uint64_t& revision, const ros::Time& stamp)
+    const std::string& what, uint64_t& revision, const ros::Time& stamp, bool for_these_pins)
 {
   using Answer = core::Expected<core::Computed<Result>>;
   for (int attempt = 1;; ++attempt)
@@ -249,6 +249,7 @@ core::Expected<core::Computed<Result>> PaperModelNode::computeAndCommit(
     std::unique_lock<std::mutex> lock(mutex_);
     session_.setHeldVertices(pinnedVertices());
     core::Workspace workspace = session_.workspace();
+    const uint64_t pins_seen = pins_changes_;
     if (!last)
       lock.unlock();
     Answer computed = compute(std::move(workspace));
@@ -261,8 +262,10 @@ core::Expected<core::Computed<Result>> PaperModelNode::computeAndCommit(
     revision = session_.revision();  // answered with the revision this call made or found
     if (!computed)
       return computed;
-    if (computed->change.base_revision != session_.revision())
-      continue;  // somebody else's change came first: compute again on it
+    if (pins_changes_ != pins_seen && for_these_pins)
+      return Answer::failure("the pins changed while they were followed");
+    if (computed->change.base_revision != session_.revision() || pins_changes_ != pins_seen)
+      continue;  // somebody else's change came first, or the pins it must hold changed: again
     if (!commit_it)
     {
       publishMarkers(*computed->change.next);  // a preview is drawn, not recorded
@@ -323,6 +326,7 @@ void PaperModelNode::followPins(const ros::TimerEvent&)
   std::vector<core::PullTarget> targets;
   std::vector<int> held;
   ros::Time stamp;
+  uint64_t pins_seen = 0;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     const core::Paper& paper = session_.paper();
@@ -357,12 +361,15 @@ void PaperModelNode::followPins(const ros::TimerEvent&)
     held = pinnedVertices();
     if (refused_ && refused_->revision == session_.revision() && refused_->targets == targets && refused_->held == held)
       return;
+    pins_seen = pins_changes_;
   }
   uint64_t revision = 0;
   const auto result = computeAndCommit<core::PullResult>(
       [&](core::Workspace workspace) { return core::computePull(std::move(workspace), targets); }, true,
-      "pulled to the pins' frames", revision, stamp);
+      "pulled to the pins' frames", revision, stamp, true);
   std::lock_guard<std::mutex> lock(mutex_);
+  if (pins_changes_ != pins_seen)
+    return;  // a pin was set or released meanwhile: the next cycle follows the pins as they are
   if (!result)
   {
     // Refused cycles (a frame the rigid faces cannot reach) repeat while the frame moves on:
@@ -478,6 +485,7 @@ bool PaperModelNode::reset(std_srvs::Trigger::Request&, std_srvs::Trigger::Respo
   if (status)
   {
     pins_.clear();  // the vertices they held are gone
+    ++pins_changes_;
     pulled_to_.clear();
     publishState();
   }
@@ -519,6 +527,7 @@ bool PaperModelNode::pin(PinVertex::Request& req, PinVertex::Response& res)
   if (missing())  // the model changed while tf was asked
     return true;
   pulled_to_.erase(req.vertex);
+  ++pins_changes_;
   if (req.release)
     pins_.erase(req.vertex);
   else
@@ -602,6 +611,7 @@ bool PaperModelNode::load(Load::Request& req, Load::Response& res)
   if (status)
   {
     pins_.clear();
+    ++pins_changes_;
     pulled_to_.clear();
     publishState();
   }

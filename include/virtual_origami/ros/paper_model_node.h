@@ -60,11 +60,14 @@ private:
   /// Computes an operation on a copy of the model outside the lock, then commits it (or shows it
   /// as the preview) if nobody changed the model meanwhile; computed again when somebody did,
   /// the last of `solve_attempts_` tries under the lock, so that it lands.
-  /// `revision`: the one the commit made, or the model's when nothing was committed.
+  /// `revision`: the one the commit made, or the model's when nothing was committed. Pins that
+  /// change meanwhile make it compute again with them held, or, `for_these_pins` (a cycle of
+  /// pins following their frames), refuse.
   template <class Result>
   core::Expected<core::Computed<Result>>
   computeAndCommit(const std::function<core::Expected<core::Computed<Result>>(core::Workspace)>& compute, bool commit_it,
-                   const std::string& what, uint64_t& revision, const ros::Time& stamp = ros::Time(0));
+                   const std::string& what, uint64_t& revision, const ros::Time& stamp = ros::Time(0),
+                   bool for_these_pins = false);
   /// `stamp` zero: now (a pull is stamped with the tf data it followed).
   void publishState(const ros::Time& stamp = ros::Time(0));
   void publishMarkers(const core::Paper& paper);
@@ -86,6 +89,7 @@ private:
   int solve_attempts_ = 3;
   core::SessionJournal journal_;
   Pins pins_;
+  uint64_t pins_changes_ = 0;  // counts every pin, release and clearing of the pins
   std::map<int, core::Vec3> pulled_to_;  // where each followed pin last pulled its vertex (paper frame)
   /// The last cycle the faces could not follow: the same targets with the same held vertices on
   /// the same revision are not solved again (a frame standing still where it cannot be reached).
