@@ -25,6 +25,8 @@ PACKAGES=(
   # ROS layer (nodes, tf, bags, interactive markers, rviz)
   libroscpp-dev libtf2-ros-dev libtf2-geometry-msgs-dev librosbag-dev python3-rosbag
   libinteractive-markers-dev librviz-dev rviz
+  # the font of rviz's frame names (rviz pulls it in; named here so it is there for sure)
+  fonts-liberation
   # live-tunable solver parameters
   libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
   # ROS and end-to-end tests (rostest suites are Python: rospy and the Python messages)

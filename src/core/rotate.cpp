@@ -208,6 +208,10 @@ void updateFaceOrders(Paper& next, const Paper& before, const std::vector<char>&
       const double from = next.faceNormal(static_cast<int>(s)).dot(half_way - next.faceCentroid(static_cast<int>(s)));
       if (std::abs(from) > tolerance)
         setFaceOrder(next, static_cast<int>(s), static_cast<int>(m), from > 0 ? 1 : -1);
+      else if (const int kept = faceOrder(before, static_cast<int>(s), static_cast<int>(m)))
+        // No turn (or one too small to tell a side): the layers stay in the order they had (a
+        // preview of a turn by 0 drew a 4-layer quarter fold at 2 heights).
+        setFaceOrder(next, static_cast<int>(s), static_cast<int>(m), kept);
     }
   }
   pruneFaceOrders(next, tolerance);

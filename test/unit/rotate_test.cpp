@@ -6,6 +6,7 @@
 #include "virtual_origami/core/fold_io.h"
 #include "virtual_origami/core/metrics.h"
 #include "virtual_origami/core/reference_patterns.h"
+#include "virtual_origami/core/face_orders.h"
 #include "virtual_origami/core/rotate.h"
 #include "virtual_origami/solvers/solver_factory.h"
 
@@ -280,4 +281,27 @@ TEST(Rotate, TurningAboutAnEdgeThatSplitAConcaveFaceMakesItACrease)
   ASSERT_TRUE(written.ok()) << written.message();
   EXPECT_EQ(2u, written->frames[1].faces.size());
   EXPECT_NEAR(M_PI / 2, written->frames[1].edges[written->frames[1].findEdge(1, 3)].fold_angle, 1e-9);
+}
+
+TEST(Rotate, ATurnByNothingKeepsTheLayerOrder)
+{
+  // The quarter fold: four layers. A turn by 0 (a drag back to where it was pressed) must leave
+  // every face where it is and the layers in their order; they were dropped, and the preview
+  // drew four layers at two heights.
+  const Paper quarter = stackOfLayers(2);
+  ASSERT_FALSE(quarter.face_orders.empty());
+  for (size_t f = 0; f < quarter.faces.size(); ++f)
+  {
+    Paper turned = quarter;
+    RotateRequest request;
+    request.face = static_cast<int>(f);
+    request.click = quarter.faceCentroid(static_cast<int>(f));
+    request.angle = 0.0;
+    const Expected<RotateResult> result = rotate(turned, request);
+    if (!result)
+      continue;  // a face without a crease to turn about
+    for (const FaceOrder& order : quarter.face_orders)
+      EXPECT_EQ(faceOrder(turned, order.face, order.other), order.above) << "face " << f;
+    EXPECT_EQ(turned.face_orders.size(), quarter.face_orders.size()) << "face " << f;
+  }
 }
