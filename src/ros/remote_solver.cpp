@@ -1,6 +1,7 @@
 #include "virtual_origami/ros/remote_solver.h"
 
 #include <chrono>
+#include <cstdio>
 #include <future>
 #include <memory>
 #include <thread>
@@ -57,8 +58,9 @@ core::SolveReport RemoteSolver::solve(core::Paper& paper, const std::vector<char
         done.wait();
         --*stalled;
       }).detach();
-      report.message = "the solver service " + service_ + " did not answer within solver_timeout (" +
-                       std::to_string(timeout_) + " s)";
+      char seconds[32];
+      std::snprintf(seconds, sizeof seconds, "%g", timeout_);
+      report.message = "the solver service " + service_ + " did not answer within solver_timeout (" + seconds + " s)";
       return report;
     }
     if (done.get())
