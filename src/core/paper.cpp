@@ -153,7 +153,7 @@ bool Paper::operator==(const Paper& o) const
     const Edge& a = edges[i];
     const Edge& b = o.edges[i];
     if (a.vertices != b.vertices || a.assignment != b.assignment || a.fold_angle != b.fold_angle ||
-        a.faces != b.faces || a.split != b.split)
+        a.faces != b.faces || a.split != b.split || a.target_angle != b.target_angle)
       return false;
   }
   for (size_t i = 0; i < faces.size(); ++i)

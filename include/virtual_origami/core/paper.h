@@ -51,6 +51,9 @@ struct Edge
   /// not a crease of the file. Writing joins the faces across it back into the file's face
   /// while it stays flat; creasing along it or turning about it makes it a crease.
   bool split = false;
+  /// Where the crease is meant to go (FOLD sign), when a crease-pattern file said so with
+  /// edges_foldAngle; folding by assignment drives it there (else ±π by its assignment).
+  std::optional<double> target_angle;
 
   bool isCrease() const { return faces[0] >= 0 && faces[1] >= 0; }
   int otherVertex(int v) const { return vertices[0] == v ? vertices[1] : vertices[0]; }

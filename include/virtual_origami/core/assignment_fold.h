@@ -1,0 +1,71 @@
+// Folding by assignment (Origami Simulator's "fold percent"): every assigned crease is driven
+// towards a fraction of its target fold angle at once, and the faces follow as far as they can
+// keep their crease-pattern shape.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "virtual_origami/core/paper.h"
+#include "virtual_origami/core/result.h"
+#include "virtual_origami/core/shape_solver.h"
+
+namespace virtual_origami::core
+{
+/// Where each edge is meant to go, FOLD sign (positive valley): the file's edges_foldAngle when
+/// it gave one (Edge::target_angle), else +π for a valley, −π for a mountain, 0 for a flat crease;
+/// NaN for an edge no target drives (unassigned, cut, boundary).
+std::vector<double> creaseTargets(const Paper& paper);
+
+/// Strain |l/l0 − 1| of each face: the largest over its vertex pairs (for colouring by strain).
+std::vector<double> faceStrains(const Paper& paper);
+
+/// A solver that drives creases: it moves the vertices not in `fixed` to balance the faces'
+/// shape (stiff) against every crease whose target is finite (a spring of stiffness
+/// `crease_stiffness` · its length towards target[e]); NaN targets are free hinges. Anytime:
+/// it stops at its limits with its best shape so far. `converged` means balanced (the energy's
+/// gradient below the tolerance), not rigid: max_strain reports what the faces kept.
+class CreaseDriver
+{
+public:
+  virtual ~CreaseDriver() = default;
+  virtual std::string name() const = 0;
+  virtual SolveReport drive(Paper& paper, const std::vector<double>& target, const std::vector<char>& fixed) = 0;
+
+  const SolveLimits& limits() const { return limits_; }
+  void setLimits(const SolveLimits& limits) { limits_ = limits; }
+
+protected:
+  SolveLimits limits_;
+};
+
+struct AssignmentFoldRequest
+{
+  /// 0: every driven crease towards its flat state, 1: towards its full target.
+  double fraction = 1.0;
+  /// False for a preview frame: one call of the driver within its limits (a time budget), from
+  /// the paper as given (the last frame). True to commit: staged from the paper's own angles
+  /// (at most `max_stage_angle` per stage), balanced, then made rigid by `rigid` when a rigid
+  /// shape lies within reach (strain ≤ its tolerance); else the balanced shape is kept with its
+  /// strain reported.
+  bool converge = true;
+  double max_stage_angle = 0.17453292519943295;  // 10°
+};
+
+struct AssignmentFoldResult
+{
+  double fraction = 0.0;
+  SolveReport solve;          // the driver's, iterations and seconds summed over stages
+  bool rigid = false;         // the rigid solver closed the faces exactly
+  double max_strain = 0.0;    // of the result
+  double angle_error = 0.0;   // RMS distance of the driven creases from fraction · target (rad)
+  std::vector<double> face_strain;
+};
+
+/// Folds `paper` by assignment. Fails (paper untouched) on a fraction outside [0, 1] or not
+/// finite, a paper without a driven crease, or a driver that diverged.
+Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFoldRequest& request,
+                                                CreaseDriver& driver, ShapeSolver* rigid,
+                                                const std::vector<int>& held = {});
+
+}  // namespace virtual_origami::core
