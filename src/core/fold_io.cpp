@@ -38,6 +38,9 @@ using ordered_json = nlohmann::ordered_json;
 
 /// Our own frame field: the crease pattern of a standalone folded-form frame.
 const char* const kCreasePatternKey = "virtual_origami:vertices_creasePattern";
+// Where each crease is meant to go (Edge::target_angle), degrees or null: kept apart from
+// edges_foldAngle, which says where the creases are in the frame written.
+const char* const kTargetAngleKey = "virtual_origami:edges_targetFoldAngle";
 
 /// The faces around a vertex must unfold it to one place within this (relative to the sheet
 /// scale): other tools round their coordinates to about 6 digits.
@@ -191,6 +194,7 @@ struct FrameData
   std::optional<std::vector<std::array<int, 2>>> edges;
   std::optional<std::vector<Assignment>> assignments;
   std::optional<std::vector<double>> fold_angles;
+  std::optional<std::vector<std::optional<double>>> target_angles;
   std::optional<std::vector<std::vector<int>>> faces;
   std::vector<std::array<int, 3>> face_orders;  // [f, g, s] as in the file
   std::optional<std::vector<Vec2>> crease_pattern;
@@ -285,6 +289,28 @@ std::optional<std::vector<double>> readFoldAngles(const json& frame, const std::
   return angles;
 }
 
+std::optional<std::vector<std::optional<double>>> readTargetAngles(const json& frame,
+                                                                    const std::optional<size_t>& edge_count)
+{
+  const json* field = edgeField(frame, kTargetAngleKey, edge_count);
+  if (!field)
+    return std::nullopt;
+  std::vector<std::optional<double>> angles;
+  for (size_t e = 0; e < field->size(); ++e)
+  {
+    if ((*field)[e].is_null())
+    {
+      angles.emplace_back();
+      continue;
+    }
+    const double degrees = readNumber((*field)[e], indexed(kTargetAngleKey, e));
+    if (std::abs(degrees) > 180.0 + 1e-9)
+      fail(indexed(kTargetAngleKey, e) + " is outside [-180, 180] degrees");
+    angles.emplace_back(toRadians(std::max(-180.0, std::min(180.0, degrees))));
+  }
+  return angles;
+}
+
 std::optional<std::vector<std::vector<int>>> readFaces(const json& frame, size_t vertex_count)
 {
   const json* field = findField(frame, "faces_vertices");
@@ -366,6 +392,7 @@ FrameData readFrame(const json& frame)
   const std::optional<size_t> edge_count = data.edges ? std::optional<size_t>(data.edges->size()) : std::nullopt;
   data.assignments = readAssignments(frame, edge_count);
   data.fold_angles = readFoldAngles(frame, edge_count);
+  data.target_angles = readTargetAngles(frame, edge_count);
   data.faces = readFaces(frame, vertex_count);
   if (!data.edges && !data.faces)
     fail("edges_vertices and faces_vertices are both missing");
@@ -1048,6 +1075,20 @@ BuiltFrame buildFrame(const json& frame, const BuiltFrame* parent)
   std::optional<std::vector<double>> fold_angles = data.fold_angles;
   if (fold_angles)
     fold_angles->resize(paper.edges.size(), 0.0);
+  // A crease pattern's fold angles say where its creases are meant to go (what folding by
+  // assignment drives them to); a folded form's say where they are.
+  const size_t file_edges = data.edges ? data.edges->size() : 0;
+  for (size_t e = 0; e < paper.edges.size() && e < file_edges; ++e)
+  {
+    Edge& edge = paper.edges[e];
+    if (!edge.isCrease())
+      continue;
+    if (data.target_angles)
+      edge.target_angle = (*data.target_angles)[e];
+    else if (built.crease_pattern && fold_angles &&
+             ((*fold_angles)[e] != 0.0 || edge.assignment == Assignment::Flat))
+      edge.target_angle = (*fold_angles)[e];
+  }
   if (built.crease_pattern)
     foldCreasePattern(paper, fold_angles);
   else
@@ -1331,6 +1372,16 @@ void addTopology(ordered_json& frame, const Paper& paper)
   frame["edges_vertices"] = edges;
   frame["edges_assignment"] = assignments;
   frame["edges_foldAngle"] = angles;
+  if (std::any_of(file.edges.begin(), file.edges.end(), [&](int e) { return paper.edges[e].target_angle.has_value(); }))
+  {
+    ordered_json targets = ordered_json::array();
+    for (int e : file.edges)
+    {
+      const std::optional<double>& target = paper.edges[e].target_angle;
+      targets.push_back(target ? ordered_json(toDegrees(*target)) : ordered_json(nullptr));
+    }
+    frame[kTargetAngleKey] = targets;
+  }
   frame["faces_vertices"] = faces;
   // Pieces of one face share its orders: each pair once, none of a face with itself.
   ordered_json orders = ordered_json::array();

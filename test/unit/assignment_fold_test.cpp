@@ -13,6 +13,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "virtual_origami/core/fold_io.h"
 #include "virtual_origami/core/reference_patterns.h"
 #include "virtual_origami/core/tessellations.h"
 #include "virtual_origami/solvers/crease_driver_factory.h"
@@ -295,6 +296,44 @@ TEST(AssignmentFold, FileTargetAnglesAreWhereCreasesGo)
   EXPECT_GT(zigzag, 0.6);
   EXPECT_NEAR(zigzag, 2 * std::atan(std::tan(straight / 2) / std::cos(1.0471975511965976)), 1e-9);
   (void)folded;
+}
+
+/// A crease pattern's edges_foldAngle are where its creases go; they survive a save and a load
+/// (in a field of their own, as the frame's edges_foldAngle then says where the creases are).
+TEST(AssignmentFold, TargetAnglesComeFromTheFileAndSurviveSaving)
+{
+  const std::string text = R"({
+    "file_spec": 1.1, "frame_classes": ["creasePattern"],
+    "vertices_coords": [[0,0],[1,0],[1,1],[0,1]],
+    "edges_vertices": [[0,1],[1,2],[2,3],[3,0],[0,2]],
+    "edges_assignment": ["B","B","B","B","V"],
+    "edges_foldAngle": [0,0,0,0,90],
+    "faces_vertices": [[0,1,2],[0,2,3]]
+  })";
+  const Expected<FoldDocument> document = parseFold(text);
+  ASSERT_TRUE(document) << document.message();
+  Paper paper = document->frames.at(0);
+  const int diagonal = paper.findEdge(0, 2);
+  ASSERT_TRUE(paper.edges[diagonal].target_angle);
+  EXPECT_DOUBLE_EQ(*paper.edges[diagonal].target_angle, M_PI / 2);
+  EXPECT_DOUBLE_EQ(creaseTargets(paper)[diagonal], M_PI / 2);
+  const auto d = makeCreaseDriver("quasi_newton");
+  NewtonSolver rigid;
+  AssignmentFoldRequest request;
+  request.fraction = 0.5;
+  // It loaded folded to its angles already; half of the target is 45°.
+  ASSERT_TRUE(foldByAssignment(paper, request, *d, &rigid));
+  EXPECT_NEAR(paper.edges[diagonal].fold_angle, M_PI / 4, 1e-9);
+  const Expected<FoldDocument> again = parseFold(formatFold(paper));
+  ASSERT_TRUE(again) << again.message();
+  ASSERT_TRUE(again->frames.at(0).edges[diagonal].target_angle);
+  EXPECT_NEAR(*again->frames.at(0).edges[diagonal].target_angle, M_PI / 2, 1e-12);
+  EXPECT_NEAR(again->frames.at(0).edges[diagonal].fold_angle, M_PI / 4, 1e-9);
+  const Expected<FoldDocument> broken = parseFold(
+      R"({"vertices_coords": [[0,0],[1,0],[1,1]], "edges_vertices": [[0,1],[1,2],[2,0]],
+          "faces_vertices": [[0,1,2]], "virtual_origami:edges_targetFoldAngle": [0, "x", null]})");
+  ASSERT_FALSE(broken);
+  EXPECT_THAT(broken.message(), HasSubstr("virtual_origami:edges_targetFoldAngle"));
 }
 
 TEST(AssignmentFold, PreviewFramesTrackTheSliderAndZeroUnfolds)
