@@ -809,6 +809,73 @@ def chart_contention(tables, name="contention", solver="slow solver"):
     tables[name] = "\n".join(lines) + "\n\n" + "\n\n".join(text)
 
 
+DRIVER_COLORS = {"quasi_newton": "C0", "newton": "C2", "constant_lbfgs": "C1"}
+
+
+def chart_fold(tables):
+    """Fold by assignment at scale (fold_bench): preview frame and commit against vertex count
+    beside the floor, error against CPU time at the largest size, and the rigid solvers' turn."""
+    data = rows("fold_scaling.csv")
+    if not data:
+        return
+    drivers = sorted({r["driver"] for r in data}, key=lambda d: list(DRIVER_COLORS).index(d)
+                     if d in DRIVER_COLORS else 9)
+    fig, (left, right) = plt.subplots(1, 2, figsize=(12, 4.5))
+    for d in drivers:
+        pts = [(num(r["vertices"]), num(r["frame_p95_ms"]), num(r["commit_s"])) for r in data if r["driver"] == d]
+        ok = [p for p in pts if math.isfinite(p[1])]
+        left.loglog([p[0] for p in ok], [p[1] for p in ok], "o-", c=DRIVER_COLORS.get(d), label=f"{d}: frame p95")
+        ok = [p for p in pts if math.isfinite(p[2])]
+        right.loglog([p[0] for p in ok], [p[2] for p in ok], "o-", c=DRIVER_COLORS.get(d), label=d)
+    sizes = sorted({num(r["vertices"]) for r in data})
+    floors = [next(num(r["floor_ms"]) for r in data if num(r["vertices"]) == v) for v in sizes]
+    left.loglog(sizes, floors, "k--", label="floor: one back-substitution + one gradient")
+    left.axhline(33, c="gray", ls=":", label="33 ms (30 frames a second)")
+    right.axhline(1.0, c="gray", ls=":", label="1 s")
+    left.set_xlabel("vertices (Miura-ori)")
+    left.set_ylabel("CPU ms per preview frame (1 % further, balanced to 1e-6)")
+    left.grid(True, which="both", alpha=0.3)
+    left.legend(fontsize=7)
+    left.set_title("Preview frame against vertex count, one core")
+    right.set_xlabel("vertices (Miura-ori)")
+    right.set_ylabel("CPU s to commit 1 % further (strain 1e-9 where rigid)")
+    right.grid(True, which="both", alpha=0.3)
+    right.legend(fontsize=7)
+    right.set_title("Commit against vertex count, one core")
+    save(fig, "fold_scaling.png")
+
+    lines = ["| vertices | driver | frame p50 | frame p95 | frame strain | frames balanced | commit | commit strain | "
+             "rigid | floor |", "|---|---|---|---|---|---|---|---|---|---|"]
+    for r in data:
+        lines.append(f"| {int(num(r['vertices']))} | {r['driver']} | {fmt(num(r['frame_p50_ms']))} ms | "
+                     f"{fmt(num(r['frame_p95_ms']))} ms | {fmt(num(r['frame_max_strain']))} | {r['frames_balanced']}/10 | "
+                     f"{fmt(num(r['commit_s']))} s | {fmt(num(r['commit_strain']))} | "
+                     f"{'yes' if r['commit_rigid'] == '1' else 'no'} | {fmt(num(r['floor_ms']))} ms |")
+    text = []
+    et = rows("fold_error_time.csv")
+    if et:
+        fig, ax = plt.subplots(figsize=(7, 4.5))
+        for d in drivers:
+            pts = [(num(r["cpu_s"]), num(r["error"])) for r in et if r["driver"] == d and num(r["error"]) > 0]
+            if pts:
+                ax.loglog([p[0] * 1e3 for p in pts], [p[1] for p in pts], "o-", c=DRIVER_COLORS.get(d), label=d)
+        ax.axvline(33, c="gray", ls=":", label="33 ms")
+        finish(fig, ax, "CPU ms (one solve, 1 % further, stopped after k iterations)",
+               "max vertex error / sheet size", "Error against time at %d vertices" % int(num(et[0]["vertices"])),
+               "fold_error_time.png")
+        for d in drivers:
+            within = [num(r["error"]) for r in et if r["driver"] == d and num(r["cpu_s"]) <= 0.033]
+            if within:
+                text.append(f"Within 33 ms at {int(num(et[0]['vertices']))} vertices, {d} comes to "
+                            f"{fmt(min(within))} of the sheet from the balanced frame.")
+    turn = rows("fold_turn.csv")
+    if turn:
+        text.append("A 10° turn of a corner face of a 40 × 40 Miura-ori (rotate, the turned face held): " + "; ".join(
+            f"{r['solver']} turn {r['turn']}: {fmt(num(r['cpu_s']))} s CPU"
+            f"{'' if r['converged'] == '1' else ' (not converged)'}" for r in turn) + ".")
+    tables["fold"] = "\n".join(lines) + ("\n\n" + "\n\n".join(text) if text else "")
+
+
 def write_tables(tables):
     if not os.path.exists(DOC):
         return
@@ -837,6 +904,7 @@ def main():
     chart_memory(tables)
     chart_contention(tables)
     chart_contention(tables, "contention_newton", "newton, the default solver")
+    chart_fold(tables)
     table_wall_time(tables)
     conclusions(tables)
     write_tables(tables)

@@ -49,6 +49,8 @@ step sweep_bench "$bin/sweep_bench" "$out"
 step curved_bench "$bin/curved_bench" "$out/curved_solvers.csv"
 # One core: CHOLMOD's OpenMP loops capped to one thread.
 step curved_speed_bench env OMP_THREAD_LIMIT=1 "$bin/curved_speed_bench" "$out"
+# One core, as curved_speed_bench (CHOLMOD's OpenMP loops capped to one thread).
+step fold_bench env OMP_THREAD_LIMIT=1 "$bin/fold_bench" "$out"
 step replay_bench "$bin/replay_bench" "$out/replay.csv" sequences/crane.json sequences/penguin.json sequences/miura_ori.json
 step mesh_bench "$bin/mesh_bench" "$out"
 # Journal and memory: their temporary files in the build folder, on disk (not a tmpfs /tmp).

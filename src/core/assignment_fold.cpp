@@ -157,7 +157,8 @@ Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFo
       }
     const int stages = std::max(1, static_cast<int>(std::ceil(furthest / request.max_stage_angle - 1e-9)));
     const double stiffness = driver.faceStiffness();
-    const bool soft_path = request.path_stiffness > 0 && request.path_stiffness < stiffness;
+    // One stage (a slide's step) stays near a balanced state: no detour needed there.
+    const bool soft_path = stages > 1 && request.path_stiffness > 0 && request.path_stiffness < stiffness;
     if (soft_path)
       driver.setFaceStiffness(request.path_stiffness);
     std::vector<double> stage_goal = goal;

@@ -55,9 +55,10 @@ struct AssignmentFoldRequest
   /// strain reported.
   bool converge = true;
   double max_stage_angle = 0.17453292519943295;  // 10°
-  /// Face stiffness on the way of a commit (below the driver's own): a pattern that is no rigid
-  /// mechanism, like a square twist, folds only through strained faces, which stiff faces never
-  /// enter. The stages run with it, then the goal is balanced again with the driver's stiffness.
+  /// Face stiffness on the way of a commit of more than one stage (below the driver's own): a
+  /// pattern that is no rigid mechanism, like a square twist, folds only through strained
+  /// faces, which stiff faces never enter. The stages run with it, then the goal is balanced
+  /// again with the driver's stiffness. A one-stage commit (a slide's step) stays stiff.
   double path_stiffness = 100.0;
 };
 
