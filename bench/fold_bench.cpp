@@ -4,7 +4,7 @@
 // move solved to balance and closed rigid to strain 1e-9), beside the floor of one iteration
 // (one back-substitution of the pattern's constant matrix and one gradient pass); error against
 // CPU time at the largest size; and the 10° corner turn of a 40 × 40 Miura-ori by the rigid
-// solvers. Writes fold_scaling.csv, fold_error_time.csv and fold_turn.csv.
+// newton solver, alone and guided by the crease driver. Writes fold_scaling.csv, fold_error_time.csv and fold_turn.csv.
 //   fold_bench OUT_DIR [MAX_VERTICES]
 #include <algorithm>
 #include <cmath>
@@ -218,16 +218,18 @@ int main(int argc, char** argv)
       }
   }
 
-  // The rigid solvers' 10° turn of a corner face about its zigzag crease, 40 × 40 Miura-ori.
+  // The 10° turn of a corner face about its zigzag crease, 40 × 40 Miura-ori, three in a row:
+  // the rigid newton solver alone, and guided by the default crease driver (rotate.h, TurnGuide).
   std::ofstream turn(out + "/fold_turn.csv");
   turn << "vertices,solver,turn,cpu_s,iterations,strain,converged\n";
-  for (const std::string& name : { std::string("newton"), std::string("rigid_kinematics") })
+  for (const bool guided : { false, true })
   {
     Paper paper = miuraTessellation(40, 40).value().paper;
-    auto solver = makeSolver(name);
-    SolveLimits limits = solver->limits();
-    limits.max_seconds = 20.0;  // rigid_kinematics otherwise searches for minutes
-    solver->setLimits(limits);
+    auto solver = makeSolver("newton");
+    auto driver = makeCreaseDriver("quasi_newton");
+    TurnGuide guide;
+    if (guided)
+      guide.driver = driver.get();
     int axis = -1;
     for (int e : paper.faces[0].edges)
       if (paper.edges[e].isCrease() &&
@@ -241,11 +243,11 @@ int main(int argc, char** argv)
       request.axis_edge = axis;
       request.angle = 10 * M_PI / 180;
       const double t0 = cpuSeconds();
-      const Expected<RotateResult> r = rotate(paper, request, solver.get());
+      const Expected<RotateResult> r = rotate(paper, request, solver.get(), {}, guide);
       const double seconds = cpuSeconds() - t0;
-      turn << paper.vertices.size() << "," << name << "," << k << "," << seconds << ","
-           << (r ? r->solve.iterations : -1) << "," << (r ? r->solve.max_strain : NAN) << ","
-           << (r && r->solve.converged ? 1 : 0) << "\n";
+      turn << paper.vertices.size() << "," << (guided ? "newton guided by quasi_newton" : "newton") << "," << k
+           << "," << seconds << "," << (r ? r->solve.iterations : -1) << "," << (r ? r->solve.max_strain : NAN)
+           << "," << (r && r->solve.converged ? 1 : 0) << "\n";
       if (!r)
         break;
     }

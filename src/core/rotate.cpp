@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <sstream>
 
 #include "virtual_origami/core/axis.h"
@@ -258,7 +259,8 @@ double largestCreaseChange(const Paper& before, const Paper& after)
 /// paper, when a stage does not converge; `report` sums the stages' iterations and time.
 Expected<Paper> solveInStages(const Paper& paper, double turn,
                               const std::function<Paper(const Paper&, double)>& turnedBy, ShapeSolver& solver,
-                              const std::vector<char>& fixed, SolveReport& report)
+                              const std::vector<char>& fixed, SolveReport& report,
+                              const std::function<void(const Paper&, double, Paper&)>& guide = {})
 {
   const int stages = std::max(1, static_cast<int>(std::ceil(std::abs(turn) / kMaxStage - 1e-9)));
   Paper current = paper;
@@ -271,6 +273,8 @@ Expected<Paper> solveInStages(const Paper& paper, double turn,
     const bool last = std::abs(turn - done) <= std::abs(step) * (1 + 1e-12);
     const double to = last ? turn : done + step;
     Paper attempt = turnedBy(current, to);
+    if (guide)
+      guide(current, to, attempt);
     SolveReport stage = solver.solve(attempt, fixed);
     iterations += stage.iterations;
     seconds += stage.seconds;
@@ -313,7 +317,7 @@ std::vector<int> flapOf(const Paper& paper, int face, int axis_edge)
 }
 
 Expected<RotateResult> rotate(Paper& paper, const RotateRequest& request, ShapeSolver* solver,
-                              const std::vector<int>& held)
+                              const std::vector<int>& held, const TurnGuide& turn_guide)
 {
   const auto resolved = resolveFaceAndAxis(paper, request);
   if (!resolved)
@@ -409,7 +413,35 @@ Expected<RotateResult> rotate(Paper& paper, const RotateRequest& request, ShapeS
       if (v >= 0 && v < static_cast<int>(fixed.size()))
         fixed[v] = 1;
     result.used_solver = true;
-    Expected<Paper> solved = solveInStages(paper, turn, turnedBy, *solver, fixed, result.solve);
+    std::function<void(const Paper&, double, Paper&)> guide;
+    if (turn_guide.driver && paper.vertices.size() >= turn_guide.min_vertices)
+      guide = [&](const Paper& current, double to, Paper& attempt) {
+        std::vector<double> target(paper.edges.size(), std::numeric_limits<double>::quiet_NaN());
+        for (const auto& [e, rate] : hinges)
+          target[e] = paper.edges[e].fold_angle + rate * to;
+        std::vector<char> anchor(paper.vertices.size(), 0);
+        for (int v : paper.faces[across].vertices)
+          anchor[v] = 1;
+        for (int v : held)
+          if (v >= 0 && v < static_cast<int>(anchor.size()))
+            anchor[v] = 1;
+        CreaseDriver& driver = *turn_guide.driver;
+        const double stiffness = driver.faceStiffness();
+        driver.setFaceStiffness(turn_guide.face_stiffness);
+        Paper guess = current;
+        const SolveReport report = driver.drive(guess, target, anchor);
+        driver.setFaceStiffness(stiffness);
+        if (!report.converged)
+          return;
+        // A start only where it agrees with the turn: the turning faces where it puts them.
+        for (size_t v = 0; v < paper.vertices.size(); ++v)
+          if (moving_vertices[v] && (guess.vertices[v].folded - attempt.vertices[v].folded).norm() > 1e-6 * paper.scale())
+            return;
+        for (size_t v = 0; v < paper.vertices.size(); ++v)
+          if (!fixed[v])
+            attempt.vertices[v].folded = guess.vertices[v].folded;
+      };
+    Expected<Paper> solved = solveInStages(paper, turn, turnedBy, *solver, fixed, result.solve, guide);
     if (!solved)
       return Failure::failure(solved.message());
     next = std::move(*solved);

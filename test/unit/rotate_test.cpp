@@ -8,7 +8,10 @@
 #include "virtual_origami/core/reference_patterns.h"
 #include "virtual_origami/core/face_orders.h"
 #include "virtual_origami/core/rotate.h"
+#include "virtual_origami/core/tessellations.h"
+#include "virtual_origami/solvers/crease_driver_factory.h"
 #include "virtual_origami/solvers/solver_factory.h"
+#include "virtual_origami/solvers/newton_solver.h"
 
 using namespace virtual_origami::core;
 using namespace virtual_origami::core::test;
@@ -305,3 +308,47 @@ TEST(Rotate, ATurnByNothingKeepsTheLayerOrder)
     EXPECT_EQ(turned.face_orders.size(), quarter.face_orders.size()) << "face " << f;
   }
 }
+
+namespace virtual_origami::core
+{
+namespace
+{
+/// A crease driver's start changes how fast a turn is followed, not where it ends: on a
+/// Miura-ori (one degree of freedom) three guided 10° turns end where the solver alone ends,
+/// with the faces as exact.
+TEST(Rotate, AGuidedTurnEndsWhereTheSolverAloneEnds)
+{
+  const Paper start = miuraTessellation(8, 8).value().paper;
+  int axis = -1;
+  for (int e : start.faces[0].edges)
+    if (start.edges[e].isCrease() && std::abs(start.vertices[start.edges[e].vertices[1]].crease_pattern.y() -
+                                              start.vertices[start.edges[e].vertices[0]].crease_pattern.y()) > 1e-9)
+      axis = e;
+  ASSERT_GE(axis, 0);
+  Paper alone = start, guided = start;
+  NewtonSolver solver;
+  const std::unique_ptr<CreaseDriver> driver = makeCreaseDriver("quasi_newton");
+  TurnGuide guide;
+  guide.driver = driver.get();
+  guide.min_vertices = 0;
+  RotateRequest request;
+  request.face = 0;
+  request.axis_edge = axis;
+  request.angle = 10 * M_PI / 180;
+  for (int k = 0; k < 3; ++k)
+  {
+    const Expected<RotateResult> a = rotate(alone, request, &solver);
+    const Expected<RotateResult> g = rotate(guided, request, &solver, {}, guide);
+    ASSERT_TRUE(a) << a.message();
+    ASSERT_TRUE(g) << g.message();
+    EXPECT_LE(g->solve.max_strain, 1e-9);
+    EXPECT_LE(g->solve.iterations, a->solve.iterations);
+  }
+  for (size_t v = 0; v < start.vertices.size(); ++v)
+    EXPECT_LE((guided.vertices[v].folded - alone.vertices[v].folded).norm(), 1e-8) << "vertex " << v;
+  for (size_t e = 0; e < start.edges.size(); ++e)
+    EXPECT_NEAR(guided.edges[e].fold_angle, alone.edges[e].fold_angle, 1e-8) << "edge " << e;
+  EXPECT_NEAR(guided.edges[axis].fold_angle, 30 * M_PI / 180, 1e-9);
+}
+}  // namespace
+}  // namespace virtual_origami::core
