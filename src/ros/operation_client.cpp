@@ -3,6 +3,7 @@
 #include <ros/service.h>
 #include <std_srvs/Trigger.h>
 #include <virtual_origami/Crease.h>
+#include <virtual_origami/FoldByAssignment.h>
 #include <virtual_origami/Load.h>
 #include <virtual_origami/PinVertex.h>
 #include <virtual_origami/Pull.h>
@@ -27,7 +28,8 @@ OperationClient::OperationClient(const std::string& ns) : nh_(ns) {}
 
 bool OperationClient::waitForServices(double seconds)
 {
-  for (const char* name : { "crease", "rotate", "squash", "undo", "redo", "reset", "pin", "pull", "load" })
+  for (const char* name : { "crease", "rotate", "squash", "undo", "redo", "reset", "pin", "pull", "load",
+                            "fold_by_assignment" })
     if (!ros::service::waitForService(nh_.resolveName(name), ros::Duration(seconds)))
       return false;
   return true;
@@ -84,6 +86,15 @@ core::Status OperationClient::apply(const Operation& op, int animation_steps, do
     srv.request.vertices = op.vertices;
     srv.request.positions = op.positions;
     return call(nh_, "pull", srv);
+  }
+  if (op.type == "fold_by_assignment")
+  {
+    // Not animated: where the paper was before is not recorded with the fraction, and previews
+    // from a guess would show a motion that never happened.
+    FoldByAssignment srv;
+    srv.request.fraction = op.fraction;
+    srv.request.preview = false;
+    return call(nh_, "fold_by_assignment", srv);
   }
   if (op.type == "load")
     return load(op.path);
