@@ -24,8 +24,10 @@
 #include "virtual_origami/core/data_folder.h"
 #include "virtual_origami/core/tessellations.h"
 #include "virtual_origami/ros/conversions.h"
+#include "virtual_origami/ros/fold_slider.h"
 #include "virtual_origami/ros/mouse_feedback.h"
 #include "virtual_origami/ros/operation_client.h"
+#include "virtual_origami/ros/strain_colours.h"
 
 using namespace virtual_origami;
 using virtual_origami::test::PaperClient;
@@ -363,6 +365,66 @@ TEST_F(FoldByAssignmentTest, TheMenuFoldsAllTheWayAndColoursByStrain)
   send(gesture.menu(static_cast<uint32_t>(strain), core::Vec3(1, 1, 0), ros::Time::now()));
   settle();
   EXPECT_TRUE(waitFor([&] { return !front_.points.empty() && front_.colors.empty(); }, 10));
+}
+
+TEST(StrainColours, BlueWithoutStrainRedAtTheScaleAndBeyond)
+{
+  const auto expectColour = [](const std_msgs::ColorRGBA& c, float r, float g, float b) {
+    EXPECT_FLOAT_EQ(c.r, r);
+    EXPECT_FLOAT_EQ(c.g, g);
+    EXPECT_FLOAT_EQ(c.b, b);
+    EXPECT_FLOAT_EQ(c.a, 1.0f);
+  };
+  expectColour(strainColour(0.0, 1e-2), 0, 0, 1);
+  expectColour(strainColour(0.25e-2, 1e-2), 0, 1, 1);  // a quarter: cyan
+  expectColour(strainColour(0.5e-2, 1e-2), 0, 1, 0);   // half: green
+  expectColour(strainColour(0.75e-2, 1e-2), 1, 1, 0);  // three quarters: yellow
+  expectColour(strainColour(1e-2, 1e-2), 1, 0, 0);
+  expectColour(strainColour(5.0, 1e-2), 1, 0, 0);
+  expectColour(strainColour(INFINITY, 1e-2), 1, 0, 0);
+  expectColour(strainColour(NAN, 1e-2), 1, 0, 1);  // magenta: nothing else is
+  // From blue to red the red part never falls and the blue part never rises.
+  std_msgs::ColorRGBA last = strainColour(0.0, 1.0);
+  for (int i = 1; i <= 100; ++i)
+  {
+    const std_msgs::ColorRGBA c = strainColour(i / 100.0, 1.0);
+    EXPECT_GE(c.r, last.r);
+    EXPECT_LE(c.b, last.b);
+    last = c;
+  }
+}
+
+TEST(FoldSlider, TheTrackLiesBesideTheCreasePatternAndMapsToZeroToOne)
+{
+  const core::Expected<core::Tessellation> miura = core::miuraTessellation(4, 3);
+  ASSERT_TRUE(miura.ok()) << miura.message();
+  core::Paper paper = miura->paper;
+  const SliderTrack track = sliderTrack(paper, SliderStyle{});
+  double lo_x = INFINITY, hi_x = -INFINITY, lo_y = INFINITY;
+  for (const core::Vertex& v : paper.vertices)
+  {
+    lo_x = std::min(lo_x, v.crease_pattern.x());
+    hi_x = std::max(hi_x, v.crease_pattern.x());
+    lo_y = std::min(lo_y, v.crease_pattern.y());
+  }
+  EXPECT_NEAR(track.start.x(), lo_x, 1e-12);
+  EXPECT_NEAR(track.end.x(), hi_x, 1e-12);
+  EXPECT_NEAR(track.start.y(), lo_y - 0.15 * paper.scale(), 1e-12);
+  EXPECT_EQ(sliderFraction(track, track.start), 0.0);
+  EXPECT_EQ(sliderFraction(track, track.end), 1.0);
+  EXPECT_NEAR(sliderFraction(track, sliderPoint(track, 0.37) + core::Vec3(0, 0.2, 0.3)), 0.37, 1e-12);
+  EXPECT_EQ(sliderFraction(track, track.start - (track.end - track.start)), 0.0);  // clamped
+  EXPECT_EQ(sliderFraction(track, track.end + (track.end - track.start)), 1.0);
+  EXPECT_EQ(sliderFraction(track, core::Vec3(NAN, 0, 0)), 0.0);
+
+  // The fraction a paper is folded to, fitted to its driven creases' angles.
+  EXPECT_TRUE(hasDrivenCreases(paper));
+  EXPECT_EQ(foldFraction(paper), 0.0);
+  for (size_t e = 0; e < paper.edges.size(); ++e)
+    paper.edges[e].fold_angle = 0.4 * miura->target_fold_angle[e];
+  EXPECT_NEAR(foldFraction(paper), 0.4, 1e-12);
+  EXPECT_FALSE(hasDrivenCreases(core::Paper::square(1.0)));
+  EXPECT_EQ(foldFraction(core::Paper::square(1.0)), 0.0);
 }
 
 int main(int argc, char** argv)
