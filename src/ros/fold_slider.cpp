@@ -6,7 +6,6 @@
 
 #include <visualization_msgs/InteractiveMarkerControl.h>
 
-#include "virtual_origami/core/assignment_fold.h"
 #include "virtual_origami/ros/conversions.h"
 #include "virtual_origami/ros/markers.h"
 
@@ -58,25 +57,6 @@ double sliderFraction(const SliderTrack& track, const core::Vec3& point)
 core::Vec3 sliderPoint(const SliderTrack& track, double fraction)
 {
   return track.start + std::clamp(fraction, 0.0, 1.0) * (track.end - track.start);
-}
-
-double foldFraction(const core::Paper& paper)
-{
-  const std::vector<double> targets = core::creaseTargets(paper);
-  double fit = 0.0, norm = 0.0;
-  for (size_t e = 0; e < targets.size(); ++e)
-    if (std::isfinite(targets[e]))
-    {
-      fit += paper.edges[e].fold_angle * targets[e];
-      norm += targets[e] * targets[e];
-    }
-  return norm > 0 ? std::clamp(fit / norm, 0.0, 1.0) : 0.0;
-}
-
-bool hasDrivenCreases(const core::Paper& paper)
-{
-  const std::vector<double> targets = core::creaseTargets(paper);
-  return std::any_of(targets.begin(), targets.end(), [](double t) { return std::isfinite(t); });
 }
 
 visualization_msgs::InteractiveMarker sliderHandle(const SliderTrack& track, double fraction,

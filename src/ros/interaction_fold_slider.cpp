@@ -7,6 +7,7 @@
 #include <dynamic_reconfigure/Reconfigure.h>
 #include <virtual_origami/FoldByAssignment.h>
 
+#include "virtual_origami/core/fold_fraction.h"
 #include "virtual_origami/ros/conversions.h"
 #include "virtual_origami/ros/interaction_node.h"
 
@@ -42,7 +43,7 @@ void InteractionNode::showSlider()
   slider_changed_ = false;
   if (!slider_enabled_ || !paper_)
     return;
-  if (!hasDrivenCreases(*paper_))
+  if (!core::hasDrivenCreases(*paper_))
   {
     if (slider_shown_)
     {
@@ -56,7 +57,7 @@ void InteractionNode::showSlider()
   const SliderStyle style = scaledTo(paper_, slider_style_);
   track_ = sliderTrack(*paper_, style);
   slider_fraction_ = committed_fraction_ && committed_fraction_->first == revision_ ? committed_fraction_->second :
-                                                                                       foldFraction(*paper_);
+                                                                                       core::foldFraction(*paper_);
   server_.insert(sliderHandle(track_, slider_fraction_, style),
                  [this](const Feedback::ConstPtr& f) { received(f, Action::None, true); });
   server_.applyChanges();

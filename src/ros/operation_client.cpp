@@ -42,7 +42,8 @@ core::Status OperationClient::load(const std::string& path)
   return call(nh_, "load", srv);
 }
 
-core::Status OperationClient::apply(const Operation& op, int animation_steps, double animation_seconds)
+core::Status OperationClient::apply(const Operation& op, int animation_steps, double animation_seconds,
+                                    std::optional<double> folded_from)
 {
   if (op.type == "crease")
   {
@@ -89,9 +90,16 @@ core::Status OperationClient::apply(const Operation& op, int animation_steps, do
   }
   if (op.type == "fold_by_assignment")
   {
-    // Not animated: where the paper was before is not recorded with the fraction, and previews
-    // from a guess would show a motion that never happened.
+    // Animated only from where the paper was (its recorded state): from a guess the previews
+    // would show a motion that never happened.
     FoldByAssignment srv;
+    for (int i = 1; folded_from && i < animation_steps; ++i)
+    {
+      srv.request.fraction = *folded_from + (op.fraction - *folded_from) * i / animation_steps;
+      srv.request.preview = true;
+      ros::service::call(nh_.resolveName("fold_by_assignment"), srv);  // a preview that fails only shows less
+      ros::WallDuration(animation_seconds / animation_steps).sleep();
+    }
     srv.request.fraction = op.fraction;
     srv.request.preview = false;
     return call(nh_, "fold_by_assignment", srv);

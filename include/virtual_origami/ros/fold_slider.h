@@ -40,13 +40,6 @@ double sliderFraction(const SliderTrack& track, const core::Vec3& point);
 /// The point at `fraction` along the track.
 core::Vec3 sliderPoint(const SliderTrack& track, double fraction);
 
-/// How far the paper is folded by assignment: the fraction f that best fits every driven
-/// crease's angle to f · its target (least squares), clamped to 0 to 1; 0 without driven creases.
-double foldFraction(const core::Paper& paper);
-
-/// True when some crease has a target (core::creaseTargets) to fold towards.
-bool hasDrivenCreases(const core::Paper& paper);
-
 /// The handle at `fraction` along the track, movable only along it (its x axis).
 visualization_msgs::InteractiveMarker sliderHandle(const SliderTrack& track, double fraction,
                                                    const SliderStyle& style);
