@@ -1009,7 +1009,7 @@ Paper linkedPaper(const FrameData& data, const std::vector<std::vector<int>>& fa
   for (size_t e = 0; e < edges.size(); ++e)
   {
     const Assignment assignment = data.assignments ? (*data.assignments)[e] : Assignment::Unassigned;
-    paper.edges.push_back({ edges[e], assignment, 0.0, { -1, -1 } });
+    paper.edges.push_back({ edges[e], assignment, 0.0, { -1, -1 }, false, {} });
   }
   for (const std::vector<int>& cycle : faces)
     paper.faces.push_back({ cycle, {} });

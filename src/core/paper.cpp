@@ -64,7 +64,7 @@ Paper Paper::square(double size)
   for (const Vec2& c : corners)
     paper.vertices.push_back({ c, Vec3(c.x(), c.y(), 0.0) });
   for (int i = 0; i < 4; ++i)
-    paper.edges.push_back({ { i, (i + 1) % 4 }, Assignment::Boundary, 0.0, { -1, -1 } });
+    paper.edges.push_back({ { i, (i + 1) % 4 }, Assignment::Boundary, 0.0, { -1, -1 }, false, {} });
   paper.faces.push_back({ { 0, 1, 2, 3 }, {} });
   paper.sheet_area = size * size;
   linkTopology(paper);

@@ -20,7 +20,7 @@ Expected<Paper> patternPaper(const std::vector<Vec2>& vertices, const std::vecto
       const auto key = std::minmax(cycle[k], cycle[(k + 1) % cycle.size()]);
       auto [it, added] = edge_of.emplace(key, static_cast<int>(paper.edges.size()));
       if (added)
-        paper.edges.push_back({ { cycle[k], cycle[(k + 1) % cycle.size()] }, Assignment::Boundary, 0.0, { -1, -1 } });
+        paper.edges.push_back({ { cycle[k], cycle[(k + 1) % cycle.size()] }, Assignment::Boundary, 0.0, { -1, -1 }, false, {} });
       else
         paper.edges[it->second].assignment = Assignment::Unassigned;
     }

@@ -34,9 +34,14 @@ public:
 
   const SolveLimits& limits() const { return limits_; }
   void setLimits(const SolveLimits& limits) { limits_ = limits; }
+  /// Face stiffness K against the creases' (dimensionless, per cell): a crease kept δ radians
+  /// from its target leaves a strain of about δ / K in the faces beside it.
+  double faceStiffness() const { return face_stiffness_; }
+  void setFaceStiffness(double stiffness) { face_stiffness_ = stiffness; }
 
 protected:
   SolveLimits limits_;
+  double face_stiffness_ = 1e4;
 };
 
 struct AssignmentFoldRequest
@@ -50,6 +55,10 @@ struct AssignmentFoldRequest
   /// strain reported.
   bool converge = true;
   double max_stage_angle = 0.17453292519943295;  // 10°
+  /// Face stiffness on the way of a commit (below the driver's own): a pattern that is no rigid
+  /// mechanism, like a square twist, folds only through strained faces, which stiff faces never
+  /// enter. The stages run with it, then the goal is balanced again with the driver's stiffness.
+  double path_stiffness = 100.0;
 };
 
 struct AssignmentFoldResult

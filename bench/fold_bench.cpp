@@ -1,0 +1,254 @@
+// Fold by assignment at scale (make bench, on one core): for Miura-ori of 1,000 to 10,000
+// vertices and every crease driver, the CPU time of a preview frame (from the last frame, the
+// fold fraction moved 1 %, solved to a balance of 1e-6 of the sheet) and of a commit (the same
+// move solved to balance and closed rigid to strain 1e-9), beside the floor of one iteration
+// (one back-substitution of the pattern's constant matrix and one gradient pass); error against
+// CPU time at the largest size; and the 10° corner turn of a 40 × 40 Miura-ori by the rigid
+// solvers. Writes fold_scaling.csv, fold_error_time.csv and fold_turn.csv.
+//   fold_bench OUT_DIR [MAX_VERTICES]
+#include <algorithm>
+#include <cmath>
+#include <ctime>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/SparseCholesky>
+
+#include "virtual_origami/core/assignment_fold.h"
+#include "virtual_origami/core/positions.h"
+#include "virtual_origami/core/rotate.h"
+#include "virtual_origami/core/tessellations.h"
+#include "virtual_origami/solvers/crease_driver_factory.h"
+#include "virtual_origami/solvers/driven_faces.h"
+#include "virtual_origami/solvers/solver_factory.h"
+
+using namespace virtual_origami::core;
+
+namespace
+{
+double cpuSeconds()
+{
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+double percentile(std::vector<double> v, double p)
+{
+  std::sort(v.begin(), v.end());
+  const double index = p * static_cast<double>(v.size() - 1);
+  const size_t lo = static_cast<size_t>(std::floor(index)), hi = static_cast<size_t>(std::ceil(index));
+  return v[lo] + (index - static_cast<double>(lo)) * (v[hi] - v[lo]);
+}
+
+double maxDistance(const Paper& a, const Paper& b)
+{
+  double d = 0.0;
+  for (size_t v = 0; v < a.vertices.size(); ++v)
+    d = std::max(d, (a.vertices[v].folded - b.vertices[v].folded).norm());
+  return d / a.scale();
+}
+
+/// One back-substitution of the constant matrix (three right-hand sides) and one gradient
+/// pass: what any iteration of any of the drivers costs at least. Median CPU seconds of 20.
+double floorSeconds(const Paper& paper)
+{
+  DrivenFaces energy(paper, 1e4);
+  energy.setTargets(creaseTargets(paper));
+  std::vector<char> fixed(paper.vertices.size(), 0);
+  fixed[0] = fixed[1] = fixed[2] = 1;
+  int free_count = 0;
+  const std::vector<int> free_index = freeIndices(fixed, paper.vertices.size(), &free_count);
+  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> factor(
+      energy.constantMatrix(free_index, free_count));
+  const Positions x = foldedPositions(paper) / energy.scale();
+  Positions gradient;
+  const Eigen::MatrixX3d rhs = Eigen::MatrixX3d::Ones(free_count, 3);
+  std::vector<double> times;
+  double sink = 0.0;
+  for (int k = 0; k < 20; ++k)
+  {
+    const double start = cpuSeconds();
+    const Eigen::MatrixX3d solved = factor.solve(rhs);
+    sink += energy.evaluate(x, &gradient).energy + solved(0, 0);
+    times.push_back(cpuSeconds() - start);
+  }
+  if (!std::isfinite(sink))
+    std::cerr << "floor: non-finite\n";
+  return percentile(times, 0.5);
+}
+
+struct Driven
+{
+  std::unique_ptr<CreaseDriver> driver;
+  std::unique_ptr<ShapeSolver> rigid = makeSolver("newton");
+};
+
+void setLimits(CreaseDriver& driver, double tolerance, int iterations, double seconds)
+{
+  SolveLimits limits;
+  limits.tolerance = tolerance;
+  limits.max_iterations = iterations;
+  limits.max_seconds = seconds;
+  driver.setLimits(limits);
+}
+
+Expected<AssignmentFoldResult> fold(Driven& d, Paper& paper, double fraction, bool converge)
+{
+  AssignmentFoldRequest request;
+  request.fraction = fraction;
+  request.converge = converge;
+  return foldByAssignment(paper, request, *d.driver, converge ? d.rigid.get() : nullptr);
+}
+}  // namespace
+
+int main(int argc, char** argv)
+{
+  if (argc < 2)
+  {
+    std::cerr << "usage: fold_bench OUT_DIR [MAX_VERTICES]\n";
+    return 2;
+  }
+  const std::string out = argv[1];
+  const long max_vertices = argc > 2 ? std::atol(argv[2]) : 10000;
+  const double start_fraction = 0.3;
+  const int frames = 10;
+  // A driver that has not balanced within this CPU budget per solve is charted as not there.
+  const double give_up_seconds = 60.0;
+
+  std::ofstream scaling(out + "/fold_scaling.csv");
+  scaling << "pattern,vertices,driver,frame_p50_ms,frame_p95_ms,frame_max_strain,frames_balanced,commit_s,"
+             "commit_strain,commit_rigid,floor_ms\n";
+  std::vector<long> sizes;
+  for (long n : { 1000L, 2500L, 5000L, 10000L })
+    if (n <= max_vertices)
+      sizes.push_back(n);
+  Paper largest_start;
+  for (long n : sizes)
+  {
+    const Paper flat = tessellationWithVertices(TessellationKind::Miura, n).value().paper;
+    const double floor_ms = 1e3 * floorSeconds(flat);
+    for (const std::string& name : creaseDriverNames())
+    {
+      Driven d{ makeCreaseDriver(name) };
+      Paper paper = flat;
+      setLimits(*d.driver, 1e-9, 5000, give_up_seconds);
+      const double warm_start = cpuSeconds();
+      const Expected<AssignmentFoldResult> warm = fold(d, paper, start_fraction, true);
+      if (!warm || !warm->solve.converged)
+      {
+        std::cout << "fold_bench: " << name << " at " << flat.vertices.size() << " vertices did not balance at "
+                  << start_fraction * 100 << " % within " << cpuSeconds() - warm_start << " s CPU\n";
+        scaling << "miura," << flat.vertices.size() << "," << name << ",,,,0,,,," << floor_ms << "\n";
+        continue;
+      }
+      if (name == "newton" && n == sizes.back())
+        largest_start = paper;
+      // Frames: each from the last, 1 % further, solved to a balance of 1e-6 of the sheet.
+      setLimits(*d.driver, 1e-6, 5000, give_up_seconds);
+      std::vector<double> frame_ms;
+      double frame_strain = 0.0;
+      int balanced = 0;
+      for (int k = 1; k <= frames; ++k)
+      {
+        const double t0 = cpuSeconds();
+        const Expected<AssignmentFoldResult> r = fold(d, paper, start_fraction + 0.01 * k, false);
+        frame_ms.push_back(1e3 * (cpuSeconds() - t0));
+        if (r)
+        {
+          frame_strain = std::max(frame_strain, r->max_strain);
+          balanced += r->solve.converged ? 1 : 0;
+        }
+      }
+      // Commit: from the last frame's committed twin (the state at start + frames %), 1 % on.
+      Paper committed = paper;
+      setLimits(*d.driver, 1e-9, 5000, give_up_seconds);
+      const Expected<AssignmentFoldResult> base = fold(d, committed, start_fraction + 0.01 * frames, true);
+      const double t0 = cpuSeconds();
+      const Expected<AssignmentFoldResult> c = fold(d, committed, start_fraction + 0.01 * (frames + 1), true);
+      const double commit_s = cpuSeconds() - t0;
+      scaling << "miura," << flat.vertices.size() << "," << name << "," << percentile(frame_ms, 0.5) << ","
+              << percentile(frame_ms, 0.95) << "," << frame_strain << "," << balanced << ","
+              << (c && base ? commit_s : NAN) << "," << (c ? c->max_strain : NAN) << ","
+              << (c && c->rigid ? 1 : 0) << "," << floor_ms << "\n";
+      scaling.flush();
+      std::cout << "fold_bench: " << name << " " << flat.vertices.size() << " vertices: frame p50 "
+                << percentile(frame_ms, 0.5) << " ms, p95 " << percentile(frame_ms, 0.95) << " ms (strain "
+                << frame_strain << ", " << balanced << "/" << frames << " balanced), commit " << commit_s
+                << " s (strain " << (c ? c->max_strain : NAN) << "), floor " << floor_ms << " ms\n";
+    }
+  }
+
+  // Error against CPU time at the largest size: from the balanced 30 % state, 1 % on, each
+  // driver stopped after k iterations, against a reference balanced to 1e-12 by the exact driver.
+  std::ofstream error_time(out + "/fold_error_time.csv");
+  error_time << "vertices,driver,iterations,cpu_s,error,strain\n";
+  if (!largest_start.vertices.empty())
+  {
+    Driven reference_driver{ makeCreaseDriver("newton") };
+    setLimits(*reference_driver.driver, 1e-12, 200, 0.0);
+    Paper reference = largest_start;
+    const Expected<AssignmentFoldResult> ref = fold(reference_driver, reference, start_fraction + 0.01, false);
+    std::cout << "fold_bench: reference " << (ref && ref->solve.converged ? "balanced" : "NOT balanced") << " in "
+              << (ref ? ref->solve.iterations : -1) << " iterations\n";
+    if (ref && ref->solve.converged)
+      for (const std::string& name : creaseDriverNames())
+      {
+        Driven d{ makeCreaseDriver(name) };
+        Paper warm = largest_start;
+        setLimits(*d.driver, 1e-9, 1, give_up_seconds);
+        fold(d, warm, start_fraction, false);  // the driver's set-up (factorisation) done beforehand, as in a slide
+        for (int k : { 1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 64 })
+        {
+          Paper paper = largest_start;
+          setLimits(*d.driver, 0.0, k, give_up_seconds);
+          const double t0 = cpuSeconds();
+          const Expected<AssignmentFoldResult> r = fold(d, paper, start_fraction + 0.01, false);
+          const double seconds = cpuSeconds() - t0;
+          if (!r)
+            break;
+          error_time << largest_start.vertices.size() << "," << name << "," << r->solve.iterations << "," << seconds
+                     << "," << maxDistance(paper, reference) << "," << r->max_strain << "\n";
+          if (r->solve.iterations < k || maxDistance(paper, reference) < 1e-12)
+            break;
+        }
+      }
+  }
+
+  // The rigid solvers' 10° turn of a corner face about its zigzag crease, 40 × 40 Miura-ori.
+  std::ofstream turn(out + "/fold_turn.csv");
+  turn << "vertices,solver,turn,cpu_s,iterations,strain,converged\n";
+  for (const std::string& name : { std::string("newton"), std::string("rigid_kinematics") })
+  {
+    Paper paper = miuraTessellation(40, 40).value().paper;
+    auto solver = makeSolver(name);
+    SolveLimits limits = solver->limits();
+    limits.max_seconds = 20.0;  // rigid_kinematics otherwise searches for minutes
+    solver->setLimits(limits);
+    int axis = -1;
+    for (int e : paper.faces[0].edges)
+      if (paper.edges[e].isCrease() &&
+          std::abs(paper.vertices[paper.edges[e].vertices[1]].crease_pattern.y() -
+                   paper.vertices[paper.edges[e].vertices[0]].crease_pattern.y()) > 1e-9)
+        axis = e;
+    for (int k = 1; k <= 3; ++k)
+    {
+      RotateRequest request;
+      request.face = 0;
+      request.axis_edge = axis;
+      request.angle = 10 * M_PI / 180;
+      const double t0 = cpuSeconds();
+      const Expected<RotateResult> r = rotate(paper, request, solver.get());
+      const double seconds = cpuSeconds() - t0;
+      turn << paper.vertices.size() << "," << name << "," << k << "," << seconds << ","
+           << (r ? r->solve.iterations : -1) << "," << (r ? r->solve.max_strain : NAN) << ","
+           << (r && r->solve.converged ? 1 : 0) << "\n";
+      if (!r)
+        break;
+    }
+  }
+  return 0;
+}

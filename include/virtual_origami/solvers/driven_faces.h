@@ -1,0 +1,108 @@
+// The energy a crease driver balances: stiff faces that keep their crease-pattern shape, and
+// soft hinges pulled towards target fold angles. Scale-free per cell, so that the strain it
+// leaves does not grow with the number of cells: each face counts its residuals over its own
+// size squared, each hinge its length over its faces' size.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Sparse>
+
+#include "virtual_origami/core/paper.h"
+#include "virtual_origami/core/positions.h"
+#include "virtual_origami/solvers/rigid_faces.h"
+
+namespace virtual_origami::core
+{
+/// A crease as a hinge: its axis a→b (Edge::vertices), one wing vertex on each side (the face
+/// vertex farthest from the axis in the crease pattern; faces[0] is the left one).
+struct Hinge
+{
+  int edge = -1;
+  int a = -1, b = -1, left = -1, right = -1;
+  double weight = 0.0;  // crease length over the mean size of its two faces
+};
+
+/// The signed fold angle of a hinge (FOLD sign, as measureFoldAngle) from its four points.
+double hingeAngle(const Hinge& hinge, const Positions& x);
+
+/// dθ/dx of the four points a, b, left, right (one column each).
+Eigen::Matrix<double, 3, 4> hingeAngleGradient(const Hinge& hinge, const Positions& x);
+
+/// The faces and hinges of a paper, and the energy
+///   E = ½ K Σ_f Σ_{v∈f} |(x_v − x̄_f) − R_f p̃_v|² / s_f² + ½ Σ_c w_c (θ_c − θ*_c)²
+/// with R_f fitted per face, s_f² the face's mean squared radius, and only the hinges with a
+/// finite target in the second sum. Positions are in units of the sheet's scale inside.
+class DrivenFaces
+{
+public:
+  DrivenFaces(const Paper& paper, double face_stiffness);
+
+  /// Targets per edge (NaN: free). Angles are unwrapped against `reference` (per edge, the
+  /// branch nearest it), so a crease at ±π stays on the side it is on.
+  void setTargets(const std::vector<double>& targets);
+  void setReference(const std::vector<double>& reference) { reference_ = reference; }
+
+  struct Evaluation
+  {
+    double energy = 0.0;
+    double face_energy = 0.0;
+    double hinge_energy = 0.0;
+  };
+  /// Energy at x (positions divided by scale()), and its gradient dE/dx when asked.
+  Evaluation evaluate(const Positions& x, Positions* gradient = nullptr) const;
+
+  /// Unwrapped fold angle of every hinge's edge at x (NaN for edges that are no hinge).
+  std::vector<double> angles(const Positions& x) const;
+
+  /// The constant matrix: the face term with rotations frozen (a Laplacian per face) plus each
+  /// driven hinge's stiffness along its flat-state gradient (Bergou et al. 2006 for a flat rest
+  /// state), over the vertices with free_index ≥ 0. Scalar: the same for x, y and z.
+  Eigen::SparseMatrix<double> constantMatrix(const std::vector<int>& free_index, int free_count) const;
+
+  /// The Gauss–Newton matrix at x (3 rows per free vertex, lower triangle): each face's
+  /// rotation eliminated as in the rigid Newton solver (so a mechanism's turns cost nothing),
+  /// plus w_c ∇θ ∇θᵀ per driven hinge. Positive semidefinite; exact at a balanced state up to
+  /// the hinges' curvature times their miss.
+  Eigen::SparseMatrix<double> gaussNewtonMatrix(const Positions& x, const std::vector<int>& free_index,
+                                                int free_count) const;
+  /// The same matrix as entries (summed where they repeat), in an order that depends on the
+  /// pattern alone: a caller that keeps where each lands refills the values without sorting.
+  void gaussNewtonTriplets(const Positions& x, const std::vector<int>& free_index,
+                           std::vector<Eigen::Triplet<double>>& out) const;
+
+  /// The Gauss–Newton matrix at one state, kept as factors per face and hinge so that its
+  /// product with a vector costs one pass over them (Newton–Krylov), never assembled.
+  struct Linearization
+  {
+    std::vector<Eigen::Matrix3Xd> turned_rest;  // q_v = R_f p̃_v per face vertex
+    std::vector<Eigen::Matrix3d> inertia_inverse;
+    std::vector<Eigen::Matrix<double, 3, 4>> hinge_gradient;  // driven hinges, in order
+  };
+  Linearization linearize(const Positions& x) const;
+  /// out = H v over every vertex (3 × V; entries of held vertices in v must be zero, and are
+  /// left out of `out` by the caller).
+  void gaussNewtonProduct(const Linearization& linearization, const Positions& v, Positions& out) const;
+
+  const std::vector<RigidFace>& faces() const { return faces_; }
+  const std::vector<Hinge>& hinges() const { return hinges_; }
+  double scale() const { return scale_; }
+  double faceStiffness() const { return stiffness_; }
+
+private:
+  std::vector<RigidFace> faces_;
+  std::vector<double> face_weight_;  // K / s_f²
+  std::vector<Hinge> hinges_;
+  std::vector<double> target_;       // per hinge, NaN when free
+  std::vector<double> reference_;    // per edge
+  double scale_ = 1.0;
+  double stiffness_ = 1.0;
+  Eigen::Matrix2Xd crease_pattern_;
+};
+
+/// Best rotation of a face onto centred points: the closed-form polar factor of the 3 × 2
+/// moment (fast), by SVD where the face is too thin for it (see fitRotation).
+Eigen::Matrix3d fitFaceRotation(const RigidFace& face, const Positions& x, Eigen::Vector3d* mean);
+
+}  // namespace virtual_origami::core

@@ -1,0 +1,69 @@
+// The crease drivers: L-BFGS on the energy of driven_faces.h with a factorised matrix as its
+// initial Hessian (after Liu, Bouaziz & Kavan 2017), in three kinds:
+// - constant: the face Laplacian with rotations frozen plus the driven hinges' flat-state
+//   stiffness, factorised once per pattern and held set (their design, kept for comparison:
+//   it calls a mechanism's turns stiff, so L-BFGS crawls along them);
+// - lagged (the default, "quasi_newton"): Newton–Krylov. Each step solves the Gauss–Newton
+//   system at the current state (each face's rotation eliminated, never assembled) by
+//   conjugate gradients, preconditioned by that matrix factorised at an earlier state and
+//   kept across iterations and frames; refactorised when the iterations grow (not within a
+//   frame's time budget);
+// - exact ("newton", the reference): that matrix refactorised every iteration (damped
+//   Gauss–Newton).
+// Each frame starts from a prediction along the motion of the frames before it. Anytime.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "virtual_origami/core/assignment_fold.h"
+
+namespace virtual_origami::core
+{
+enum class DriverHessian
+{
+  Constant,
+  Lagged,
+  Exact,
+};
+
+struct QuasiNewtonOptions
+{
+  DriverHessian hessian = DriverHessian::Lagged;
+  /// Lagged: refactorise when an iteration leaves more than this share of the step it started
+  /// from (the kept matrix no longer predicts the energy well).
+  double refresh_ratio = 0.5;
+  /// Lagged: conjugate-gradient iterations per Newton step, and the residual (relative to the
+  /// gradient) that ends them early.
+  int krylov_iterations = 8;
+  double krylov_tolerance = 0.05;
+  /// The driver's initial face stiffness (CreaseDriver::setFaceStiffness changes it).
+  double face_stiffness = 1e4;
+  int memory = 8;  // L-BFGS correction pairs
+  double armijo = 1e-4;
+  int max_line_search = 30;
+  /// Extrapolate each frame from the last two this driver returned (when the paper it gets
+  /// is the last it returned).
+  bool predict = true;
+};
+
+class QuasiNewtonDriver : public CreaseDriver
+{
+public:
+  explicit QuasiNewtonDriver(QuasiNewtonOptions options = {});
+  ~QuasiNewtonDriver() override;
+  std::string name() const override;
+  /// Converged when a preconditioned step would move no vertex more than
+  /// limits().tolerance · the sheet's scale (balance), whatever strain the faces keep.
+  SolveReport drive(Paper& paper, const std::vector<double>& target, const std::vector<char>& fixed) override;
+
+  const QuasiNewtonOptions& options() const { return options_; }
+
+private:
+  struct Setup;
+  QuasiNewtonOptions options_;
+  std::unique_ptr<Setup> setup_;
+};
+
+}  // namespace virtual_origami::core

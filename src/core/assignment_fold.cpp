@@ -1,0 +1,208 @@
+#include "virtual_origami/core/assignment_fold.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "virtual_origami/core/face_springs.h"
+#include "virtual_origami/core/positions.h"
+
+namespace virtual_origami::core
+{
+namespace
+{
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+}
+
+std::vector<double> creaseTargets(const Paper& paper)
+{
+  std::vector<double> targets(paper.edges.size(), kNaN);
+  for (size_t e = 0; e < paper.edges.size(); ++e)
+  {
+    const Edge& edge = paper.edges[e];
+    if (!edge.isCrease() || edge.split)
+      continue;
+    if (edge.target_angle && std::isfinite(*edge.target_angle) &&
+        (edge.assignment == Assignment::Mountain || edge.assignment == Assignment::Valley ||
+         edge.assignment == Assignment::Flat))
+    {
+      targets[e] = *edge.target_angle;
+      continue;
+    }
+    switch (edge.assignment)
+    {
+      case Assignment::Valley:
+        targets[e] = M_PI;
+        break;
+      case Assignment::Mountain:
+        targets[e] = -M_PI;
+        break;
+      case Assignment::Flat:
+        targets[e] = 0.0;
+        break;
+      default:
+        break;
+    }
+  }
+  return targets;
+}
+
+std::vector<double> faceStrains(const Paper& paper)
+{
+  std::vector<double> strain(paper.faces.size(), 0.0);
+  for (size_t f = 0; f < paper.faces.size(); ++f)
+  {
+    const std::vector<int>& vs = paper.faces[f].vertices;
+    for (size_t i = 0; i < vs.size(); ++i)
+      for (size_t j = i + 1; j < vs.size(); ++j)
+      {
+        const double rest = (paper.vertices[vs[i]].crease_pattern - paper.vertices[vs[j]].crease_pattern).norm();
+        const double now = (paper.vertices[vs[i]].folded - paper.vertices[vs[j]].folded).norm();
+        const double s = rest > 0 ? std::abs(now / rest - 1.0) : 0.0;
+        strain[f] = std::isfinite(s) ? std::max(strain[f], s) : std::numeric_limits<double>::infinity();
+      }
+  }
+  return strain;
+}
+
+namespace
+{
+/// Fold angles from the positions, each on the branch nearest its last value; creases that
+/// are driven keep the assignment they are driven by (a flat crease that bends a little on
+/// the way stays flat), free ones take the sign they fold to, as after any other operation.
+void measureAngles(Paper& paper, const std::vector<double>& targets)
+{
+  std::vector<Assignment> kept;
+  for (const Edge& e : paper.edges)
+    kept.push_back(e.assignment);
+  updateFoldAngles(paper);
+  for (size_t e = 0; e < paper.edges.size(); ++e)
+    if (std::isfinite(targets[e]))
+      paper.edges[e].assignment = kept[e];
+}
+
+double angleError(const Paper& paper, const std::vector<double>& goal)
+{
+  double sum = 0.0;
+  int count = 0;
+  for (size_t e = 0; e < goal.size(); ++e)
+    if (std::isfinite(goal[e]))
+    {
+      sum += std::pow(paper.edges[e].fold_angle - goal[e], 2);
+      ++count;
+    }
+  return count ? std::sqrt(sum / count) : 0.0;
+}
+
+double largestMove(const Paper& a, const Paper& b)
+{
+  double move = 0.0;
+  for (size_t v = 0; v < a.vertices.size(); ++v)
+    move = std::max(move, (a.vertices[v].folded - b.vertices[v].folded).norm());
+  return move;
+}
+
+void addStage(SolveReport& total, const SolveReport& stage)
+{
+  const int iterations = total.iterations + stage.iterations;
+  const double seconds = total.seconds + stage.seconds;
+  total = stage;
+  total.iterations = iterations;
+  total.seconds = seconds;
+}
+}  // namespace
+
+Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFoldRequest& request,
+                                                CreaseDriver& driver, ShapeSolver* rigid,
+                                                const std::vector<int>& held)
+{
+  using Failure = Expected<AssignmentFoldResult>;
+  if (!std::isfinite(request.fraction) || request.fraction < 0.0 || request.fraction > 1.0)
+    return Failure::failure("the fold fraction must be a number from 0 to 1 (0 to 100 %)");
+  if (!(request.max_stage_angle > 0.0))
+    return Failure::failure("the stage angle must be positive");
+  const std::vector<double> targets = creaseTargets(paper);
+  if (std::none_of(targets.begin(), targets.end(), [](double t) { return std::isfinite(t); }))
+    return Failure::failure("no crease has a mountain, valley or flat assignment to fold by");
+  std::vector<char> fixed(paper.vertices.size(), 0);
+  for (int v : held)
+  {
+    if (v < 0 || static_cast<size_t>(v) >= fixed.size())
+      return Failure::failure("held vertex " + std::to_string(v) + " is not on the paper");
+    fixed[v] = 1;
+  }
+  std::vector<double> goal(targets.size(), kNaN);
+  for (size_t e = 0; e < targets.size(); ++e)
+    if (std::isfinite(targets[e]))
+      goal[e] = request.fraction * targets[e];
+
+  Paper work = paper;
+  AssignmentFoldResult result;
+  result.fraction = request.fraction;
+  if (!request.converge)
+  {
+    result.solve = driver.drive(work, goal, fixed);
+  }
+  else
+  {
+    // Stages from where the creases are now, so that one call follows the branch that a slow
+    // slide would (and a replay lands where the slide did).
+    double furthest = 0.0;
+    std::vector<double> from(goal.size(), kNaN);
+    for (size_t e = 0; e < goal.size(); ++e)
+      if (std::isfinite(goal[e]))
+      {
+        from[e] = work.edges[e].fold_angle;
+        furthest = std::max(furthest, std::abs(goal[e] - from[e]));
+      }
+    const int stages = std::max(1, static_cast<int>(std::ceil(furthest / request.max_stage_angle - 1e-9)));
+    const double stiffness = driver.faceStiffness();
+    const bool soft_path = request.path_stiffness > 0 && request.path_stiffness < stiffness;
+    if (soft_path)
+      driver.setFaceStiffness(request.path_stiffness);
+    std::vector<double> stage_goal = goal;
+    for (int k = 1; k <= stages && !result.solve.diverged; ++k)
+    {
+      const double t = static_cast<double>(k) / stages;
+      for (size_t e = 0; e < goal.size(); ++e)
+        if (std::isfinite(goal[e]))
+          stage_goal[e] = from[e] + t * (goal[e] - from[e]);
+      addStage(result.solve, driver.drive(work, stage_goal, fixed));
+      measureAngles(work, targets);
+    }
+    if (soft_path)
+    {
+      driver.setFaceStiffness(stiffness);
+      if (!result.solve.diverged)
+      {
+        addStage(result.solve, driver.drive(work, goal, fixed));
+        measureAngles(work, targets);
+      }
+    }
+  }
+  if (result.solve.diverged)
+    return Failure::failure(result.solve.message.empty() ? "the crease driver diverged" : result.solve.message);
+  measureAngles(work, targets);
+
+  // Where a rigid shape lies within the strain's reach, close the faces exactly.
+  if (request.converge && rigid)
+  {
+    const std::vector<double> strains = faceStrains(work);
+    const double strain = strains.empty() ? 0.0 : *std::max_element(strains.begin(), strains.end());
+    Paper closed = work;
+    const SolveReport report = rigid->solve(closed, fixed);
+    if (report.converged && !report.diverged && largestMove(closed, work) <= 10.0 * strain * paper.scale() + 1e-12)
+    {
+      measureAngles(closed, targets);
+      work = std::move(closed);
+      result.rigid = true;
+    }
+  }
+  result.face_strain = faceStrains(work);
+  result.max_strain = result.face_strain.empty() ? 0.0 : *std::max_element(result.face_strain.begin(), result.face_strain.end());
+  result.angle_error = angleError(work, goal);
+  paper = std::move(work);
+  return result;
+}
+
+}  // namespace virtual_origami::core

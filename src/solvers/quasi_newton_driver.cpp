@@ -1,0 +1,502 @@
+#include "virtual_origami/solvers/quasi_newton_driver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+
+#include <Eigen/SparseCholesky>
+
+#include "virtual_origami/core/face_springs.h"
+#include "virtual_origami/core/positions.h"
+#include "virtual_origami/curved/spd_factorization.h"
+#include "virtual_origami/solvers/driven_faces.h"
+#include "virtual_origami/solvers/solve_budget.h"
+
+namespace virtual_origami::core
+{
+namespace
+{
+using Factor = Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>>;
+
+/// Free vertices' coordinates as one matrix, a row per free vertex (the layout of the solves).
+Eigen::MatrixX3d gather(const Positions& x, const std::vector<int>& free_vertices)
+{
+  Eigen::MatrixX3d out(free_vertices.size(), 3);
+  for (size_t i = 0; i < free_vertices.size(); ++i)
+    out.row(static_cast<Eigen::Index>(i)) = x.col(free_vertices[i]).transpose();
+  return out;
+}
+
+double dot(const Eigen::MatrixX3d& a, const Eigen::MatrixX3d& b)
+{
+  return (a.array() * b.array()).sum();
+}
+
+/// Takes out of a step (row per free vertex, every vertex free) its part along the six rigid
+/// motions of the sheet at x: the energy does not see them, so without an anchor they are
+/// only rounding noise the shift of the matrix would blow up into a drift.
+void removeRigidMotion(Eigen::MatrixX3d& step, const Positions& x, const std::vector<int>& free)
+{
+  const Eigen::Index n = static_cast<Eigen::Index>(free.size());
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (int v : free)
+    centre += x.col(v);
+  centre /= static_cast<double>(n);
+  std::vector<Eigen::MatrixX3d> basis;
+  for (int axis = 0; axis < 6; ++axis)
+  {
+    Eigen::MatrixX3d b(n, 3);
+    for (Eigen::Index i = 0; i < n; ++i)
+    {
+      const Eigen::Vector3d unit = Eigen::Vector3d::Unit(axis % 3);
+      b.row(i) = (axis < 3 ? unit : unit.cross(x.col(free[i]) - centre)).transpose();
+    }
+    for (const Eigen::MatrixX3d& c : basis)
+      b -= dot(c, b) * c;
+    const double norm = std::sqrt(dot(b, b));
+    if (norm > 1e-12)
+      basis.push_back(b / norm);
+  }
+  for (const Eigen::MatrixX3d& c : basis)
+    step -= dot(c, step) * c;
+}
+
+bool driven(double target)
+{
+  return std::isfinite(target);
+}
+}  // namespace
+
+/// What stays while the pattern, the held vertices and the set of driven creases stay: the
+/// energy's faces and hinges, and the factorised constant matrix. Also the last frames, for
+/// the prediction.
+struct QuasiNewtonDriver::Setup
+{
+  std::vector<std::vector<int>> face_vertices;
+  std::vector<Vec2> crease_pattern;
+  std::vector<char> fixed;
+  std::vector<char> driven_edges;
+  DrivenFaces energy;
+  std::vector<int> free_index, free_vertices;
+  Factor factor;  // the constant matrix
+  bool factored = false;
+  int free_count = 0;
+  SpdFactorization gauss_newton;  // the lagged or exact matrix, 3 rows per free vertex
+  Eigen::SparseMatrix<double> gauss_newton_matrix;
+  std::vector<Eigen::Triplet<double>> triplets;
+  std::vector<int> slots;  // where each of the triplets lands among the matrix's values
+  double factor_seconds = 0.0;  // wall time the last factorisation took
+  // The last two frames this driver returned (as in the paper) and their targets.
+  Positions last, before_last;
+  std::vector<double> last_target, before_last_target;
+
+  Setup(const Paper& paper, const std::vector<char>& held, const std::vector<double>& target, double stiffness)
+    : crease_pattern(creasePattern(paper)), fixed(held), driven_edges(drivenEdges(paper, target)),
+      energy(paper, stiffness)
+  {
+    for (const Face& face : paper.faces)
+      face_vertices.push_back(face.vertices);
+    free_index = freeIndices(fixed, paper.vertices.size(), &free_count);
+    for (size_t v = 0; v < free_index.size(); ++v)
+      if (free_index[v] >= 0)
+        free_vertices.push_back(static_cast<int>(v));
+    energy.setTargets(target);
+    Eigen::SparseMatrix<double> matrix = energy.constantMatrix(free_index, free_count);
+    // Nothing held: the energy has the rigid motions as null space. A shift far below the
+    // faces' stiffness makes the matrix definite without steering the steps.
+    const bool anchored = std::any_of(fixed.begin(), fixed.end(), [](char c) { return c != 0; });
+    double shift = 0.0;
+    for (int k = 0; k < matrix.outerSize(); ++k)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(matrix, k); it; ++it)
+        if (it.row() == it.col())
+          shift = std::max(shift, it.value());
+    shift *= anchored ? 1e-12 : 1e-8;
+    for (int i = 0; i < free_count; ++i)
+      matrix.coeffRef(i, i) += shift;
+    factor.compute(matrix);
+    factored = factor.info() == Eigen::Success;
+  }
+
+  bool matches(const Paper& paper, const std::vector<char>& held, const std::vector<double>& target) const
+  {
+    if (held != fixed || paper.faces.size() != face_vertices.size() || creasePattern(paper) != crease_pattern ||
+        drivenEdges(paper, target) != driven_edges)
+      return false;
+    for (size_t f = 0; f < paper.faces.size(); ++f)
+      if (paper.faces[f].vertices != face_vertices[f])
+        return false;
+    return true;
+  }
+
+  static std::vector<Vec2> creasePattern(const Paper& paper)
+  {
+    std::vector<Vec2> c;
+    c.reserve(paper.vertices.size());
+    for (const Vertex& v : paper.vertices)
+      c.push_back(v.crease_pattern);
+    return c;
+  }
+
+  static std::vector<char> drivenEdges(const Paper& paper, const std::vector<double>& target)
+  {
+    std::vector<char> out(paper.edges.size(), 0);
+    for (size_t e = 0; e < out.size() && e < target.size(); ++e)
+      out[e] = driven(target[e]) ? 1 : 0;
+    return out;
+  }
+};
+
+QuasiNewtonDriver::QuasiNewtonDriver(QuasiNewtonOptions options) : options_(options)
+{
+  face_stiffness_ = options.face_stiffness;
+  limits_.tolerance = 1e-9;
+  limits_.max_iterations = 2000;
+}
+
+QuasiNewtonDriver::~QuasiNewtonDriver() = default;
+
+std::string QuasiNewtonDriver::name() const
+{
+  switch (options_.hessian)
+  {
+    case DriverHessian::Constant:
+      return "constant_lbfgs";
+    case DriverHessian::Exact:
+      return "newton";
+    default:
+      return "quasi_newton";
+  }
+}
+
+SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& target, const std::vector<char>& fixed)
+{
+  SolveBudget budget(limits_);
+  SolveReport report;
+  if (!setup_ || !setup_->matches(paper, fixed, target) || setup_->energy.faceStiffness() != face_stiffness_)
+    setup_ = std::make_unique<Setup>(paper, fixed, target, face_stiffness_);
+  Setup& s = *setup_;
+  DrivenFaces& energy = s.energy;
+  energy.setTargets(target);
+  std::vector<double> reference(paper.edges.size());
+  for (size_t e = 0; e < paper.edges.size(); ++e)
+    reference[e] = paper.edges[e].fold_angle;
+  energy.setReference(reference);
+
+  const Positions start = foldedPositions(paper);
+  const double scale = energy.scale();
+  Positions x = start / scale;
+  const std::vector<Spring> springs = faceSprings(paper);
+  if (!s.factored || s.free_vertices.empty())
+  {
+    report.max_strain = springStrain(springs, start).max;
+    report.converged = s.free_vertices.empty();
+    report.message = s.free_vertices.empty() ? "every vertex is held" : "the constant matrix is not definite";
+    report.seconds = budget.seconds();
+    return report;
+  }
+
+  Positions gradient;
+  DrivenFaces::Evaluation now = energy.evaluate(x, &gradient);
+  // Start from a prediction along the motion when this is the frame after the last two.
+  if (options_.predict && s.last.cols() == x.cols() && s.before_last.cols() == x.cols() && s.last == start &&
+      s.last_target.size() == target.size())
+  {
+    double step_now = 0.0, step_before = 0.0;
+    for (size_t e = 0; e < target.size(); ++e)
+      if (driven(target[e]) && driven(s.last_target[e]) && driven(s.before_last_target[e]))
+      {
+        step_now += std::pow(target[e] - s.last_target[e], 2);
+        step_before += std::pow(s.last_target[e] - s.before_last_target[e], 2);
+      }
+    if (step_before > 0)
+    {
+      const double ratio = std::min(2.0, std::sqrt(step_now / step_before));
+      Positions predicted = x + (ratio / scale) * (s.last - s.before_last);
+      for (size_t v = 0; v < s.free_index.size(); ++v)
+        if (s.free_index[v] < 0)
+          predicted.col(static_cast<Eigen::Index>(v)) = x.col(static_cast<Eigen::Index>(v));
+      Positions predicted_gradient;
+      const DrivenFaces::Evaluation guess = energy.evaluate(predicted, &predicted_gradient);
+      if (guess.energy < now.energy)
+      {
+        x = std::move(predicted);
+        gradient = std::move(predicted_gradient);
+        now = guess;
+      }
+    }
+  }
+
+  const std::vector<int>& free = s.free_vertices;
+  const bool anchored = std::any_of(fixed.begin(), fixed.end(), [](char c) { return c != 0; });
+  // The Gauss–Newton matrix at x; nothing held, its null space (rigid motions) is shifted away
+  // by far less than the faces' stiffness, and a failed factorisation (a degenerate face) is
+  // retried with more.
+  const auto refactor = [&]() {
+    const SolveBudget clock(SolveLimits{});
+    const auto timed = [&](bool ok) {
+      s.factor_seconds = clock.seconds();
+      return ok;
+    };
+    energy.gaussNewtonTriplets(x, s.free_index, s.triplets);
+    Eigen::SparseMatrix<double>& m = s.gauss_newton_matrix;
+    if (s.slots.size() != s.triplets.size())
+    {
+      m.resize(3 * s.free_count, 3 * s.free_count);
+      m.setFromTriplets(s.triplets.begin(), s.triplets.end());
+      m.makeCompressed();
+      s.slots.resize(s.triplets.size());
+      for (size_t k = 0; k < s.triplets.size(); ++k)
+      {
+        const int* rows = m.innerIndexPtr();
+        const int begin = m.outerIndexPtr()[s.triplets[k].col()], end = m.outerIndexPtr()[s.triplets[k].col() + 1];
+        s.slots[k] = static_cast<int>(std::lower_bound(rows + begin, rows + end, s.triplets[k].row()) - rows);
+      }
+    }
+    else
+    {
+      double* values = m.valuePtr();
+      std::fill(values, values + m.nonZeros(), 0.0);
+      for (size_t k = 0; k < s.triplets.size(); ++k)
+        values[s.slots[k]] += s.triplets[k].value();
+    }
+    double largest = 0.0;
+    for (int k = 0; k < m.outerSize(); ++k)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(m, k); it; ++it)
+        if (it.row() == it.col())
+          largest = std::max(largest, it.value());
+    for (double shift = largest * (anchored ? 1e-12 : 1e-9); shift <= largest; shift *= 100)
+      if (s.gauss_newton.factorize(m, shift))
+        return timed(true);
+    return timed(false);
+  };
+  const auto precondition = [&](const Eigen::MatrixX3d& q) -> Eigen::MatrixX3d {
+    if (options_.hessian == DriverHessian::Constant || !s.gauss_newton.valid())
+      return s.factor.solve(q);
+    const Eigen::MatrixX3d qt = q;  // row per vertex: flattened row-major it is 3i + axis
+    Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> rows = qt;
+    const Eigen::VectorXd solved =
+        s.gauss_newton.solve(Eigen::Map<const Eigen::VectorXd>(rows.data(), rows.size()));
+    return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(solved.data(), rows.rows(), 3);
+  };
+  bool refresh = options_.hessian != DriverHessian::Constant &&
+                 (options_.hessian == DriverHessian::Exact || !s.gauss_newton.valid());
+
+  Eigen::MatrixX3d g = gather(gradient, free);
+  std::deque<Eigen::MatrixX3d> steps, changes;  // s_k, y_k
+  std::deque<double> rho;
+  // L-BFGS: the two-loop recursion with the factorised matrix's inverse as the initial Hessian.
+  const auto lbfgsStep = [&]() -> Eigen::MatrixX3d {
+    Eigen::MatrixX3d q = g;
+    std::vector<double> alpha(steps.size());
+    for (size_t k = steps.size(); k-- > 0;)
+    {
+      alpha[k] = rho[k] * dot(steps[k], q);
+      q -= alpha[k] * changes[k];
+    }
+    Eigen::MatrixX3d direction = precondition(q);
+    for (size_t k = 0; k < steps.size(); ++k)
+    {
+      const double beta = rho[k] * dot(changes[k], direction);
+      direction += (alpha[k] - beta) * steps[k];
+    }
+    return -direction;
+  };
+  // Newton–Krylov: the Gauss–Newton system at x solved by conjugate gradients, preconditioned
+  // by the kept factorisation (the matrix of a nearby state, so a few iterations do).
+  bool krylov_slow = false;
+  Positions spread = Positions::Zero(3, x.cols()), product;
+  const auto multiply = [&](const DrivenFaces::Linearization& l, const Eigen::MatrixX3d& v) {
+    for (size_t i = 0; i < free.size(); ++i)
+      spread.col(free[i]) = v.row(static_cast<Eigen::Index>(i)).transpose();
+    energy.gaussNewtonProduct(l, spread, product);
+    return gather(product, free);
+  };
+  const auto newtonKrylovStep = [&](const Positions& at) -> Eigen::MatrixX3d {
+    const DrivenFaces::Linearization l = energy.linearize(at);
+    Eigen::MatrixX3d r = -g;
+    if (!anchored)
+      removeRigidMotion(r, at, free);
+    Eigen::MatrixX3d d = Eigen::MatrixX3d::Zero(r.rows(), 3);
+    Eigen::MatrixX3d z = precondition(r);
+    if (!anchored)
+      removeRigidMotion(z, at, free);
+    Eigen::MatrixX3d p = z;
+    double rz = dot(r, z);
+    const double goal = options_.krylov_tolerance * std::sqrt(dot(r, r));
+    krylov_slow = true;
+    for (int k = 0; k < options_.krylov_iterations; ++k)
+    {
+      const Eigen::MatrixX3d ap = multiply(l, p);
+      const double curvature = dot(p, ap);
+      if (!(curvature > 0))
+        break;
+      const double a = rz / curvature;
+      d += a * p;
+      r -= a * ap;
+      if (std::sqrt(dot(r, r)) <= goal)
+      {
+        krylov_slow = k + 1 > options_.krylov_iterations / 2;
+        break;
+      }
+      // Anytime: a frame's budget spent, the step so far serves (each iteration improves it).
+      if (limits_.max_seconds > 0 && budget.seconds() >= limits_.max_seconds)
+        break;
+      z = precondition(r);
+      if (!anchored)
+        removeRigidMotion(z, at, free);
+      const double rz_next = dot(r, z);
+      p = z + (rz_next / rz) * p;
+      rz = rz_next;
+    }
+    return d;
+  };
+  Positions trial = x, trial_gradient;
+  std::string stuck;
+  bool diverged = !std::isfinite(now.energy);
+  const double tolerance = limits_.tolerance;
+  double last_step = INFINITY;
+  while (!diverged)
+  {
+    // Out of budget: stop before paying for a direction. A direction once paid for is taken
+    // (the first always: a frame must move), even when computing it spent the budget.
+    if (budget.exhausted(report.iterations) && (report.iterations > 0 || limits_.max_iterations <= 0))
+      break;
+    if (refresh)
+    {
+      refresh = false;
+      if (refactor())
+      {
+        steps.clear();
+        changes.clear();
+        rho.clear();
+      }
+    }
+    Eigen::MatrixX3d direction;
+    if (options_.hessian == DriverHessian::Lagged)
+      direction = newtonKrylovStep(x);
+    else
+      direction = lbfgsStep();
+    if (!anchored)
+      removeRigidMotion(direction, x, free);
+    // Balanced when the step the model predicts moves nothing measurably.
+    const double step_size = direction.cwiseAbs().maxCoeff();
+    if (step_size <= tolerance)
+    {
+      report.converged = true;
+      break;
+    }
+    ++report.iterations;
+    double slope = dot(g, direction);
+    if (!(slope < 0))
+    {
+      // Curvature pairs gone stale: restart from the matrix alone.
+      steps.clear();
+      changes.clear();
+      rho.clear();
+      direction = -precondition(g);
+      if (!anchored)
+        removeRigidMotion(direction, x, free);
+      slope = dot(g, direction);
+      if (!(slope < 0))
+      {
+        stuck = "no descent direction";
+        break;
+      }
+    }
+    double step_length = 1.0;
+    bool accepted = false;
+    DrivenFaces::Evaluation next;
+    for (int k = 0; k < options_.max_line_search; ++k, step_length *= 0.5)
+    {
+      trial = x;
+      for (size_t i = 0; i < free.size(); ++i)
+        trial.col(free[i]) += step_length * direction.row(static_cast<Eigen::Index>(i)).transpose();
+      next = energy.evaluate(trial, &trial_gradient);
+      if (next.energy <= now.energy + options_.armijo * step_length * slope)
+      {
+        accepted = true;
+        break;
+      }
+    }
+    if (!accepted)
+    {
+      // Near balance the energy's change drowns in its rounding; the gradient still tells:
+      // take the full step when it leaves a smaller gradient.
+      trial = x;
+      for (size_t i = 0; i < free.size(); ++i)
+        trial.col(free[i]) += direction.row(static_cast<Eigen::Index>(i)).transpose();
+      next = energy.evaluate(trial, &trial_gradient);
+      const double rounding = 1e-12 * std::max(1.0, std::abs(now.energy));
+      if (next.energy <= now.energy + rounding && gather(trial_gradient, free).norm() < g.norm())
+      {
+        accepted = true;
+        step_length = 1.0;
+      }
+    }
+    if (!accepted)
+    {
+      // A fresh matrix may still find a way down.
+      if (options_.hessian == DriverHessian::Lagged && !steps.empty())
+      {
+        refresh = true;
+        continue;
+      }
+      // Within a hundred times the tolerance the rest is rounding: balanced as far as it goes.
+      report.converged = step_size <= 100 * tolerance;
+      stuck = "no step lowers the energy any further";
+      break;
+    }
+    const Eigen::MatrixX3d g_next = gather(trial_gradient, free);
+    Eigen::MatrixX3d step = step_length * direction;
+    Eigen::MatrixX3d change = g_next - g;
+    const double curvature = dot(step, change);
+    if (options_.hessian != DriverHessian::Exact &&
+        curvature > 1e-12 * std::sqrt(dot(step, step) * dot(change, change)))
+    {
+      steps.push_back(std::move(step));
+      changes.push_back(std::move(change));
+      rho.push_back(1.0 / curvature);
+      if (static_cast<int>(steps.size()) > options_.memory)
+      {
+        steps.pop_front();
+        changes.pop_front();
+        rho.pop_front();
+      }
+    }
+    // The kept matrix pays while the steps shrink fast; when they stop, factor afresh.
+    // A factorisation is paid for only where the budget has room for it (twice what the last
+    // one took): in a preview frame the kept matrix serves until it fails outright.
+    const bool room = limits_.max_seconds <= 0 ||
+                      limits_.max_seconds - budget.seconds() > 2 * s.factor_seconds;
+    if (options_.hessian == DriverHessian::Exact ||
+        (options_.hessian == DriverHessian::Lagged && room &&
+         (krylov_slow || step_size > options_.refresh_ratio * last_step)))
+      refresh = true;
+    last_step = step_size;
+    std::swap(x, trial);
+    g = g_next;
+    now = next;
+    diverged = !std::isfinite(now.energy);
+  }
+  report.seconds = budget.seconds();
+  if (diverged)
+  {
+    setFoldedPositions(paper, start);
+    report.diverged = true;
+    report.max_strain = springStrain(springs, start).max;
+    report.message = name() + " produced non-finite positions; rolled back";
+    return report;
+  }
+  const Positions result = x * scale;
+  setFoldedPositions(paper, result);
+  report.max_strain = springStrain(springs, result).max;
+  if (!report.converged)
+    report.message = stuck.empty() ? "stopped before balance" : stuck;
+  s.before_last = s.last;
+  s.before_last_target = s.last_target;
+  s.last = result;
+  s.last_target = target;
+  return report;
+}
+
+}  // namespace virtual_origami::core
