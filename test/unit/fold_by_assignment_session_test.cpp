@@ -105,6 +105,9 @@ TEST(FoldByAssignmentSession, PreviewsStayOutOfHistoryAndTheCommitIsOneEntry)
   const auto folded = session.foldByAssignment(0.5);
   ASSERT_TRUE(folded.ok()) << folded.message();
   EXPECT_EQ(folded->fraction, 0.5);
+  // A Miura-ori is a mechanism: the committed fold closes its faces exactly.
+  EXPECT_TRUE(folded->rigid);
+  EXPECT_LE(folded->max_strain, 1e-9);
   EXPECT_EQ(session.revision(), 1u);
   EXPECT_FALSE(session.preview().has_value());
   ASSERT_EQ(session.log().size(), 1u);
