@@ -1,6 +1,7 @@
 #include "virtual_origami/core/session.h"
 
 #include <cmath>
+#include <sstream>
 
 #include "virtual_origami/core/validity.h"
 
@@ -26,6 +27,8 @@ const char* kindName(Operation::Kind kind)
       return "load";
     case Operation::Kind::Pull:
       return "pull";
+    case Operation::Kind::AssignmentFold:
+      return "fold_by_assignment";
   }
   return "unknown";
 }
@@ -104,6 +107,43 @@ Expected<Computed<PullResult>> computePull(Workspace workspace, const std::vecto
   return Computed<PullResult>{ std::move(*result), std::move(change) };
 }
 
+Expected<Computed<AssignmentFoldResult>> computeFoldByAssignment(Workspace workspace, double fraction, bool commit)
+{
+  using Answer = Expected<Computed<AssignmentFoldResult>>;
+  if (!(fraction >= 0.0 && fraction <= 1.0))  // NaN fails both
+  {
+    std::ostringstream given;
+    given << fraction;
+    return Answer::failure("the fold fraction must be a number from 0 to 1 (0 to 100 %), not " + given.str());
+  }
+  const std::shared_ptr<CreaseDriver>& driver =
+      !commit && workspace.preview_driver ? workspace.preview_driver : workspace.driver;
+  if (!driver)
+    return Answer::failure("folding by assignment needs a crease driver, and none is set");
+  std::vector<std::pair<int, Vec3>> held_at;
+  for (int v : workspace.held)
+    if (v >= 0 && v < static_cast<int>(workspace.paper.vertices.size()))
+      held_at.emplace_back(v, workspace.paper.vertices[v].folded);
+  // A commit starts from the committed paper, so that applying the log again gives the same
+  // paper; a preview goes on from the last preview frame (one solve per frame).
+  Paper paper = !commit && workspace.assignment_preview ? std::move(*workspace.assignment_preview) :
+                                                          std::move(workspace.paper);
+  AssignmentFoldRequest request;
+  request.fraction = fraction;
+  request.converge = commit;
+  Expected<AssignmentFoldResult> result =
+      core::foldByAssignment(paper, request, *driver, workspace.solver.get(), workspace.held);
+  if (!result)
+    return Answer::failure(result.message());
+  for (const auto& [v, at] : held_at)
+    if ((paper.vertices[v].folded - at).norm() > 1e-9 * paper.scale())
+      return Answer::failure("vertex " + std::to_string(v) +
+                             " is pinned and folding by assignment would move it; release it first");
+  Change change = makeChange(workspace.revision, Operation::Kind::AssignmentFold, std::move(paper));
+  change.operation.fraction = fraction;
+  return Computed<AssignmentFoldResult>{ std::move(*result), std::move(change) };
+}
+
 Expected<Change> computeReset(uint64_t base_revision, double size)
 {
   // Tolerances are relative to the sheet's scale and its area is size²: keep both far from
@@ -140,7 +180,10 @@ Session::Session(History history) : history_(std::move(history))
 
 Workspace Session::workspace() const
 {
-  return Workspace{ history_.paper, history_.revision, solver_, snap_settings_, held_ };
+  Workspace workspace{ history_.paper, history_.revision, solver_, snap_settings_, held_, driver_, preview_driver_, {} };
+  if (preview_ && preview_kind_ == Operation::Kind::AssignmentFold)
+    workspace.assignment_preview = *preview_;
+  return workspace;
 }
 
 Expected<Change> Session::prepareUndo() const
@@ -203,6 +246,7 @@ bool Session::setPreview(Change change)
   if (change.base_revision != history_.revision || !change.next)
     return false;
   preview_ = std::move(change.next);
+  preview_kind_ = change.operation.kind;
   return true;
 }
 
@@ -287,6 +331,18 @@ Expected<PullResult> Session::pull(const std::vector<PullTarget>& targets)
   return std::move(computed->result);
 }
 
+Expected<AssignmentFoldResult> Session::foldByAssignment(double fraction, bool commit_it)
+{
+  auto computed = computeFoldByAssignment(workspace(), fraction, commit_it);
+  if (!computed)
+    return Expected<AssignmentFoldResult>::failure(computed.message());
+  if (commit_it)
+    commit(std::move(computed->change));
+  else
+    setPreview(std::move(computed->change));
+  return std::move(computed->result);
+}
+
 Status Session::apply(const Operation& operation)
 {
   switch (operation.kind)
@@ -317,6 +373,11 @@ Status Session::apply(const Operation& operation)
     case Operation::Kind::Pull:
     {
       const auto r = pull(operation.pull);
+      return r ? success() : failure(r.message());
+    }
+    case Operation::Kind::AssignmentFold:
+    {
+      const auto r = foldByAssignment(operation.fraction, true);
       return r ? success() : failure(r.message());
     }
   }

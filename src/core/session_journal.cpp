@@ -64,8 +64,13 @@ json paperToJson(const Paper& paper)
   for (const Edge& e : paper.edges)
   {
     json edge = { e.vertices[0], e.vertices[1], std::string(1, assignmentLetter(e.assignment)), e.fold_angle };
-    if (e.split)
-      edge.push_back(true);  // only the edges that split a concave face carry the flag
+    // Optional tail, so that journals written before either field read as they were:
+    // [..., split] only for the edges that split a concave face, [..., split, target] for an
+    // edge with a target angle.
+    if (e.split || e.target_angle)
+      edge.push_back(e.split);
+    if (e.target_angle)
+      edge.push_back(*e.target_angle);
     edges.push_back(edge);
   }
   for (const Face& f : paper.faces)
@@ -107,6 +112,8 @@ Expected<Paper> paperFromJson(const json& j)
       edge.assignment = *assignment;
       edge.fold_angle = e.at(3).get<double>();
       edge.split = e.size() > 4 && e.at(4).get<bool>();
+      if (e.size() > 5)
+        edge.target_angle = e.at(5).get<double>();
       paper.edges.push_back(edge);
     }
     for (const json& f : j.at("faces"))
@@ -155,6 +162,9 @@ json operationToJson(const Operation& op)
     case Operation::Kind::Load:
       j["path"] = op.path;
       break;
+    case Operation::Kind::AssignmentFold:
+      j["fraction"] = op.fraction;
+      break;
     case Operation::Kind::Pull:
       j["pull"] = json::array();
       for (const PullTarget& target : op.pull)
@@ -176,7 +186,7 @@ Expected<Operation> operationFromJson(const json& j)
     bool known = false;
     for (Operation::Kind k : { Operation::Kind::Crease, Operation::Kind::Rotate, Operation::Kind::Squash,
                                Operation::Kind::Undo, Operation::Kind::Redo, Operation::Kind::Reset,
-                               Operation::Kind::Load, Operation::Kind::Pull })
+                               Operation::Kind::Load, Operation::Kind::Pull, Operation::Kind::AssignmentFold })
       if (kind == kindName(k))
       {
         op.kind = k;
@@ -204,6 +214,8 @@ Expected<Operation> operationFromJson(const json& j)
       op.size = j.at("size").get<double>();
     else if (op.kind == Operation::Kind::Load)
       op.path = j.at("path").get<std::string>();
+    else if (op.kind == Operation::Kind::AssignmentFold)
+      op.fraction = j.at("fraction").get<double>();
     else if (op.kind == Operation::Kind::Pull)
       for (const json& target : j.at("pull"))
         op.pull.push_back({ integer<int>(target.at("vertex")), point(target.at("position")) });

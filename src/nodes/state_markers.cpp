@@ -1,5 +1,6 @@
 // state_markers: draws whatever `state` says as `markers`, e.g. while `rosbag play` plays a
-// recording without a paper_model running. Parameter ~layer_gap as in paper_model.
+// recording without a paper_model running. Parameters ~layer_gap, ~colour_by_strain and
+// ~strain_scale as in paper_model (read at start).
 #include <ros/ros.h>
 #include <visualization_msgs/MarkerArray.h>
 
@@ -12,6 +13,8 @@ int main(int argc, char** argv)
   ros::NodeHandle nh, private_nh("~");
   virtual_origami::MarkerStyle style;
   style.layer_gap = private_nh.param("layer_gap", style.layer_gap);
+  style.colour_by_strain = private_nh.param("colour_by_strain", style.colour_by_strain);
+  style.strain_scale = private_nh.param("strain_scale", style.strain_scale);
   ros::Publisher markers = nh.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
   ros::Subscriber state = nh.subscribe<virtual_origami::PaperState>(
       "state", 10, [&](const virtual_origami::PaperState::ConstPtr& s) {

@@ -1,5 +1,7 @@
 #include "virtual_origami/ros/conversions.h"
 
+#include <cmath>
+
 namespace virtual_origami
 {
 geometry_msgs::Point toPoint(const core::Vec3& v)
@@ -32,6 +34,8 @@ PaperState toMessage(const core::Paper& paper, uint64_t revision, const Pins& pi
     edge.face_left = e.faces[0];
     edge.face_right = e.faces[1];
     edge.split = e.split;
+    edge.has_target_angle = e.target_angle.has_value();
+    edge.target_angle = e.target_angle.value_or(0.0);
     state.edges.push_back(edge);
   }
   for (const core::Face& f : paper.faces)
@@ -85,6 +89,12 @@ core::Expected<core::Paper> fromMessage(const PaperState& state)
     edge.assignment = *assignment;
     edge.fold_angle = e.fold_angle;
     edge.split = e.split;
+    if (e.has_target_angle)
+    {
+      if (!std::isfinite(e.target_angle))
+        return Failure::failure("edge " + std::to_string(i) + " has a non-finite target angle");
+      edge.target_angle = e.target_angle;
+    }
     paper.edges.push_back(edge);
   }
   for (const Face& f : state.faces)
@@ -141,6 +151,9 @@ Operation toMessage(const core::Operation& op)
       break;
     case core::Operation::Kind::Reset:
       msg.size = op.size;
+      break;
+    case core::Operation::Kind::AssignmentFold:
+      msg.fraction = op.fraction;
       break;
     case core::Operation::Kind::Pull:
       for (const core::PullTarget& target : op.pull)

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include <dynamic_reconfigure/Reconfigure.h>
 #include <std_srvs/Trigger.h>
 #include <virtual_origami/Crease.h>
+#include <virtual_origami/FoldByAssignment.h>
 #include <virtual_origami/InteractionStatus.h>
 #include <virtual_origami/PinVertex.h>
 #include <virtual_origami/Rotate.h>
@@ -59,6 +61,8 @@ InteractionNode::InteractionNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   camera_frame_ = private_nh.param("camera_frame", camera_frame_);
   camera_timeout_ = private_nh.param("camera_timeout", camera_timeout_);
   view_turn_ = private_nh.param("view_turn", view_turn_);
+  slider_enabled_ = private_nh.param("fold_slider", slider_enabled_);
+  slider_style_.frame_id = style_.frame_id;
 
   crease_ = nh_.serviceClient<Crease>("crease");
   rotate_ = nh_.serviceClient<Rotate>("rotate");
@@ -67,6 +71,12 @@ InteractionNode::InteractionNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   redo_ = nh_.serviceClient<std_srvs::Trigger>("redo");
   reset_ = nh_.serviceClient<std_srvs::Trigger>("reset");
   pin_ = nh_.serviceClient<PinVertex>("pin");
+  fold_ = nh_.serviceClient<FoldByAssignment>("fold_by_assignment");
+  // Strain colours are paper_model's (it draws the paper): its dynamic_reconfigure.
+  const std::string paper_model = private_nh.param<std::string>("paper_model", "paper_model");
+  paper_model_reconfigure_ = nh_.serviceClient<dynamic_reconfigure::Reconfigure>(paper_model + "/set_parameters");
+  strain_colours_sub_ =
+      nh_.subscribe(paper_model + "/parameter_updates", 1, &InteractionNode::strainColoursChanged, this);
 
   const auto entry = [this](const std::string& title, Action action) {
     return menu_.insert(title, [this, action](const Feedback::ConstPtr& f) { received(f, action); });
@@ -79,28 +89,35 @@ InteractionNode::InteractionNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   entry("Reset", Action::Reset);
   entry("Pin the nearest vertex", Action::Pin);
   entry("Release the nearest pin", Action::Release);
+  const auto fold_menu = menu_.insert("Fold by assignment");
+  for (int percent : { 0, 25, 50, 75, 100 })
+    menu_.insert(fold_menu, std::to_string(percent) + " %", [this, percent](const Feedback::ConstPtr& f) {
+      received(f, Action::FoldByAssignment, false, percent / 100.0);
+    });
+  strain_entry_ = entry("Colour by strain", Action::ColourByStrain);
 
   markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("interaction_markers", 10);
   status_pub_ = nh_.advertise<InteractionStatus>("interaction_status", 10);
   view_turn_pub_ = nh_.advertise<geometry_msgs::PoseStamped>("view_turn", 1);
+  slider_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("fold_slider_markers", 10, true);
   state_sub_ = nh_.subscribe("state", 1, &InteractionNode::stateReceived, this);
   timer_ = nh_.createTimer(ros::Duration(1.0 / private_nh.param("rate", 30.0)), &InteractionNode::handleEvents, this);
   status_timer_ = nh_.createTimer(ros::Duration(1.0), &InteractionNode::publishStatus, this);
 }
 
-void InteractionNode::received(const Feedback::ConstPtr& feedback, Action action)
+void InteractionNode::received(const Feedback::ConstPtr& feedback, Action action, bool slider, double fraction)
 {
   std::lock_guard<std::mutex> lock(mutex_);
   ++received_;
   const bool pose = action == Action::None && feedback->event_type == Feedback::POSE_UPDATE;
-  if (pose && !events_.empty() && events_.back().action == Action::None &&
+  if (pose && !events_.empty() && events_.back().action == Action::None && events_.back().slider == slider &&
       events_.back().feedback->event_type == Feedback::POSE_UPDATE)
   {
     events_.back().feedback = feedback;  // only the latest pose matters
     ++coalesced_;
     return;
   }
-  events_.push_back({ feedback, action });
+  events_.push_back({ feedback, action, slider, fraction });
 }
 
 void InteractionNode::handleEvents(const ros::TimerEvent&)
@@ -114,8 +131,16 @@ void InteractionNode::handleEvents(const ros::TimerEvent&)
     return;
   for (const Event& e : events)
   {
-    if (e.action != Action::None)
+    if (e.action == Action::FoldByAssignment)
+    {
+      const std::string said = foldByAssignment(e.fraction);
+      if (!said.empty())
+        tell(said, e.feedback->mouse_point_valid ? onSheet(e.feedback->mouse_point) : core::Vec3::Zero());
+    }
+    else if (e.action != Action::None)
       menu(e.action, *e.feedback);
+    else if (e.slider)
+      slide(*e.feedback);
     else if (e.feedback->event_type == Feedback::MOUSE_DOWN)
       press(*e.feedback);
     else if (e.feedback->event_type == Feedback::POSE_UPDATE)
@@ -128,6 +153,8 @@ void InteractionNode::handleEvents(const ros::TimerEvent&)
   }
   if (dragging_ && moved_)
     updateDrag();
+  if (slider_dragging_ && slider_moved_)
+    updateSlider();
   publishStatus();
 }
 
@@ -149,10 +176,16 @@ void InteractionNode::stateReceived(const PaperState::ConstPtr& state)
   const std::vector<int> levels = core::stackLevels(*paper_);
   const int top = levels.empty() ? 0 : *std::max_element(levels.begin(), levels.end());
   pick_lift_ = (top + 1) * layer_gap_ + 0.002 * paper_->scale();
-  if (dragging_)
-    paper_changed_ = true;  // re-sending the marker now would end the drag in rviz
+  if (dragging_ || slider_dragging_)
+  {
+    paper_changed_ = true;  // re-sending a marker now would end the drag in rviz
+    slider_changed_ = true;
+  }
   else
+  {
     showPaper();
+    showSlider();
+  }
 }
 
 void InteractionNode::showPaper()
@@ -169,6 +202,7 @@ void InteractionNode::showPaper()
                  [this](const Feedback::ConstPtr& f) { received(f, Action::None); });
   menu_.setCheckState(crease_entry_, mode_ == Mode::Crease ? MenuHandler::CHECKED : MenuHandler::UNCHECKED);
   menu_.setCheckState(rotate_entry_, mode_ == Mode::Rotate ? MenuHandler::CHECKED : MenuHandler::UNCHECKED);
+  menu_.setCheckState(strain_entry_, colour_by_strain_ ? MenuHandler::CHECKED : MenuHandler::UNCHECKED);
   menu_.apply(server_, style_.marker_name);
   server_.applyChanges();
   paper_changed_ = false;
@@ -445,6 +479,8 @@ void InteractionNode::release()
     showPaper();
   else
     server_.applyChanges();
+  if (slider_changed_ && !slider_dragging_)
+    showSlider();
 }
 
 std::string InteractionNode::click()
@@ -565,6 +601,10 @@ void InteractionNode::menu(Action action, const Feedback& feedback)
         message = pin.response.message;
       break;
     }
+    case Action::ColourByStrain:
+      message = toggleStrainColours();
+      break;
+    case Action::FoldByAssignment:  // handled with its fraction in handleEvents
     case Action::None:
       break;
   }
@@ -598,7 +638,7 @@ void InteractionNode::publishStatus(const ros::TimerEvent&)
   status.header.stamp = ros::Time::now();
   status.mode = mode_ == Mode::Crease ? "crease" : "rotate";
   status.revision = revision_;
-  status.dragging = dragging_;
+  status.dragging = dragging_ || slider_dragging_;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     status.feedback_received = received_;

@@ -1,7 +1,9 @@
 #include "virtual_origami/ros/markers.h"
 
+#include "virtual_origami/core/assignment_fold.h"
 #include "virtual_origami/core/layers.h"
 #include "virtual_origami/ros/conversions.h"
+#include "virtual_origami/ros/strain_colours.h"
 
 namespace virtual_origami
 {
@@ -59,6 +61,9 @@ visualization_msgs::MarkerArray paperMarkers(const core::Paper& paper, const Mar
   Marker back = baseMarker(style, stamp, "back", Marker::TRIANGLE_LIST);
   front.color = rgba(0.96f, 0.89f, 0.76f);  // the coloured side of the sheet
   back.color = rgba(0.55f, 0.70f, 0.86f);
+  std::vector<double> strain;
+  if (style.colour_by_strain)
+    strain = core::faceStrains(paper);
   for (size_t f = 0; f < paper.faces.size(); ++f)
   {
     const std::vector<int>& vs = paper.faces[f].vertices;
@@ -74,6 +79,13 @@ visualization_msgs::MarkerArray paperMarkers(const core::Paper& paper, const Mar
         front.points.push_back(toPoint(*p + to_front));
       for (const core::Vec3* p : { &a, &c, &b })  // wound the other way: seen from behind
         back.points.push_back(toPoint(*p + to_back));
+      if (style.colour_by_strain)
+      {
+        // Per vertex: rviz multiplies them by the marker's colour, white then.
+        const std_msgs::ColorRGBA colour = strainColour(strain[f], style.strain_scale);
+        front.colors.insert(front.colors.end(), 3, colour);
+        back.colors.insert(back.colors.end(), 3, colour);
+      }
     }
   }
   Marker mountain = baseMarker(style, stamp, "mountain", Marker::LINE_LIST);
@@ -104,6 +116,8 @@ visualization_msgs::MarkerArray paperMarkers(const core::Paper& paper, const Mar
     for (int v : e.vertices)
       m.points.push_back(toPoint(paper.vertices[v].folded + offset));
   }
+  if (style.colour_by_strain)
+    front.color = back.color = rgba(1, 1, 1);
   visualization_msgs::MarkerArray array;
   for (Marker* m : { &front, &back, &mountain, &valley, &other, &boundary })
   {

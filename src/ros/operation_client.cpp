@@ -3,6 +3,7 @@
 #include <ros/service.h>
 #include <std_srvs/Trigger.h>
 #include <virtual_origami/Crease.h>
+#include <virtual_origami/FoldByAssignment.h>
 #include <virtual_origami/Load.h>
 #include <virtual_origami/PinVertex.h>
 #include <virtual_origami/Pull.h>
@@ -27,7 +28,8 @@ OperationClient::OperationClient(const std::string& ns) : nh_(ns) {}
 
 bool OperationClient::waitForServices(double seconds)
 {
-  for (const char* name : { "crease", "rotate", "squash", "undo", "redo", "reset", "pin", "pull", "load" })
+  for (const char* name : { "crease", "rotate", "squash", "undo", "redo", "reset", "pin", "pull", "load",
+                            "fold_by_assignment" })
     if (!ros::service::waitForService(nh_.resolveName(name), ros::Duration(seconds)))
       return false;
   return true;
@@ -40,7 +42,8 @@ core::Status OperationClient::load(const std::string& path)
   return call(nh_, "load", srv);
 }
 
-core::Status OperationClient::apply(const Operation& op, int animation_steps, double animation_seconds)
+core::Status OperationClient::apply(const Operation& op, int animation_steps, double animation_seconds,
+                                    std::optional<double> folded_from)
 {
   if (op.type == "crease")
   {
@@ -84,6 +87,22 @@ core::Status OperationClient::apply(const Operation& op, int animation_steps, do
     srv.request.vertices = op.vertices;
     srv.request.positions = op.positions;
     return call(nh_, "pull", srv);
+  }
+  if (op.type == "fold_by_assignment")
+  {
+    // Animated only from where the paper was (its recorded state): from a guess the previews
+    // would show a motion that never happened.
+    FoldByAssignment srv;
+    for (int i = 1; folded_from && i < animation_steps; ++i)
+    {
+      srv.request.fraction = *folded_from + (op.fraction - *folded_from) * i / animation_steps;
+      srv.request.preview = true;
+      ros::service::call(nh_.resolveName("fold_by_assignment"), srv);  // a preview that fails only shows less
+      ros::WallDuration(animation_seconds / animation_steps).sleep();
+    }
+    srv.request.fraction = op.fraction;
+    srv.request.preview = false;
+    return call(nh_, "fold_by_assignment", srv);
   }
   if (op.type == "load")
     return load(op.path);

@@ -1,5 +1,6 @@
 #include "virtual_origami/ros/paper_model_node.h"
 
+#include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 
@@ -15,6 +16,7 @@
 #include "virtual_origami/core/obj_export.h"
 #include "virtual_origami/core/oripa_io.h"
 #include "virtual_origami/ros/remote_solver.h"
+#include "virtual_origami/solvers/crease_driver_factory.h"
 
 namespace virtual_origami
 {
@@ -119,6 +121,12 @@ PaperModelNode::PaperModelNode(ros::NodeHandle nh, ros::NodeHandle private_nh) :
   session_.setSolver(std::make_shared<RemoteSolver>(nh_, private_nh.param<std::string>("solver_service", "solve"),
                                                     private_nh.param("solver_timeout", 5.0)));
   session_.setHistoryLimit(static_cast<size_t>(std::max(0.0, private_nh.param("history_memory_mb", 256.0)) * 1e6));
+  const std::string driver = private_nh.param<std::string>("crease_driver", "quasi_newton");
+  crease_driver_ = core::makeCreaseDriver(driver);
+  preview_driver_ = core::makeCreaseDriver(driver);
+  if (!crease_driver_ || !preview_driver_)
+    throw std::runtime_error("crease_driver \"" + driver + "\" is not a crease driver");
+  session_.setCreaseDrivers(crease_driver_, preview_driver_);
 
   state_pub_ = nh_.advertise<PaperState>("state", 1, true);
   markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
@@ -141,10 +149,31 @@ PaperModelNode::PaperModelNode(ros::NodeHandle nh, ros::NodeHandle private_nh) :
   services_.push_back(nh_.advertiseService("reset", &PaperModelNode::reset, this));
   services_.push_back(nh_.advertiseService("pin", &PaperModelNode::pin, this));
   services_.push_back(nh_.advertiseService("pull", &PaperModelNode::pull, this));
+  services_.push_back(nh_.advertiseService("fold_by_assignment", &PaperModelNode::foldByAssignment, this));
   services_.push_back(nh_.advertiseService("load", &PaperModelNode::load, this));
   services_.push_back(nh_.advertiseService("save", &PaperModelNode::save, this));
+  // Calls reconfigure() at once with the parameters (or their defaults).
+  reconfigure_server_ = std::make_unique<dynamic_reconfigure::Server<PaperModelConfig>>(private_nh);
+  reconfigure_server_->setCallback([this](PaperModelConfig& c, uint32_t level) { reconfigure(c, level); });
   std::lock_guard<std::mutex> lock(mutex_);
   publishState();
+}
+
+void PaperModelNode::reconfigure(PaperModelConfig& config, uint32_t)
+{
+  {
+    std::lock_guard<std::mutex> drivers(drivers_mutex_);
+    core::SolveLimits limits = preview_driver_->limits();
+    limits.max_seconds = config.fold_preview_seconds;
+    preview_driver_->setLimits(limits);
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  const bool recolour =
+      style_.colour_by_strain != config.colour_by_strain || style_.strain_scale != config.strain_scale;
+  style_.colour_by_strain = config.colour_by_strain;
+  style_.strain_scale = config.strain_scale;
+  if (recolour)
+    publishMarkers(session_.preview() ? *session_.preview() : session_.paper());
 }
 
 void PaperModelNode::restoreOrStart(ros::NodeHandle& private_nh, const std::string& path)
@@ -575,6 +604,38 @@ bool PaperModelNode::pull(Pull::Request& req, Pull::Response& res)
   }
   std::lock_guard<std::mutex> lock(mutex_);
   res.revision = session_.revision();
+  return true;
+}
+
+bool PaperModelNode::foldByAssignment(FoldByAssignment::Request& req, FoldByAssignment::Response& res)
+{
+  const bool commit_it = !req.preview;
+  const auto result = computeAndCommit<core::AssignmentFoldResult>(
+      [&](core::Workspace workspace) {
+        std::lock_guard<std::mutex> drivers(drivers_mutex_);
+        return core::computeFoldByAssignment(std::move(workspace), req.fraction, commit_it);
+      },
+      commit_it, "folded by assignment", res.revision);
+  res.success = result.ok();
+  if (!result)
+  {
+    res.message = result.message();
+    if (commit_it)
+    {
+      // The slider's previews are on show: the paper as it stays.
+      std::lock_guard<std::mutex> lock(mutex_);
+      publishMarkers(session_.paper());
+    }
+    return true;
+  }
+  const core::AssignmentFoldResult& folded = result->result;
+  res.max_strain = folded.max_strain;
+  res.angle_error = folded.angle_error;
+  res.rigid = folded.rigid;
+  char text[160];
+  std::snprintf(text, sizeof text, "%s %.1f %% by assignment (strain %.2g, %s)", commit_it ? "folded" : "preview at",
+                100.0 * req.fraction, folded.max_strain, folded.rigid ? "rigid" : "not rigid");
+  res.message = text;
   return true;
 }
 

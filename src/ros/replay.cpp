@@ -4,9 +4,11 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <optional>
 
 #include <ros/ros.h>
 
+#include "virtual_origami/core/fold_fraction.h"
 #include "virtual_origami/core/fold_io.h"
 #include "virtual_origami/ros/conversions.h"
 
@@ -35,6 +37,20 @@ core::Status startWhereTheRecordingStarted(const Recording& recording, Operation
   std::remove(path.c_str());
   return loaded;
 }
+
+/// How far the paper was folded by assignment just before `op`, from the recorded state it
+/// started from; none when the recording lacks that state.
+std::optional<double> foldedBefore(const Recording& recording, const Operation& op)
+{
+  for (const PaperState& state : recording.states)
+    if (state.revision + 1 == op.revision)
+    {
+      const core::Expected<core::Paper> paper = fromMessage(state);
+      if (paper)
+        return core::foldFraction(*paper);
+    }
+  return std::nullopt;
+}
 }  // namespace
 
 core::Status replay(const Recording& recording, OperationClient& client, const ReplayOptions& options)
@@ -52,7 +68,9 @@ core::Status replay(const Recording& recording, OperationClient& client, const R
     const double turn_time = animate ? std::min(1.0, std::max(0.3, gap)) / options.speed : 0.0;
     if (animate)
       ros::WallDuration(std::max(0.0, gap / options.speed - turn_time)).sleep();
-    const core::Status applied = client.apply(op, animate ? options.animation_steps : 0, turn_time);
+    const std::optional<double> folded_from =
+        animate && op.type == "fold_by_assignment" ? foldedBefore(recording, op) : std::nullopt;
+    const core::Status applied = client.apply(op, animate ? options.animation_steps : 0, turn_time, folded_from);
     if (!applied)
       return core::failure("operation " + std::to_string(i + 1) + " (" + op.type + "): " + applied.message());
   }

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "virtual_origami/core/assignment_fold.h"
 #include "virtual_origami/core/crease.h"
 #include "virtual_origami/core/paper.h"
 #include "virtual_origami/core/pull.h"
@@ -30,6 +31,7 @@ struct Operation
     Reset,
     Load,
     Pull,
+    AssignmentFold,
   };
   Kind kind = Kind::Crease;
   CreaseRequest crease;   // Crease: the request as given (before snapping)
@@ -37,6 +39,7 @@ struct Operation
   double size = 1.0;      // Reset: the sheet's side
   std::string path;       // Load: where the model came from
   std::vector<PullTarget> pull;  // Pull: where the vertices were pulled to (pins following frames)
+  double fraction = 0.0;  // AssignmentFold: how far towards the creases' targets, 0 to 1
   uint64_t revision = 0;  // the revision it produced
 };
 
@@ -83,6 +86,12 @@ struct Workspace
   std::shared_ptr<ShapeSolver> solver;
   SnapSettings snap;
   std::vector<int> held;
+  /// Folding by assignment: the driver that commits (converges), and the one previews use (a
+  /// time budget); without a preview driver previews use `driver`. Shared like the solver.
+  std::shared_ptr<CreaseDriver> driver, preview_driver;
+  /// The last fold-by-assignment preview on this revision: the next preview goes on from it
+  /// (one solve from the last frame), while a commit starts from `paper`.
+  std::optional<Paper> assignment_preview;
 };
 
 /// The operations as functions of a workspace; none touches a session. A rotation's change is
@@ -91,6 +100,11 @@ Expected<Computed<CreaseResult>> computeCrease(Workspace workspace, const Crease
 Expected<Computed<RotateResult>> computeRotate(Workspace workspace, const RotateRequest& request);
 Expected<Computed<SquashResult>> computeSquash(Workspace workspace);
 Expected<Computed<PullResult>> computePull(Workspace workspace, const std::vector<PullTarget>& targets);
+/// Folds every driven crease to `fraction` of its target (assignment_fold.h). `commit` true:
+/// converged from the committed paper (what replay reproduces); false: a preview frame from the
+/// last preview, within the preview driver's budget. Pins are held.
+Expected<Computed<AssignmentFoldResult>> computeFoldByAssignment(Workspace workspace, double fraction,
+                                                                 bool commit = true);
 Expected<Change> computeReset(uint64_t base_revision, double size);
 Expected<Change> computeLoad(uint64_t base_revision, Paper paper, const std::string& path);
 
@@ -119,6 +133,12 @@ public:
   /// Vertices no operation may move (pins): solvers hold them, and a rotation that would
   /// carry one away is refused.
   void setHeldVertices(std::vector<int> held) { held_ = std::move(held); }
+  /// The crease drivers folding by assignment uses (see Workspace).
+  void setCreaseDrivers(std::shared_ptr<CreaseDriver> driver, std::shared_ptr<CreaseDriver> preview_driver = nullptr)
+  {
+    driver_ = std::move(driver);
+    preview_driver_ = std::move(preview_driver);
+  }
 
   Expected<CreaseResult> crease(const CreaseRequest& request);
   /// With commit false the result is a preview (`preview()`), not in history, and the
@@ -132,6 +152,8 @@ public:
   Status load(Paper paper, const std::string& path);
   /// Pulls vertices to points (see pull.h), holding the held vertices.
   Expected<PullResult> pull(const std::vector<PullTarget>& targets);
+  /// Folds by assignment to `fraction`; with commit false a preview, as for rotate.
+  Expected<AssignmentFoldResult> foldByAssignment(double fraction, bool commit = true);
 
   /// Applies a logged operation again (its parameters as logged).
   Status apply(const Operation& operation);
@@ -143,7 +165,8 @@ public:
   /// Commits a computed change; refused (nothing changed) when the session has moved on from
   /// the revision the change was computed from.
   Status commit(Change change);
-  /// Shows a computed rotation as the preview, unless the session has moved on since.
+  /// Shows a computed rotation or fold by assignment as the preview, unless the session has
+  /// moved on since.
   bool setPreview(Change change);
 
   /// Undo states beyond this many bytes (the undo and redo states together, by approximateBytes)
@@ -160,7 +183,9 @@ private:
 
   History history_;
   std::optional<Paper> preview_;
+  Operation::Kind preview_kind_ = Operation::Kind::Rotate;  // what made preview_
   std::shared_ptr<ShapeSolver> solver_;
+  std::shared_ptr<CreaseDriver> driver_, preview_driver_;
   SnapSettings snap_settings_;
   std::vector<int> held_;
   size_t history_limit_ = 0;

@@ -1,8 +1,9 @@
 // The interaction node (SPEC §5): an interactive_markers server over the paper. Mouse
 // presses and drags in rviz become crease and rotate requests to paper_model, with the
 // snapping guides, axis and ring drawn while dragging; a right-click menu switches modes and
-// asks for squash, undo, redo, reset and pins. The services are the only way it changes the
-// paper: rotate previews with commit false while dragging, one committed call on release.
+// asks for squash, undo, redo, reset, pins, folds by assignment and strain colours. Beside the
+// sheet a slider folds a loaded crease pattern by assignment. The services are the only way it
+// changes the paper: rotate and fold previews while dragging, one committed call on release.
 #pragma once
 
 #include <array>
@@ -13,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include <dynamic_reconfigure/Config.h>
 #include <geometry_msgs/PoseStamped.h>
 #include <interactive_markers/interactive_marker_server.h>
 #include <interactive_markers/menu_handler.h>
@@ -23,6 +25,7 @@
 #include <visualization_msgs/InteractiveMarkerFeedback.h>
 
 #include "virtual_origami/core/drag.h"
+#include "virtual_origami/ros/fold_slider.h"
 #include "virtual_origami/ros/interaction_markers.h"
 #include "virtual_origami/ros/interaction_view.h"
 
@@ -49,6 +52,8 @@ public:
     Reset,
     Pin,
     Release,
+    FoldByAssignment,
+    ColourByStrain,
   };
 
 private:
@@ -57,10 +62,13 @@ private:
   {
     Feedback::ConstPtr feedback;
     Action action = Action::None;  // a menu entry
+    bool slider = false;           // from the fold slider's handle, not the sheet
+    double fraction = 0.0;         // FoldByAssignment: how far
   };
 
-  // The server's thread: only queue (a pose replaces the pose queued before it).
-  void received(const Feedback::ConstPtr& feedback, Action action);
+  // The server's thread: only queue (a pose replaces the pose queued before it from the same
+  // marker).
+  void received(const Feedback::ConstPtr& feedback, Action action, bool slider = false, double fraction = 0.0);
 
   // The node's thread.
   void handleEvents(const ros::TimerEvent&);
@@ -101,6 +109,19 @@ private:
   void publishStatus(const ros::TimerEvent& = {});
   bool previewRotation(double angle);
 
+  // The fold slider (fold_slider.h).
+  /// The handle where the paper is folded, or no slider for a paper without driven creases.
+  void showSlider();
+  void slide(const Feedback& feedback);
+  /// The percent shown and, when it moved since the last one, a preview asked for.
+  void updateSlider();
+  void releaseSlider();
+  /// Folds to `fraction` (committed); what to tell the user.
+  std::string foldByAssignment(double fraction);
+  /// Asks paper_model to colour by strain, or not; what to tell the user.
+  std::string toggleStrainColours();
+  void strainColoursChanged(const dynamic_reconfigure::Config::ConstPtr& config);
+
   ros::NodeHandle nh_;
   InteractionStyle style_;
   core::SnapSettings snap_;
@@ -118,10 +139,10 @@ private:
 
   interactive_markers::InteractiveMarkerServer server_;
   interactive_markers::MenuHandler menu_;
-  interactive_markers::MenuHandler::EntryHandle crease_entry_ = 0, rotate_entry_ = 0;
-  ros::Subscriber state_sub_;
-  ros::Publisher markers_pub_, status_pub_, view_turn_pub_;
-  ros::ServiceClient crease_, rotate_, squash_, undo_, redo_, reset_, pin_;
+  interactive_markers::MenuHandler::EntryHandle crease_entry_ = 0, rotate_entry_ = 0, strain_entry_ = 0;
+  ros::Subscriber state_sub_, strain_colours_sub_;
+  ros::Publisher markers_pub_, status_pub_, view_turn_pub_, slider_pub_;
+  ros::ServiceClient crease_, rotate_, squash_, undo_, redo_, reset_, pin_, fold_, paper_model_reconfigure_;
   ros::Timer timer_, status_timer_;
 
   std::mutex mutex_;  // guards the queue and the counters the server's thread writes
@@ -151,6 +172,20 @@ private:
   std::array<int, 2> named_axis_{ -1, -1 };  // the end vertices of the crease named by hand
   double angle_ = 0.0, previewed_angle_ = 0.0;
   bool previewed_ = false;
+
+  // The fold slider.
+  bool slider_enabled_ = true;
+  SliderStyle slider_style_;
+  SliderTrack track_;
+  bool slider_shown_ = false;
+  bool slider_changed_ = false;  // a new state came during a drag: show the slider after it
+  bool slider_dragging_ = false, slider_moved_ = false;
+  double slider_fraction_ = 0.0, fraction_at_press_ = 0.0;
+  std::optional<double> slider_previewed_;  // the fraction last previewed in this drag
+  std::string slider_refusal_;              // why the last preview was refused
+  /// The fraction the slider committed and the revision it made: the handle stays there.
+  std::optional<std::pair<uint64_t, double>> committed_fraction_;
+  bool colour_by_strain_ = false;  // as paper_model's dynamic_reconfigure says
 
   uint64_t applied_ = 0;
   ros::Time applied_stamp_;

@@ -17,12 +17,16 @@ struct MarkerStyle
   double layer_gap = 0.002;    // between coincident layers of a flat fold, in metres
   double side_offset = 0.0004;  // front and back surfaces of one layer, apart
   double line_width = 0.004;
+  /// Both sides of every face in the colour of its strain (strain_colours.h) instead of the
+  /// sheet's front and back colours: where a pattern does not fold rigidly.
+  bool colour_by_strain = false;
+  double strain_scale = 1e-2;  // the strain drawn full red
 };
 
 std_msgs::ColorRGBA rgba(float r, float g, float b, float a = 1.0f);
 
 /// Namespaces: `front` and `back` (TRIANGLE_LIST, the two sides of every face in their own
-/// colours, coincident layers lifted by their stack level), `mountain`, `valley`, `crease`
+/// colours or coloured by strain, coincident layers lifted by their stack level), `mountain`, `valley`, `crease`
 /// (unassigned/flat), `boundary` (LINE_LIST).
 visualization_msgs::MarkerArray paperMarkers(const core::Paper& paper, const MarkerStyle& style,
                                              const ros::Time& stamp);

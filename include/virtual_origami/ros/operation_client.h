@@ -1,6 +1,7 @@
 // Applies recorded operations (virtual_origami/Operation) through a paper_model's services.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include <ros/node_handle.h>
@@ -18,8 +19,10 @@ public:
   /// Waits until the services are offered; false after `seconds`.
   bool waitForServices(double seconds);
   /// Calls the service the operation came from with its parameters. A rotation is shown
-  /// turning first through `animation_steps` previews spread over `animation_seconds`.
-  core::Status apply(const Operation& operation, int animation_steps = 0, double animation_seconds = 0.0);
+  /// turning first through `animation_steps` previews spread over `animation_seconds`; so is a
+  /// fold by assignment, from `folded_from` (how far the paper was folded before it) when known.
+  core::Status apply(const Operation& operation, int animation_steps = 0, double animation_seconds = 0.0,
+                     std::optional<double> folded_from = std::nullopt);
   /// Loads a paper (as a FOLD file) so that a replay starts where the recording started.
   core::Status load(const std::string& path);
 

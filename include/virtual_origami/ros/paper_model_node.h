@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include <dynamic_reconfigure/server.h>
 #include <ros/ros.h>
 #include <std_srvs/Trigger.h>
 #include <tf2_ros/buffer.h>
@@ -17,7 +18,9 @@
 #include <tf2_ros/transform_broadcaster.h>
 #include <tf2_ros/transform_listener.h>
 #include <virtual_origami/Crease.h>
+#include <virtual_origami/FoldByAssignment.h>
 #include <virtual_origami/Load.h>
+#include <virtual_origami/PaperModelConfig.h>
 #include <virtual_origami/PinVertex.h>
 #include <virtual_origami/Pull.h>
 #include <virtual_origami/Rotate.h>
@@ -49,6 +52,9 @@ private:
   bool reset(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   bool pin(PinVertex::Request& req, PinVertex::Response& res);
   bool pull(Pull::Request& req, Pull::Response& res);
+  bool foldByAssignment(FoldByAssignment::Request& req, FoldByAssignment::Response& res);
+  /// Strain colours and the preview budget, live (cfg/PaperModel.cfg).
+  void reconfigure(PaperModelConfig& config, uint32_t level);
   bool load(Load::Request& req, Load::Response& res);
   bool save(Save::Request& req, Save::Response& res);
 
@@ -114,6 +120,11 @@ private:
   int face_frames_max_ = 1000;  // larger models broadcast no face frames
   std::string face_frame_prefix_;
   ros::Timer pin_timer_, follow_timer_;
+  /// Folding by assignment: a driver that converges for commits, one with a time budget for
+  /// previews. A driver keeps what it learnt of a pattern between calls, so one call at a time.
+  std::shared_ptr<core::CreaseDriver> crease_driver_, preview_driver_;
+  std::mutex drivers_mutex_;
+  std::unique_ptr<dynamic_reconfigure::Server<PaperModelConfig>> reconfigure_server_;
 };
 
 }  // namespace virtual_origami

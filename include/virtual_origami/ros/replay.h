@@ -14,7 +14,7 @@ struct ReplayOptions
 {
   /// 1: as recorded; 2: twice as fast; 0: no pauses and no animation (as fast as it goes).
   double speed = 1.0;
-  int animation_steps = 15;  // previews shown while a rotation turns
+  int animation_steps = 15;  // previews shown while a rotation turns or a fold by assignment folds
   /// paper_model's data folder: the first state is handed to its `load` there, by a relative name.
   std::string data_dir = core::defaultDataFolder();
 };

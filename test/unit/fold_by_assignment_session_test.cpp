@@ -1,0 +1,197 @@
+// Folding by assignment as a session operation: a transaction like every other, previewed
+// without history, undone and redone, applied again from the log, journaled.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+#include "virtual_origami/core/session.h"
+#include "virtual_origami/core/session_journal.h"
+#include "virtual_origami/core/tessellations.h"
+#include "virtual_origami/solvers/crease_driver_factory.h"
+#include "virtual_origami/solvers/solver_factory.h"
+
+using namespace virtual_origami::core;
+
+namespace
+{
+/// A small Miura-ori whose creases carry their flat-folded targets as a file would give them.
+Paper miuraWithTargets()
+{
+  const Expected<Tessellation> miura = miuraTessellation(4, 3);
+  EXPECT_TRUE(miura.ok()) << miura.message();
+  Paper paper = miura->paper;
+  for (size_t e = 0; e < paper.edges.size(); ++e)
+    if (paper.edges[e].isCrease())
+      paper.edges[e].target_angle = miura->target_fold_angle[e];
+  return paper;
+}
+
+Session foldingSession(Paper paper)
+{
+  Session session(std::move(paper));
+  session.setSolver(makeSolver("newton"));
+  session.setCreaseDrivers(makeCreaseDriver());
+  return session;
+}
+
+/// Creases with a target, each folded the way its target says and no further than it.
+void expectFoldedTowardsTargets(const Paper& paper)
+{
+  int driven = 0;
+  for (const Edge& e : paper.edges)
+    if (e.isCrease() && e.target_angle)
+    {
+      ++driven;
+      EXPECT_GT(e.fold_angle * *e.target_angle, 0.0) << "a crease folded against its target";
+      EXPECT_LT(std::abs(e.fold_angle), std::abs(*e.target_angle));
+    }
+  EXPECT_GT(driven, 0);
+}
+
+std::string tempPath(const std::string& name)
+{
+  return (std::filesystem::temp_directory_path() /
+          ("vo_fold_by_assignment_" + std::to_string(::getpid()) + "_" + name))
+      .string();
+}
+}  // namespace
+
+TEST(FoldByAssignmentSession, ARefusedFoldLeavesThePaperAndTheRevision)
+{
+  Session session = foldingSession(miuraWithTargets());
+  const Paper before = session.paper();
+  for (double fraction : { std::numeric_limits<double>::quiet_NaN(), -0.01, 1.01,
+                           std::numeric_limits<double>::infinity() })
+  {
+    const auto refused = session.foldByAssignment(fraction);
+    ASSERT_FALSE(refused.ok()) << fraction;
+    EXPECT_NE(refused.message().find("fraction"), std::string::npos) << refused.message();
+    EXPECT_FALSE(session.foldByAssignment(fraction, false).ok()) << "preview at " << fraction;
+  }
+  EXPECT_TRUE(session.paper() == before);
+  EXPECT_EQ(session.revision(), 0u);
+  EXPECT_TRUE(session.log().empty());
+  EXPECT_FALSE(session.preview().has_value());
+
+  // An unfolded square has no crease for a target to drive.
+  Session square = foldingSession(Paper::square(1.0));
+  EXPECT_FALSE(square.foldByAssignment(0.5).ok());
+  EXPECT_TRUE(square.paper() == Paper::square(1.0));
+  EXPECT_EQ(square.revision(), 0u);
+
+  Session without_driver(miuraWithTargets());
+  const auto no_driver = without_driver.foldByAssignment(0.5);
+  ASSERT_FALSE(no_driver.ok());
+  EXPECT_NE(no_driver.message().find("driver"), std::string::npos) << no_driver.message();
+  EXPECT_EQ(without_driver.revision(), 0u);
+}
+
+TEST(FoldByAssignmentSession, PreviewsStayOutOfHistoryAndTheCommitIsOneEntry)
+{
+  Session session = foldingSession(miuraWithTargets());
+  const Paper flat = session.paper();
+  for (double fraction : { 0.1, 0.2, 0.3 })
+  {
+    ASSERT_TRUE(session.foldByAssignment(fraction, false).ok());
+    ASSERT_TRUE(session.preview().has_value());
+    EXPECT_FALSE(*session.preview() == flat);
+    EXPECT_TRUE(session.paper() == flat);
+    EXPECT_EQ(session.revision(), 0u);
+  }
+  const auto folded = session.foldByAssignment(0.5);
+  ASSERT_TRUE(folded.ok()) << folded.message();
+  EXPECT_EQ(folded->fraction, 0.5);
+  // A Miura-ori is a mechanism: the committed fold closes its faces exactly.
+  EXPECT_TRUE(folded->rigid);
+  EXPECT_LE(folded->max_strain, 1e-9);
+  EXPECT_EQ(session.revision(), 1u);
+  EXPECT_FALSE(session.preview().has_value());
+  ASSERT_EQ(session.log().size(), 1u);
+  EXPECT_EQ(session.log().back().kind, Operation::Kind::AssignmentFold);
+  EXPECT_EQ(session.log().back().fraction, 0.5);
+  EXPECT_STREQ(kindName(Operation::Kind::AssignmentFold), "fold_by_assignment");
+  expectFoldedTowardsTargets(session.paper());
+}
+
+TEST(FoldByAssignmentSession, UndoAndRedoGoBackAndForthBitIdentically)
+{
+  Session session = foldingSession(miuraWithTargets());
+  const Paper flat = session.paper();
+  ASSERT_TRUE(session.foldByAssignment(0.4).ok());
+  const Paper folded = session.paper();
+  EXPECT_FALSE(folded == flat);
+  ASSERT_TRUE(session.undo().ok());
+  EXPECT_TRUE(session.paper() == flat);
+  ASSERT_TRUE(session.redo().ok());
+  EXPECT_TRUE(session.paper() == folded);
+  EXPECT_EQ(session.revision(), 3u);
+}
+
+TEST(FoldByAssignmentSession, ApplyingTheLogAgainReproducesThePaper)
+{
+  Session session = foldingSession(miuraWithTargets());
+  // Previews in between must not change what the commit makes.
+  ASSERT_TRUE(session.foldByAssignment(0.7, false).ok());
+  ASSERT_TRUE(session.foldByAssignment(0.3).ok());
+  ASSERT_TRUE(session.foldByAssignment(0.9, false).ok());
+  ASSERT_TRUE(session.foldByAssignment(0.6).ok());
+
+  Session again = foldingSession(miuraWithTargets());
+  for (const Operation& op : session.log())
+  {
+    const Status applied = again.apply(op);
+    ASSERT_TRUE(applied.ok()) << applied.message();
+  }
+  EXPECT_TRUE(again.paper() == session.paper());
+  EXPECT_EQ(again.revision(), session.revision());
+}
+
+TEST(FoldByAssignmentSession, TargetAnglesAndTheFractionSurviveTheJournal)
+{
+  Paper paper = miuraWithTargets();
+  // Targets a file gave, not the ±π an assignment implies.
+  for (Edge& e : paper.edges)
+    if (e.target_angle)
+      *e.target_angle *= 0.5;
+  paper.edges.back().split = true;
+  const Expected<Paper> back = parsePaperJson(formatPaperJson(paper));
+  ASSERT_TRUE(back.ok()) << back.message();
+  EXPECT_TRUE(*back == paper);  // operator== compares target_angle
+
+  const std::string path = tempPath("journal");
+  {
+    Session session = foldingSession(paper);
+    SessionJournal journal;
+    ASSERT_TRUE(journal.start(path, session).ok());
+    ASSERT_TRUE(session.foldByAssignment(0.25).ok());
+    ASSERT_TRUE(journal.record(session).ok());
+    const Expected<History> read = readJournal(path);
+    ASSERT_TRUE(read.ok()) << read.message();
+    EXPECT_TRUE(read->paper == session.paper());
+    ASSERT_EQ(read->undo.size(), 1u);
+    EXPECT_TRUE(read->undo[0] == paper);
+    ASSERT_EQ(read->log.size(), 1u);
+    EXPECT_EQ(read->log[0].kind, Operation::Kind::AssignmentFold);
+    EXPECT_EQ(read->log[0].fraction, 0.25);
+  }
+  std::filesystem::remove(path);
+}
+
+TEST(FoldByAssignmentSession, PapersJournaledBeforeTargetAnglesStillLoad)
+{
+  // An edge as journals wrote them before target angles: [v0, v1, assignment, angle(, split)].
+  const std::string old = R"({"vertices_crease_pattern": [[0,0],[1,0],[1,1],[0,1]],
+      "vertices_folded": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]],
+      "edges": [[0,1,"B",0],[1,2,"B",0],[2,3,"B",0],[3,0,"B",0],[0,2,"V",0,false]],
+      "faces": [[0,1,2],[0,2,3]], "face_orders": [], "sheet_area": 1})";
+  const Expected<Paper> paper = parsePaperJson(old);
+  ASSERT_TRUE(paper.ok()) << paper.message();
+  ASSERT_EQ(paper->edges.size(), 5u);
+  for (const Edge& e : paper->edges)
+    EXPECT_FALSE(e.target_angle.has_value());
+  EXPECT_TRUE(paper->edges[4].isCrease());
+}
