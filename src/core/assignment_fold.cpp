@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "virtual_origami/core/face_springs.h"
+#include "virtual_origami/core/fold_fraction.h"
 #include "virtual_origami/core/positions.h"
 
 namespace virtual_origami::core
@@ -145,16 +146,16 @@ Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFo
   }
   else
   {
-    // Stages from where the creases are now, so that one call follows the branch that a slow
-    // slide would (and a replay lands where the slide did).
-    double furthest = 0.0;
-    std::vector<double> from(goal.size(), kNaN);
-    for (size_t e = 0; e < goal.size(); ++e)
-      if (std::isfinite(goal[e]))
-      {
-        from[e] = work.edges[e].fold_angle;
-        furthest = std::max(furthest, std::abs(goal[e] - from[e]));
-      }
+    // Stages in the fraction, from the one the creases fit now (foldFraction), so that one call
+    // follows the branch that a slow slide would (and a replay lands where the slide did). Not
+    // from each crease's own angle: a pattern that cannot meet its targets (a Miura-ori's
+    // straight and zigzag creases differ) misses some by far at any fraction.
+    const double from = foldFraction(work);
+    double largest_target = 0.0;
+    for (double t : targets)
+      if (std::isfinite(t))
+        largest_target = std::max(largest_target, std::abs(t));
+    const double furthest = std::abs(request.fraction - from) * largest_target;
     const int stages = std::max(1, static_cast<int>(std::ceil(furthest / request.max_stage_angle - 1e-9)));
     const double stiffness = driver.faceStiffness();
     // One stage (a slide's step) stays near a balanced state: no detour needed there.
@@ -164,10 +165,10 @@ Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFo
     std::vector<double> stage_goal = goal;
     for (int k = 1; k <= stages && !result.solve.diverged; ++k)
     {
-      const double t = static_cast<double>(k) / stages;
+      const double fraction = from + (request.fraction - from) * static_cast<double>(k) / stages;
       for (size_t e = 0; e < goal.size(); ++e)
         if (std::isfinite(goal[e]))
-          stage_goal[e] = from[e] + t * (goal[e] - from[e]);
+          stage_goal[e] = fraction * targets[e];
       addStage(result.solve, driver.drive(work, stage_goal, fixed));
       measureAngles(work, targets);
     }

@@ -49,10 +49,10 @@ struct AssignmentFoldRequest
   /// 0: every driven crease towards its flat state, 1: towards its full target.
   double fraction = 1.0;
   /// False for a preview frame: one call of the driver within its limits (a time budget), from
-  /// the paper as given (the last frame). True to commit: staged from the paper's own angles
-  /// (at most `max_stage_angle` per stage), balanced, then made rigid by `rigid` when a rigid
-  /// shape lies within reach (strain ≤ its tolerance); else the balanced shape is kept with its
-  /// strain reported.
+  /// the paper as given (the last frame). True to commit: staged in the fraction from the one
+  /// the paper's angles fit (foldFraction; no crease's target moves more than `max_stage_angle`
+  /// per stage), balanced, then made rigid by `rigid` when a rigid shape lies within reach
+  /// (strain ≤ its tolerance); else the balanced shape is kept with its strain reported.
   bool converge = true;
   double max_stage_angle = 0.17453292519943295;  // 10°
   /// Face stiffness on the way of a commit of more than one stage (below the driver's own): a
