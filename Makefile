@@ -26,7 +26,7 @@ run: build
 	bash scripts/run.sh output
 
 # Benchmarks (never part of test), see docs/BENCHMARKS.md: solver_bench, sweep_bench,
-# curved_bench, curved_speed_bench (on one core), replay_bench and mesh_bench write CSV into
+# curved_bench, curved_speed_bench and fold_bench (on one core), replay_bench, mesh_bench and others write CSV into
 # docs/bench/, each timed (bench_wall_time.csv); then the charts into docs/images/bench/ and the
 # tables of docs/BENCHMARKS.md (Debian's python3 with python3-matplotlib).
 bench: build

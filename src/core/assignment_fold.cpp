@@ -157,11 +157,18 @@ Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFo
         largest_target = std::max(largest_target, std::abs(t));
     const double furthest = std::abs(request.fraction - from) * largest_target;
     const int stages = std::max(1, static_cast<int>(std::ceil(furthest / request.max_stage_angle - 1e-9)));
-    const double stiffness = driver.faceStiffness();
-    // One stage (a slide's step) stays near a balanced state: no detour needed there.
-    const bool soft_path = stages > 1 && request.path_stiffness > 0 && request.path_stiffness < stiffness;
-    if (soft_path)
-      driver.setFaceStiffness(request.path_stiffness);
+    // A commit runs on fresh clones of the driver: what it makes depends on the paper and the
+    // fraction alone, not on what previews left in the driver (a kept factorisation, the last
+    // frames), so applying the log again gives the same paper; and others may be using the
+    // driver meanwhile. One stage (a slide's step) stays near a balanced state: no detour
+    // through softer faces needed there.
+    const std::unique_ptr<CreaseDriver> fresh = driver.clone();
+    const bool soft_path =
+        stages > 1 && request.path_stiffness > 0 && request.path_stiffness < driver.faceStiffness();
+    std::unique_ptr<CreaseDriver> soft = soft_path ? driver.clone() : nullptr;
+    if (soft)
+      soft->setFaceStiffness(request.path_stiffness);
+    CreaseDriver& path = soft ? *soft : *fresh;
     std::vector<double> stage_goal = goal;
     for (int k = 1; k <= stages && !result.solve.diverged; ++k)
     {
@@ -169,15 +176,14 @@ Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFo
       for (size_t e = 0; e < goal.size(); ++e)
         if (std::isfinite(goal[e]))
           stage_goal[e] = fraction * targets[e];
-      addStage(result.solve, driver.drive(work, stage_goal, fixed));
+      addStage(result.solve, path.drive(work, stage_goal, fixed));
       measureAngles(work, targets);
     }
     if (soft_path)
     {
-      driver.setFaceStiffness(stiffness);
       if (!result.solve.diverged)
       {
-        addStage(result.solve, driver.drive(work, goal, fixed));
+        addStage(result.solve, fresh->drive(work, goal, fixed));
         measureAngles(work, targets);
       }
     }

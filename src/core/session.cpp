@@ -71,7 +71,17 @@ Expected<Computed<RotateResult>> computeRotate(Workspace workspace, const Rotate
   for (int v : workspace.held)
     if (v >= 0 && v < static_cast<int>(workspace.paper.vertices.size()))
       held_at.emplace_back(v, workspace.paper.vertices[v].folded);
-  Expected<RotateResult> result = core::rotate(workspace.paper, request, workspace.solver.get(), workspace.held);
+  // A big model's turn starts its solver where a crease driver took the turned creases
+  // (rotate.h, TurnGuide); the guide's driver is a clone, its stiffness its own.
+  TurnGuide guide;
+  std::unique_ptr<CreaseDriver> guide_driver;
+  if (workspace.driver && workspace.paper.vertices.size() >= guide.min_vertices)
+  {
+    guide_driver = workspace.driver->clone();
+    guide.driver = guide_driver.get();
+  }
+  Expected<RotateResult> result =
+      core::rotate(workspace.paper, request, workspace.solver.get(), workspace.held, guide);
   if (!result)
     return Expected<Computed<RotateResult>>::failure(result.message());
   for (const auto& [v, at] : held_at)

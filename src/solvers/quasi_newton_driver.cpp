@@ -168,8 +168,17 @@ std::string QuasiNewtonDriver::name() const
   }
 }
 
+std::unique_ptr<CreaseDriver> QuasiNewtonDriver::clone() const
+{
+  auto copy = std::make_unique<QuasiNewtonDriver>(options_);
+  copy->setLimits(limits_);
+  copy->setFaceStiffness(face_stiffness_);
+  return copy;
+}
+
 SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& target, const std::vector<char>& fixed)
 {
+  const std::lock_guard<std::mutex> lock(mutex_);
   SolveBudget budget(limits_);
   SolveReport report;
   if (!setup_ || !setup_->matches(paper, fixed, target) || setup_->energy.faceStiffness() != face_stiffness_)

@@ -3,6 +3,7 @@
 // keep their crease-pattern shape.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,9 @@ public:
   virtual ~CreaseDriver() = default;
   virtual std::string name() const = 0;
   virtual SolveReport drive(Paper& paper, const std::vector<double>& target, const std::vector<char>& fixed) = 0;
+  /// A fresh driver of the same kind, limits and stiffness, sharing no state with this one
+  /// (for a computation that changes its stiffness while others use this one).
+  virtual std::unique_ptr<CreaseDriver> clone() const = 0;
 
   const SolveLimits& limits() const { return limits_; }
   void setLimits(const SolveLimits& limits) { limits_ = limits; }

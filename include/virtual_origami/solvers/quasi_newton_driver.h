@@ -14,6 +14,7 @@
 #pragma once
 
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -56,13 +57,16 @@ public:
   std::string name() const override;
   /// Converged when a preconditioned step would move no vertex more than
   /// limits().tolerance · the sheet's scale (balance), whatever strain the faces keep.
+  /// Calls from several threads take turns (the set-up and the kept factorisation are shared).
   SolveReport drive(Paper& paper, const std::vector<double>& target, const std::vector<char>& fixed) override;
+  std::unique_ptr<CreaseDriver> clone() const override;
 
   const QuasiNewtonOptions& options() const { return options_; }
 
 private:
   struct Setup;
   QuasiNewtonOptions options_;
+  std::mutex mutex_;
   std::unique_ptr<Setup> setup_;
 };
 
