@@ -130,14 +130,19 @@ DrivenFaces::DrivenFaces(const Paper& paper, double face_stiffness)
     size2.push_back(s2);
     face_weight_.push_back(face_stiffness / s2);
   }
+  // Each face's rigid body, among the bodies through its first vertex (a scan of every body
+  // per face took a tenth of a second on a 10,000-vertex tessellation).
+  std::vector<std::vector<int>> bodies_at(paper.vertices.size());
+  for (size_t r = 0; r < faces_.size(); ++r)
+    for (int v : faces_[r].vertices)
+      bodies_at[v].push_back(static_cast<int>(r));
   for (size_t f = 0; f < paper.faces.size(); ++f)
-    for (size_t r = 0; r < faces_.size() && rigid_of_face[f] < 0; ++r)
-      if (std::find(faces_[r].vertices.begin(), faces_[r].vertices.end(), paper.faces[f].vertices[0]) !=
-              faces_[r].vertices.end() &&
+    for (int r : bodies_at[paper.faces[f].vertices[0]])
+      if (rigid_of_face[f] < 0 &&
           std::all_of(paper.faces[f].vertices.begin(), paper.faces[f].vertices.end(), [&](int v) {
             return std::find(faces_[r].vertices.begin(), faces_[r].vertices.end(), v) != faces_[r].vertices.end();
           }))
-        rigid_of_face[f] = static_cast<int>(r);
+        rigid_of_face[f] = r;
   for (size_t e = 0; e < paper.edges.size(); ++e)
   {
     const Edge& edge = paper.edges[e];

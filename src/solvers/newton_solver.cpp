@@ -4,6 +4,7 @@
 #include <memory>
 #include <cmath>
 
+#include <Eigen/CholmodSupport>
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
 
@@ -85,7 +86,14 @@ public:
                 slots_[f].push_back(slot(row(free_index[v], a), row(free_index[w], b)));
     for (int i = 0; i < size_; ++i)
       diagonal_.push_back(slot(i, i));
-    solver_.analyzePattern(matrix_);
+    if (size_ >= kSupernodalRows)
+    {
+      supernodal_ = std::make_unique<Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Upper>>();
+      supernodal_->cholmod().print = 0;  // not definite is an answer (the damping rises)
+      supernodal_->analyzePattern(matrix_);
+    }
+    else
+      solver_.analyzePattern(matrix_);
   }
 
   /// Fills the matrix for the fitted rotations, adds μ on the diagonal and factors it.
@@ -129,6 +137,11 @@ public:
     }
     for (int i : diagonal_)
       values[i] += mu;
+    if (supernodal_)
+    {
+      supernodal_->factorize(matrix_);
+      return supernodal_->info() == Eigen::Success;
+    }
     solver_.factorize(matrix_);
     return solver_.info() == Eigen::Success;
   }
@@ -139,7 +152,7 @@ public:
     Eigen::VectorXd ordered(size_);
     for (int i = 0; i < size_ / 3; ++i)
       ordered.segment<3>(3 * block_order_[i]) = rhs.segment<3>(3 * i);
-    const Eigen::VectorXd solution = solver_.solve(ordered);
+    const Eigen::VectorXd solution = supernodal_ ? Eigen::VectorXd(supernodal_->solve(ordered)) : Eigen::VectorXd(solver_.solve(ordered));
     Eigen::VectorXd result(size_);
     for (int i = 0; i < size_ / 3; ++i)
       result.segment<3>(3 * i) = solution.segment<3>(3 * block_order_[i]);
@@ -167,6 +180,11 @@ private:
   std::vector<int> diagonal_;
   // Already ordered: the natural ordering takes the upper triangle as it is, without a copy.
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Upper, Eigen::NaturalOrdering<int>> solver_;
+  // Large models (a tessellation of thousands of vertices): CHOLMOD's supernodal Cholesky,
+  // which factors a 10,000-vertex Miura-ori's matrix several times faster than the simplicial
+  // one (the damping μ > 0 keeps the matrix definite).
+  static constexpr int kSupernodalRows = 3000;
+  std::unique_ptr<Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Upper>> supernodal_;
 };
 
 /// Gradient of the rigid-face energy over the free vertices (3 per vertex): with the
