@@ -3,7 +3,8 @@
 // fold fraction moved 1 %, solved to a balance of 1e-6 of the sheet) and of a commit (the same
 // move solved to balance and closed rigid to strain 1e-9), beside the floor of one iteration
 // (one back-substitution of the pattern's constant matrix and one gradient pass); error against
-// CPU time at the largest size; and the 10° corner turn of a 40 × 40 Miura-ori by the rigid
+// CPU time at the largest size; a slide of 30 frames of 33 ms each (the strain they keep);
+// and the 10° corner turn of a 40 × 40 Miura-ori by the rigid
 // newton solver, alone and guided by the crease driver. Writes fold_scaling.csv, fold_error_time.csv and fold_turn.csv.
 //   fold_bench OUT_DIR [MAX_VERTICES]
 #include <algorithm>
@@ -116,12 +117,14 @@ int main(int argc, char** argv)
   const long max_vertices = argc > 2 ? std::atol(argv[2]) : 10000;
   const double start_fraction = 0.3;
   const int frames = 10;
+  const int kSlideFrames = 30;
+  const double kFrameBudget = 0.033;
   // A driver that has not balanced within this CPU budget per solve is charted as not there.
   const double give_up_seconds = 60.0;
 
   std::ofstream scaling(out + "/fold_scaling.csv");
   scaling << "pattern,vertices,driver,frame_p50_ms,frame_p95_ms,frame_max_strain,frames_balanced,commit_s,"
-             "commit_strain,commit_rigid,floor_ms\n";
+             "commit_strain,commit_rigid,floor_ms,slide_p95_ms,slide_max_strain\n";
   std::vector<long> sizes;
   for (long n : { 1000L, 2500L, 5000L, 10000L })
     if (n <= max_vertices)
@@ -142,11 +145,12 @@ int main(int argc, char** argv)
       {
         std::cout << "fold_bench: " << name << " at " << flat.vertices.size() << " vertices did not balance at "
                   << start_fraction * 100 << " % within " << cpuSeconds() - warm_start << " s CPU\n";
-        scaling << "miura," << flat.vertices.size() << "," << name << ",,,,0,,,," << floor_ms << "\n";
+        scaling << "miura," << flat.vertices.size() << "," << name << ",,,,0,,,," << floor_ms << ",,\n";
         continue;
       }
       if (name == "newton" && n == sizes.back())
         largest_start = paper;
+      const Paper balanced_start = paper;
       // Frames: each from the last, 1 % further, solved to a balance of 1e-6 of the sheet.
       setLimits(*d.driver, 1e-6, 5000, give_up_seconds);
       std::vector<double> frame_ms;
@@ -163,6 +167,20 @@ int main(int argc, char** argv)
           balanced += r->solve.converged ? 1 : 0;
         }
       }
+      // A slide as the preview does it: 30 frames, each 1 % further from the last, each given
+      // 33 ms (anytime: it stops where the budget ends), from the balanced state; the strain
+      // the frames keep is what a slide shows.
+      Paper slid = balanced_start;
+      setLimits(*d.driver, 1e-6, 5000, kFrameBudget);
+      std::vector<double> slide_ms;
+      double slide_strain = 0.0;
+      for (int k = 1; k <= kSlideFrames; ++k)
+      {
+        const double t0 = cpuSeconds();
+        const Expected<AssignmentFoldResult> r = fold(d, slid, start_fraction + 0.01 * k, false);
+        slide_ms.push_back(1e3 * (cpuSeconds() - t0));
+        slide_strain = std::max(slide_strain, r ? r->max_strain : INFINITY);
+      }
       // Commit: from the last frame's committed twin (the state at start + frames %), 1 % on.
       Paper committed = paper;
       setLimits(*d.driver, 1e-9, 5000, give_up_seconds);
@@ -173,23 +191,28 @@ int main(int argc, char** argv)
       scaling << "miura," << flat.vertices.size() << "," << name << "," << percentile(frame_ms, 0.5) << ","
               << percentile(frame_ms, 0.95) << "," << frame_strain << "," << balanced << ","
               << (c && base ? commit_s : NAN) << "," << (c ? c->max_strain : NAN) << ","
-              << (c && c->rigid ? 1 : 0) << "," << floor_ms << "\n";
+              << (c && c->rigid ? 1 : 0) << "," << floor_ms << "," << percentile(slide_ms, 0.95) << ","
+              << slide_strain << "\n";
       scaling.flush();
       std::cout << "fold_bench: " << name << " " << flat.vertices.size() << " vertices: frame p50 "
                 << percentile(frame_ms, 0.5) << " ms, p95 " << percentile(frame_ms, 0.95) << " ms (strain "
                 << frame_strain << ", " << balanced << "/" << frames << " balanced), commit " << commit_s
-                << " s (strain " << (c ? c->max_strain : NAN) << "), floor " << floor_ms << " ms\n";
+                << " s (strain " << (c ? c->max_strain : NAN) << "), floor " << floor_ms << " ms; slide of "
+                << kSlideFrames << " frames of " << 1e3 * kFrameBudget << " ms: p95 " << percentile(slide_ms, 0.95)
+                << " ms, strain up to " << slide_strain << "\n";
     }
   }
 
   // Error against CPU time at the largest size: from the balanced 30 % state, 1 % on, each
-  // driver stopped after k iterations, against a reference balanced to 1e-12 by the exact driver.
+  // driver stopped after k iterations, against a reference balanced to 1e-10 by the exact driver
+  // (Gauss–Newton converges only linearly where the targets cannot all be met, as on a Miura-ori:
+  // 200 iterations did not reach 1e-12); errors below about 1e-9 are the reference's own.
   std::ofstream error_time(out + "/fold_error_time.csv");
   error_time << "vertices,driver,iterations,cpu_s,error,strain\n";
   if (!largest_start.vertices.empty())
   {
     Driven reference_driver{ makeCreaseDriver("newton") };
-    setLimits(*reference_driver.driver, 1e-12, 200, 0.0);
+    setLimits(*reference_driver.driver, 1e-10, 400, 0.0);
     Paper reference = largest_start;
     const Expected<AssignmentFoldResult> ref = fold(reference_driver, reference, start_fraction + 0.01, false);
     std::cout << "fold_bench: reference " << (ref && ref->solve.converged ? "balanced" : "NOT balanced") << " in "

@@ -845,12 +845,13 @@ def chart_fold(tables):
     save(fig, "fold_scaling.png")
 
     lines = ["| vertices | driver | frame p50 | frame p95 | frame strain | frames balanced | commit | commit strain | "
-             "rigid | floor |", "|---|---|---|---|---|---|---|---|---|---|"]
+             "rigid | floor | 33 ms slide: p95 | slide strain |", "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in data:
         lines.append(f"| {int(num(r['vertices']))} | {r['driver']} | {fmt(num(r['frame_p50_ms']))} ms | "
                      f"{fmt(num(r['frame_p95_ms']))} ms | {fmt(num(r['frame_max_strain']))} | {r['frames_balanced']}/10 | "
                      f"{fmt(num(r['commit_s']))} s | {fmt(num(r['commit_strain']))} | "
-                     f"{'yes' if r['commit_rigid'] == '1' else 'no'} | {fmt(num(r['floor_ms']))} ms |")
+                     f"{'yes' if r['commit_rigid'] == '1' else 'no'} | {fmt(num(r['floor_ms']))} ms | "
+                     f"{fmt(num(r.get('slide_p95_ms', '')))} ms | {fmt(num(r.get('slide_max_strain', '')))} |")
     text = []
     et = rows("fold_error_time.csv")
     if et:

@@ -192,18 +192,28 @@ Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFo
     return Failure::failure(result.solve.message.empty() ? "the crease driver diverged" : result.solve.message);
   measureAngles(work, targets);
 
-  // Where a rigid shape lies within the strain's reach, close the faces exactly.
+  // Where a rigid shape lies within the strain's reach, close the faces exactly: one that no
+  // vertex leaves by more than ten times the strain, or one that folds as close to the targets
+  // (its angles' RMS error within ten times the strain of the balance's). The second admits
+  // the rigid solver's free drift along a mechanism: closing a 10,000-vertex Miura-ori at strain
+  // 8e-5 moves vertices 9e-4 of the sheet, turns no crease by more than 0.45°, and leaves the
+  // RMS error at 0.3204 rad against the balance's 0.3203.
   if (request.converge && rigid)
   {
     const std::vector<double> strains = faceStrains(work);
     const double strain = strains.empty() ? 0.0 : *std::max_element(strains.begin(), strains.end());
     Paper closed = work;
     const SolveReport report = rigid->solve(closed, fixed);
-    if (report.converged && !report.diverged && largestMove(closed, work) <= 10.0 * strain * paper.scale() + 1e-12)
+    if (report.converged && !report.diverged)
     {
       measureAngles(closed, targets);
-      work = std::move(closed);
-      result.rigid = true;
+      const bool near = largestMove(closed, work) <= 10.0 * strain * paper.scale() + 1e-12;
+      const bool as_close = angleError(closed, goal) <= angleError(work, goal) + 10.0 * strain;
+      if (near || as_close)
+      {
+        work = std::move(closed);
+        result.rigid = true;
+      }
     }
   }
   result.face_strain = faceStrains(work);
