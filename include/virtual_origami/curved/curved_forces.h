@@ -29,7 +29,10 @@ struct CurvedMaterial
   double crease = 0.0;
   /// Faces kept coarse and flat (§4.3, curved_faces 0) bend this many times stiffer.
   double flat_face = 1e4;
-  double density = 1.0;  // mass per area, for the dynamics
+  double density = 1.0;  // mass per area, for the dynamics and the weight (kg/m² in SI)
+  /// The paper's thickness (m) when the moduli come from a physical paper (paper_material.h);
+  /// 0: not given. A mesh finer than this is refused (see checkThicknessAgainstSpacing).
+  double thickness = 0.0;
 };
 
 struct StretchTerm

@@ -1,0 +1,54 @@
+// Paper in physical units (SPEC §4.2): thickness, Young's modulus, Poisson ratio and areal
+// mass, and the moduli of the mesh's forces (CurvedMaterial) that give the plate's energies:
+// stretch and shear ½·(E h)·… of the membrane, bending ½·D·κ² with D = E h³ / (12 (1 − ν²)).
+// The sheet's coordinates are then metres, forces newtons and gravity m/s².
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "virtual_origami/core/result.h"
+#include "virtual_origami/curved/curved_forces.h"
+
+namespace virtual_origami::core
+{
+/// A sheet of paper, SI units.
+struct PaperMaterial
+{
+  double thickness = 0.0;        // h, m
+  double youngs_modulus = 0.0;   // E, Pa (in-plane, the mean of the machine and cross directions)
+  double poisson_ratio = 0.0;    // ν
+  double areal_density = 0.0;    // kg/m² (grammage / 1000)
+};
+
+/// The presets: "copy_paper", "kami", "card".
+std::vector<std::string> paperPresetNames();
+/// A preset by name; fails on any other name, listing the presets.
+Expected<PaperMaterial> paperPreset(const std::string& name);
+
+/// Plate stiffnesses of the sheet.
+double membraneStiffness(const PaperMaterial& paper);  // E h / (1 − ν²), N/m
+double shearStiffness(const PaperMaterial& paper);     // G h = E h / (2 (1 + ν)), N/m
+double bendingStiffness(const PaperMaterial& paper);   // D = E h³ / (12 (1 − ν²)), N·m
+
+/// Refuses a material whose thickness, modulus or areal density is not positive and finite, or
+/// whose Poisson ratio lies outside (0, 1/3] (the mesh's edge springs alone have ν = 1/3, and
+/// its corner terms can only stiffen shear: a larger ν has no positive moduli, and ν = 0 none
+/// that resist an even stretch).
+Status checkPaperMaterial(const PaperMaterial& paper);
+
+/// The mesh's moduli for this paper (on a mesh of equilateral triangles, exactly; derivation
+/// in paper_material.cpp): uniaxial stretch ε costs ½·E h·ε² per area, shear γ ½·G h·γ², a
+/// cylindrical bend κ ½·D·κ². `thickness` and `density` (the areal density) are set too.
+/// Fails as checkPaperMaterial.
+Expected<CurvedMaterial> curvedMaterial(const PaperMaterial& paper);
+
+/// Refuses moduli the solver cannot use: stretch or bend not positive and finite, shear, crease,
+/// flat_face, density or thickness negative or not finite.
+Status checkCurvedMaterial(const CurvedMaterial& material);
+
+/// Refuses a mesh finer than the paper is thick: bending by dihedral angles is the thin-plate
+/// limit, which elements shorter than the thickness are not in. No thickness (0): no limit.
+Status checkThicknessAgainstSpacing(double thickness, double spacing);
+
+}  // namespace virtual_origami::core
