@@ -142,6 +142,8 @@ Status checkCurvedMaterial(const CurvedMaterial& m)
 
 Status checkThicknessAgainstSpacing(double thickness, double spacing)
 {
+  if (!nonNegativeFinite(thickness))
+    return failure("the paper's thickness must be finite and not negative (it is " + number(thickness) + " m)");
   if (thickness > 0 && !(thickness <= spacing))
     return failure("the paper (" + number(thickness) + " m thick) is thicker than the mesh spacing (" +
                    number(spacing) + " m): bending by the mesh's hinges is the thin-plate limit; mesh coarser "
