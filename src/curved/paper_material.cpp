@@ -85,10 +85,9 @@ Status checkPaperMaterial(const PaperMaterial& paper)
   if (!positiveFinite(paper.areal_density))
     return failure("the paper's areal density must be positive and finite (it is " + number(paper.areal_density) +
                    " kg/m²)");
-  if (!std::isfinite(paper.poisson_ratio) || paper.poisson_ratio <= 0 || paper.poisson_ratio > 1.0 / 3.0)
-    return failure("the paper's Poisson ratio must lie in (0, 1/3] (it is " + number(paper.poisson_ratio) +
-                   "): the mesh's edge springs alone have 1/3, its corner terms can only stiffen shear, and at 0 "
-                   "nothing but the springs would resist an even stretch");
+  if (!std::isfinite(paper.poisson_ratio) || paper.poisson_ratio <= -1 || paper.poisson_ratio > 1.0 / 3.0)
+    return failure("the paper's Poisson ratio must lie in (-1, 1/3] (it is " + number(paper.poisson_ratio) +
+                   "): the mesh's edge springs alone have 1/3 and its corner terms can only stiffen shear");
   return success();
 }
 
@@ -107,7 +106,7 @@ Status checkPaperMaterial(const PaperMaterial& paper)
 //   give, per area, ½·(√3/2)·q·((tr K)² − (8/3)·det K): a plate with ν = −1/3. Matching a
 //   cylindrical bend, ½·D·κ²: q = (2/√3)·D. (A narrow strip free to curve across bends as a beam
 //   of (8/9)·D·b then, where paper's is (1 − ν²)·D·b: 2.3 % softer at ν = 0.3.)
-Expected<CurvedMaterial> curvedMaterial(const PaperMaterial& paper)
+Expected<CurvedMaterial> curvedMaterial(const PaperMaterial& paper, PaperBending bending)
 {
   if (const Status checked = checkPaperMaterial(paper); !checked)
     return Expected<CurvedMaterial>::failure(checked.message());
@@ -116,7 +115,14 @@ Expected<CurvedMaterial> curvedMaterial(const PaperMaterial& paper)
   CurvedMaterial material;
   material.stretch = 2 * (lambda + mu) / std::sqrt(3.0);
   material.shear = 4.0 / 9.0 * (mu - lambda);
-  material.bend = 2 / std::sqrt(3.0) * bendingStiffness(paper);
+  if (bending == PaperBending::Plate)
+  {
+    material.plate_bending = true;
+    material.poisson_ratio = nu;
+    material.bend = bendingStiffness(paper);
+  }
+  else
+    material.bend = 2 / std::sqrt(3.0) * bendingStiffness(paper);
   material.density = paper.areal_density;
   material.thickness = paper.thickness;
   return material;

@@ -10,6 +10,7 @@
 #include <array>
 #include <vector>
 
+#include <Eigen/Dense>
 #include <Eigen/Sparse>
 
 #include "virtual_origami/curved/curved_mesh.h"
@@ -33,6 +34,10 @@ struct CurvedMaterial
   /// The paper's thickness (m) when the moduli come from a physical paper (paper_material.h);
   /// 0: not given. A mesh finer than this is refused (see checkThicknessAgainstSpacing).
   double thickness = 0.0;
+  /// Bending per triangle as a thin plate (plate_bending.h) of Poisson ratio `poisson_ratio`,
+  /// `bend` its D, instead of one spring per hinge. Off: the seed's hinges.
+  bool plate_bending = false;
+  double poisson_ratio = 0.0;
 };
 
 struct StretchTerm
@@ -55,11 +60,23 @@ struct BendTerm
   bool crease = false;
 };
 
+/// One triangle's bending as a plate (plate_bending.h): ½·θᵀ·W·θ over its sides' dihedrals θ
+/// (minus their rest angles).
+struct PlateTerm
+{
+  /// The triangle's corners (counter-clockwise), then across each side i (opposite corner i)
+  /// the far node of the next triangle, −1 where the side bends freely.
+  std::array<int, 6> nodes{ -1, -1, -1, -1, -1, -1 };
+  std::array<double, 3> rest{ 0.0, 0.0, 0.0 };
+  Eigen::Matrix3d weight = Eigen::Matrix3d::Zero();
+};
+
 struct CurvedTerms
 {
   std::vector<StretchTerm> stretch;
   std::vector<ShearTerm> shear;
   std::vector<BendTerm> bend;
+  std::vector<PlateTerm> plate;  // with plate_bending, in place of the non-crease bend terms
   std::vector<double> mass;  // lumped: a third of each adjacent triangle's rest area × density
 };
 

@@ -32,16 +32,25 @@ double shearStiffness(const PaperMaterial& paper);     // G h = E h / (2 (1 + ν
 double bendingStiffness(const PaperMaterial& paper);   // D = E h³ / (12 (1 − ν²)), N·m
 
 /// Refuses a material whose thickness, modulus or areal density is not positive and finite, or
-/// whose Poisson ratio lies outside (0, 1/3] (the mesh's edge springs alone have ν = 1/3, and
-/// its corner terms can only stiffen shear: a larger ν has no positive moduli, and ν = 0 none
-/// that resist an even stretch).
+/// whose Poisson ratio lies outside (−1, 1/3] (the mesh's edge springs alone have ν = 1/3 and
+/// its corner terms can only stiffen shear: a larger ν would need a negative corner modulus).
 Status checkPaperMaterial(const PaperMaterial& paper);
 
-/// The mesh's moduli for this paper (on a mesh of equilateral triangles, exactly; derivation
-/// in paper_material.cpp): uniaxial stretch ε costs ½·E h·ε² per area, shear γ ½·G h·γ², a
-/// cylindrical bend κ ½·D·κ². `thickness` and `density` (the areal density) are set too.
+/// How the mesh bends: as a plate per triangle (plate_bending.h: the paper's ν, exact for any
+/// uniform curvature on any mesh), or by the seed's springs on the hinges (a plate of ν = −1/3
+/// whose stiffness depends on the triangles' shapes; exact only on equilateral triangles).
+enum class PaperBending
+{
+  Plate,
+  Hinges,
+};
+
+/// The mesh's moduli for this paper (derivation in paper_material.cpp): uniaxial stretch ε
+/// costs ½·E h·ε² per area, shear γ ½·G h·γ² (both exactly on equilateral triangles), a bend of
+/// curvature K ½·D·(ν (tr K)² + (1 − ν) K : K) (Plate) or, on equilateral triangles, ½·D·κ²
+/// for a cylindrical bend (Hinges). `thickness` and `density` (the areal density) are set too.
 /// Fails as checkPaperMaterial.
-Expected<CurvedMaterial> curvedMaterial(const PaperMaterial& paper);
+Expected<CurvedMaterial> curvedMaterial(const PaperMaterial& paper, PaperBending bending = PaperBending::Plate);
 
 /// Refuses moduli the solver cannot use: stretch or bend not positive and finite, shear, crease,
 /// flat_face, density or thickness negative or not finite.
