@@ -231,13 +231,11 @@ std::vector<std::array<int, 4>> termGroups(const CurvedTerms& terms)
     groups.push_back({ s.o, s.i, s.j, -1 });
   for (const BendTerm& b : terms.bend)
     groups.push_back({ b.a, b.b, b.left, b.right });
-  // A plate term couples its six nodes: the corners with each far node, the far nodes together.
+  // A plate term couples every two of its nodes.
   for (const PlateTerm& p : terms.plate)
-  {
-    for (int i = 3; i < 6; ++i)
-      groups.push_back({ p.nodes[0], p.nodes[1], p.nodes[2], p.nodes[i] });
-    groups.push_back({ p.nodes[3], p.nodes[4], p.nodes[5], -1 });
-  }
+    for (size_t i = 0; i < p.nodes.size(); ++i)
+      for (size_t j = i + 1; j < p.nodes.size(); ++j)
+        groups.push_back({ p.nodes[i], p.nodes[j], -1, -1 });
   return groups;
 }
 

@@ -1,109 +1,213 @@
 #include "virtual_origami/curved/plate_bending.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
+
+#include <Eigen/SVD>
 
 namespace virtual_origami::core
 {
 namespace
 {
-double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-/// Gradient of the plane through a triangle's corners over the heights ½·pᵀHp (p about `origin`).
-Vec2 planeSlope(const std::array<Vec2, 3>& corner, const Eigen::Matrix2d& h, const Vec2& origin)
+/// A hinge as hingeAngle takes it, seen from the triangle `from` (left of a→b): the dihedral it
+/// takes when the sheet lies on a surface of uniform curvature h = (H₁₁, H₂₂, H₁₂) is row·h.
+struct Hinge
 {
+  std::array<int, 4> nodes{ -1, -1, -1, -1 };
+  double rest = 0.0;
+  Eigen::RowVector3d row = Eigen::RowVector3d::Zero();
+  int edge = -1;
+  int across = -1;  // the triangle on its far side
+};
+
+const Eigen::Matrix2d kBasis[3] = { (Eigen::Matrix2d() << 1, 0, 0, 0).finished(),
+                                    (Eigen::Matrix2d() << 0, 0, 0, 1).finished(),
+                                    (Eigen::Matrix2d() << 0, 1, 1, 0).finished() };
+
+std::array<Vec2, 3> cornersOf(const CurvedMesh& mesh, int t)
+{
+  std::array<Vec2, 3> c;
+  for (int k = 0; k < 3; ++k)
+    c[k] = mesh.nodes[mesh.triangles[t].nodes[k]].crease_pattern;
+  return c;
+}
+
+/// Gradient of the plane through a triangle's corners at heights ½·pᵀHp.
+Vec2 planeSlope(const std::array<Vec2, 3>& corner, const Eigen::Matrix2d& h)
+{
+  const Vec2 origin = corner[0];
   const auto value = [&](const Vec2& p) { return 0.5 * (p - origin).dot(h * (p - origin)); };
   Eigen::Matrix2d sides;
   sides.row(0) = (corner[1] - corner[0]).transpose();
   sides.row(1) = (corner[2] - corner[0]).transpose();
-  return sides.lu().solve(
-      Eigen::Vector2d(value(corner[1]) - value(corner[0]), value(corner[2]) - value(corner[0])));
+  // Relative to the origin's own slope, which is the same in every triangle and cancels in the
+  // jumps: h·origin added back.
+  return sides.lu().solve(Eigen::Vector2d(value(corner[1]) - value(corner[0]), value(corner[2]) - value(corner[0]))) +
+         h * origin;
+}
+
+struct Lookup
+{
+  const CurvedMesh& mesh;
+  const Paper& paper;
+  const CurvedMaterial& material;
+  std::map<std::pair<int, int>, int> edge_of;
+};
+
+/// The hinge on side i (opposite corner i) of triangle t, when that side bends: not on the
+/// sheet's edge, not a crease that turns freely.
+std::optional<Hinge> sideHinge(const Lookup& look, int t, int i)
+{
+  const CurvedMesh& mesh = look.mesh;
+  const MeshTriangle& tri = mesh.triangles[t];
+  const int a = tri.nodes[(i + 1) % 3], b = tri.nodes[(i + 2) % 3];
+  const auto found = look.edge_of.find({ std::min(a, b), std::max(a, b) });
+  if (found == look.edge_of.end())
+    return std::nullopt;
+  const MeshEdge& edge = mesh.edges[found->second];
+  if (!edge.isHinge())
+    return std::nullopt;
+  Hinge h;
+  h.edge = found->second;
+  h.across = edge.triangles[0] == t ? edge.triangles[1] : edge.triangles[0];
+  const bool crease = mesh.triangles[h.across].face != tri.face;
+  if (crease && !(look.material.crease > 0))
+    return std::nullopt;
+  int far = -1;
+  for (int node : mesh.triangles[h.across].nodes)
+    if (node != a && node != b)
+      far = node;
+  h.nodes = { a, b, tri.nodes[i], far };
+  h.rest = crease && edge.paper_edge >= 0 ? look.paper.edges[edge.paper_edge].fold_angle : 0.0;
+  const std::array<Vec2, 3> near = cornersOf(mesh, t), across = cornersOf(mesh, h.across);
+  const Vec2 pa = mesh.nodes[a].crease_pattern, pb = mesh.nodes[b].crease_pattern;
+  Vec2 out(pb.y() - pa.y(), pa.x() - pb.x());
+  out.normalize();
+  if (out.dot(pa - near[i]) < 0)
+    out = -out;
+  // The jump of the planes' slopes across the side, outward: the dihedral, valley positive.
+  for (int k = 0; k < 3; ++k)
+    h.row[k] = out.dot(planeSlope(across, kBasis[k]) - planeSlope(near, kBasis[k]));
+  return h;
+}
+
+/// Smallest singular value of the rows, each scaled to unit length: how well they fix h.
+double independence(const std::vector<Eigen::RowVector3d>& rows)
+{
+  Eigen::MatrixXd m(rows.size(), 3);
+  for (size_t k = 0; k < rows.size(); ++k)
+    m.row(k) = rows[k] / rows[k].norm();
+  const Eigen::VectorXd s = Eigen::JacobiSVD<Eigen::MatrixXd>(m).singularValues();
+  return s.size() < 3 ? 0.0 : s[2];
 }
 }  // namespace
 
 std::vector<PlateTerm> plateTerms(const CurvedMesh& mesh, const Paper& paper, const CurvedMaterial& material)
 {
-  std::map<std::pair<int, int>, int> edge_of;
+  Lookup look{ mesh, paper, material, {} };
   for (size_t e = 0; e < mesh.edges.size(); ++e)
   {
     const auto& n = mesh.edges[e].nodes;
-    edge_of[{ std::min(n[0], n[1]), std::max(n[0], n[1]) }] = static_cast<int>(e);
+    look.edge_of[{ std::min(n[0], n[1]), std::max(n[0], n[1]) }] = static_cast<int>(e);
   }
   const double nu = material.poisson_ratio;
   Eigen::Matrix3d density;  // ½·hᵀ·density·h = ½·(ν (tr H)² + (1 − ν) H : H)
   density << 1, nu, 0, nu, 1, 0, 0, 0, 2 * (1 - nu);
+  constexpr double kIndependent = 0.05;  // rows this far from dependent fix h well enough
 
   std::vector<PlateTerm> terms;
   terms.reserve(mesh.triangles.size());
   for (size_t t = 0; t < mesh.triangles.size(); ++t)
   {
     const MeshTriangle& tri = mesh.triangles[t];
-    std::array<Vec2, 3> corner;
-    for (int k = 0; k < 3; ++k)
-      corner[k] = mesh.nodes[tri.nodes[k]].crease_pattern;
-    const double area = mesh.restArea(static_cast<int>(t));
     double stiffness = material.bend;
     if (tri.face < static_cast<int>(mesh.curved_faces.size()) && !mesh.curved_faces[tri.face])
       stiffness *= material.flat_face;
-    PlateTerm term;
-    for (int k = 0; k < 3; ++k)
-      term.nodes[k] = tri.nodes[k];
-    // The dihedral each side takes when the patch (this triangle and those across its sides)
-    // lies on a surface of uniform curvature h = (H₁₁, H₂₂, H₁₂): the jump of the planes'
-    // slopes across it. Exact for any such surface on any mesh, so the curvature recovered
-    // from the dihedrals is too.
-    const Vec2 origin = (corner[0] + corner[1] + corner[2]) / 3;
-    const Eigen::Matrix2d basis[3] = { (Eigen::Matrix2d() << 1, 0, 0, 0).finished(),
-                                       (Eigen::Matrix2d() << 0, 0, 0, 1).finished(),
-                                       (Eigen::Matrix2d() << 0, 1, 1, 0).finished() };
-    std::vector<int> kept;
-    std::vector<Eigen::RowVector3d> rows;
+    const Eigen::Matrix3d plate = stiffness * mesh.restArea(static_cast<int>(t)) * density;
+
+    // Its own sides' hinges; where a side bends freely (the sheet's edge, a free crease), a hinge
+    // of a neighbour instead, so that the three dihedrals still fix the curvature: a free edge
+    // is a plate's edge, not a softer strip along it.
+    std::vector<Hinge> used;
     for (int i = 0; i < 3; ++i)
-    {
-      const int a = tri.nodes[(i + 1) % 3], b = tri.nodes[(i + 2) % 3];
-      const auto found = edge_of.find({ std::min(a, b), std::max(a, b) });
-      if (found == edge_of.end())
-        continue;
-      const MeshEdge& edge = mesh.edges[found->second];
-      if (!edge.isHinge())
-        continue;
-      const int other = edge.triangles[0] == static_cast<int>(t) ? edge.triangles[1] : edge.triangles[0];
-      const bool crease = mesh.triangles[other].face != tri.face;
-      if (crease && !(material.crease > 0))
-        continue;  // a free crease: a free edge of both triangles
-      std::array<Vec2, 3> across;
-      for (int k = 0; k < 3; ++k)
-      {
-        const int node = mesh.triangles[other].nodes[k];
-        across[k] = mesh.nodes[node].crease_pattern;
-        if (node != a && node != b)
-          term.nodes[3 + i] = node;
-      }
-      const Vec2 pa = mesh.nodes[a].crease_pattern, pb = mesh.nodes[b].crease_pattern;
-      Vec2 out(pb.y() - pa.y(), pa.x() - pb.x());
-      out.normalize();
-      if (out.dot(pa - corner[i]) < 0)
-        out = -out;
-      Eigen::RowVector3d row;
-      for (int k = 0; k < 3; ++k)
-        row[k] = out.dot(planeSlope(across, basis[k], origin) - planeSlope(corner, basis[k], origin));
-      rows.push_back(row);
-      kept.push_back(i);
-      term.rest[i] = crease && edge.paper_edge >= 0 ? paper.edges[edge.paper_edge].fold_angle : 0.0;
-    }
-    if (kept.empty())
+      if (std::optional<Hinge> h = sideHinge(look, static_cast<int>(t), i))
+        used.push_back(*h);
+    if (used.empty())
       continue;
-    // ½·A·hᵀ·Q·h, the least over the curvatures that give the kept sides' dihedrals θ (free
-    // sides bend as costs least): ½·θᵀ·(R (A Q)⁻¹ Rᵀ)⁻¹·θ, R the kept rows.
-    Eigen::MatrixXd r(kept.size(), 3);
-    for (size_t k = 0; k < kept.size(); ++k)
-      r.row(k) = rows[k];
-    const Eigen::Matrix3d compliance = (stiffness * area * density).inverse();
-    const Eigen::MatrixXd reduced = (r * compliance * r.transpose()).inverse();
-    for (size_t p = 0; p < kept.size(); ++p)
-      for (size_t q = 0; q < kept.size(); ++q)
-        term.weight(kept[p], kept[q]) = reduced(p, q);
-    terms.push_back(term);
+    const auto rowsOf = [](const std::vector<Hinge>& hinges) {
+      std::vector<Eigen::RowVector3d> rows;
+      for (const Hinge& h : hinges)
+        rows.push_back(h.row);
+      return rows;
+    };
+    if (used.size() < 3)
+    {
+      // Candidates: the hinges of the triangles within two bending sides.
+      std::vector<int> near = { static_cast<int>(t) };
+      for (int depth = 0; depth < 2; ++depth)
+      {
+        const size_t count = near.size();
+        for (size_t k = 0; k < count; ++k)
+          for (int i = 0; i < 3; ++i)
+            if (std::optional<Hinge> h = sideHinge(look, near[k], i))
+              if (std::find(near.begin(), near.end(), h->across) == near.end())
+                near.push_back(h->across);
+      }
+      std::vector<Hinge> candidates;
+      for (size_t k = 1; k < near.size(); ++k)
+        for (int i = 0; i < 3; ++i)
+          if (std::optional<Hinge> h = sideHinge(look, near[k], i))
+          {
+            const auto same = [&](const Hinge& o) { return o.edge == h->edge; };
+            if (std::none_of(used.begin(), used.end(), same) && std::none_of(candidates.begin(), candidates.end(), same))
+              candidates.push_back(*h);
+          }
+      // The one or two that fix the curvature best.
+      const size_t need = 3 - used.size();
+      double best = 0.0;
+      std::vector<Hinge> chosen;
+      for (size_t p = 0; p < candidates.size(); ++p)
+        for (size_t q = need == 1 ? p : p + 1; q < (need == 1 ? p + 1 : candidates.size()); ++q)
+        {
+          std::vector<Hinge> trial = used;
+          trial.push_back(candidates[p]);
+          if (need == 2)
+            trial.push_back(candidates[q]);
+          const double quality = independence(rowsOf(trial));
+          if (quality > best)
+          {
+            best = quality;
+            chosen = trial;
+          }
+        }
+      if (best > kIndependent)
+        used = chosen;
+    }
+    Eigen::MatrixXd r(used.size(), 3);
+    for (size_t k = 0; k < used.size(); ++k)
+      r.row(k) = used[k].row;
+    Eigen::MatrixXd weight;
+    if (used.size() == 3 && independence(rowsOf(used)) > kIndependent)
+    {
+      const Eigen::Matrix3d inverse = Eigen::Matrix3d(r).inverse();  // h = R⁻¹·θ
+      weight = inverse.transpose() * plate * inverse;
+    }
+    else  // too few to fix it: the least energy over the curvatures the hinges leave open
+      weight = (r * plate.inverse() * r.transpose()).inverse();
+
+    PlateTerm term;
+    for (size_t k = 0; k < used.size(); ++k)
+    {
+      term.hinges[k] = used[k].nodes;
+      term.rest[k] = used[k].rest;
+      for (int node : used[k].nodes)
+        if (std::find(term.nodes.begin(), term.nodes.end(), node) == term.nodes.end())
+          term.nodes.push_back(node);
+    }
+    term.weight.topLeftCorner(used.size(), used.size()) = weight;
+    terms.push_back(std::move(term));
   }
   return terms;
 }
@@ -113,18 +217,21 @@ double evaluatePlate(const std::vector<PlateTerm>& terms, const Positions& x, co
   double energy = 0.0;
   for (const PlateTerm& term : terms)
   {
-    // Slots of the hinge of side i: a, b (the side), left (corner i), right (across).
-    std::array<std::array<int, 4>, 3> slot;
+    const int n = static_cast<int>(term.nodes.size());
+    std::array<std::array<int, 4>, 3> slot{};  // where each hinge's nodes sit in term.nodes
     Eigen::Vector3d theta = Eigen::Vector3d::Zero();
     std::array<Eigen::Matrix<double, 3, 4>, 3> grad;
     std::array<Eigen::Matrix<double, 12, 12>, 3> curvature;
+    std::array<bool, 3> present{ false, false, false };
     for (int i = 0; i < 3; ++i)
     {
-      if (term.nodes[3 + i] < 0)
+      const auto& h = term.hinges[i];
+      if (h[0] < 0)
         continue;
-      slot[i] = { (i + 1) % 3, (i + 2) % 3, i, 3 + i };
-      const auto at = [&](int k) { return x.col(term.nodes[slot[i][k]]); };
-      double angle = hingeAngle(at(0), at(1), at(2), at(3), out.free_index ? &grad[i] : nullptr,
+      present[i] = true;
+      for (int k = 0; k < 4; ++k)
+        slot[i][k] = static_cast<int>(std::find(term.nodes.begin(), term.nodes.end(), h[k]) - term.nodes.begin());
+      double angle = hingeAngle(x.col(h[0]), x.col(h[1]), x.col(h[2]), x.col(h[3]), out.free_index ? &grad[i] : nullptr,
                                 out.wantsHessian() ? &curvature[i] : nullptr);
       // A crease folded to ±π measures on the branch nearest its rest angle.
       if (angle - term.rest[i] > M_PI)
@@ -137,38 +244,39 @@ double evaluatePlate(const std::vector<PlateTerm>& terms, const Positions& x, co
     energy += 0.5 * theta.dot(moment);
     if (!out.free_index)
       continue;
-    // Absent sides' slots point at corner 0 and carry nothing.
-    std::array<int, 6> nodes = term.nodes;
-    for (int& n : nodes)
-      if (n < 0)
-        n = term.nodes[0];
-    std::array<Eigen::Matrix<double, 18, 1>, 3> spread;  // each hinge's gradient over the slots
-    Eigen::Matrix<double, 3, 6> gradient = Eigen::Matrix<double, 3, 6>::Zero();
+    std::array<Eigen::VectorXd, 3> spread;  // each hinge's gradient over the term's nodes
     for (int i = 0; i < 3; ++i)
     {
-      spread[i].setZero();
-      if (term.nodes[3 + i] < 0)
-        continue;
-      for (int k = 0; k < 4; ++k)
-        spread[i].segment<3>(3 * slot[i][k]) = grad[i].col(k);
-      gradient += moment[i] * Eigen::Map<const Eigen::Matrix<double, 3, 6>>(spread[i].data());
+      spread[i] = Eigen::VectorXd::Zero(3 * n);
+      if (present[i])
+        for (int k = 0; k < 4; ++k)
+          spread[i].segment<3>(3 * slot[i][k]) += grad[i].col(k);
     }
-    addGradient<6>(nodes, gradient, out);
+    const std::vector<int>& free_index = *out.free_index;
+    if (out.gradient)
+      for (int k = 0; k < n; ++k)
+        if (const int f = free_index[term.nodes[k]]; f >= 0)
+          for (int i = 0; i < 3; ++i)
+            out.gradient->segment<3>(3 * f) += moment[i] * spread[i].segment<3>(3 * k);
     if (!out.wantsHessian())
       continue;
-    Eigen::Matrix<double, 18, 18> hessian = Eigen::Matrix<double, 18, 18>::Zero();
+    Eigen::MatrixXd hessian = Eigen::MatrixXd::Zero(3 * n, 3 * n);
     for (int i = 0; i < 3; ++i)
     {
-      if (term.nodes[3 + i] < 0)
+      if (!present[i])
         continue;
       for (int j = 0; j < 3; ++j)
-        if (term.nodes[3 + j] >= 0 && term.weight(i, j) != 0.0)
+        if (present[j] && term.weight(i, j) != 0.0)
           hessian += term.weight(i, j) * spread[i] * spread[j].transpose();
       for (int k = 0; k < 4; ++k)
         for (int l = 0; l < 4; ++l)
           hessian.block<3, 3>(3 * slot[i][k], 3 * slot[i][l]) += moment[i] * curvature[i].block<3, 3>(3 * k, 3 * l);
     }
-    addHessian<6>(nodes, hessian, out);
+    for (int k = 0; k < n; ++k)
+      if (const int fk = free_index[term.nodes[k]]; fk >= 0)
+        for (int l = 0; l < n; ++l)
+          if (const int fl = free_index[term.nodes[l]]; fl >= 0 && (fk >= fl || !out.blocks))
+            out.addBlock(fk, fl, hessian.block<3, 3>(3 * k, 3 * l));
   }
   return energy;
 }

@@ -11,6 +11,7 @@
 #include "virtual_origami/curved/bubble_mesh.h"
 #include "virtual_origami/curved/curved_follow.h"
 #include "virtual_origami/curved/paper_material.h"
+#include "virtual_origami/curved/plate_bending.h"
 #include "virtual_origami/curved/strip_scenes.h"
 
 namespace virtual_origami::core
@@ -137,15 +138,20 @@ TEST(PaperMaterial, MeshModuliFollowFromPlateTheory)
   const double eh = paper.youngs_modulus * paper.thickness, nu = paper.poisson_ratio;
   EXPECT_NEAR(m.stretch, eh / (std::sqrt(3.0) * (1 - nu)), 1e-12 * eh);
   EXPECT_NEAR(m.shear, 2 * eh * (1 - 3 * nu) / (9 * (1 - nu * nu)), 1e-12 * eh);
-  EXPECT_NEAR(m.bend, 2 / std::sqrt(3.0) * bendingStiffness(paper), 1e-12 * bendingStiffness(paper));
+  EXPECT_TRUE(m.plate_bending);
+  EXPECT_DOUBLE_EQ(m.bend, bendingStiffness(paper));
+  EXPECT_DOUBLE_EQ(m.poisson_ratio, nu);
+  const CurvedMaterial hinges = *curvedMaterial(paper, PaperBending::Hinges);
+  EXPECT_FALSE(hinges.plate_bending);
+  EXPECT_NEAR(hinges.bend, 2 / std::sqrt(3.0) * bendingStiffness(paper), 1e-12 * bendingStiffness(paper));
   EXPECT_DOUBLE_EQ(m.density, paper.areal_density);
   EXPECT_DOUBLE_EQ(m.thickness, paper.thickness);
 }
 
-TEST(PaperMaterial, OnAnEquilateralLatticeStretchShearAndBendCostThePlatesEnergies)
+TEST(PaperMaterial, OnAnEquilateralLatticeStretchShearAndHingeBendingCostThePlatesEnergies)
 {
   const PaperMaterial paper = *paperPreset("copy_paper");
-  const CurvedMaterial material = *curvedMaterial(paper);
+  const CurvedMaterial material = *curvedMaterial(paper, PaperBending::Hinges);
   const double side = 1e-3;
   const Paper sheet = Paper::square(0.05);
   const CurvedMesh mesh = latticeMesh(sheet, side, 30, 30);
@@ -188,6 +194,76 @@ TEST(PaperMaterial, OnAnEquilateralLatticeStretchShearAndBendCostThePlatesEnergi
   });
   EXPECT_NEAR(innerBendingDensity(mesh, terms, dome, low, high) / (0.5 * d * (4.0 - 8.0 / 3.0) * kappa * kappa), 1.0,
               1e-3);
+}
+
+TEST(PaperMaterial, PlateBendingCostsThePlatesEnergyForAnyUniformCurvatureOnEitherMesher)
+{
+  // Each triangle's curvature is recovered exactly from three dihedrals (its sides', or a
+  // neighbour's beside the sheet's edge): the whole strip, edges and clamp lines included, costs
+  // ½·D·(ν (tr K)² + (1 − ν) K : K) per area, at every spacing. Slopes stay under 1e-3 (the
+  // dihedrals are the slopes' jumps to that order squared).
+  const PaperMaterial paper = *paperPreset("kami");
+  const CurvedMaterial material = stripMaterial(*curvedMaterial(paper));
+  const double d = bendingStiffness(paper), nu = paper.poisson_ratio, kappa = 1e-2;
+  const StripScene scene = *stripScene(0.1, 0.01, true);
+  const Eigen::Matrix2d shapes[] = { (Eigen::Matrix2d() << 1, 0, 0, 0).finished(),   // along the strip
+                                     (Eigen::Matrix2d() << 0, 0, 0, 1).finished(),   // across
+                                     (Eigen::Matrix2d() << 1, 0, 0, 1).finished(),   // a dome
+                                     (Eigen::Matrix2d() << 1, 0, 0, -1).finished(),  // a saddle
+                                     (Eigen::Matrix2d() << 0, 1, 1, 0).finished() };  // a twist
+  for (StripMesher mesher : { StripMesher::Bubble, StripMesher::Cgal })
+    for (double spacing : { 0.0025, 0.00125 })
+    {
+      const CurvedMesh mesh = *meshStrip(scene, mesher, spacing);
+      const CurvedTerms terms = curvedTerms(mesh, scene.paper, material);
+      ASSERT_TRUE(terms.bend.empty());  // every hinge is in the plate terms
+      for (const Eigen::Matrix2d& shape : shapes)
+      {
+        const Eigen::Matrix2d k = kappa * shape;
+        const double energy = evaluateCurved(terms, moved(mesh, [&](const Vec2& p) {
+                                               return Vec3(p.x(), p.y(), 0.5 * p.dot(k * p));
+                                             })).bend;
+        const double plate = 0.5 * d * (nu * k.trace() * k.trace() + (1 - nu) * k.squaredNorm()) * meshArea(mesh);
+        EXPECT_NEAR(energy / plate, 1.0, 1e-5) << (mesher == StripMesher::Bubble ? "bubble" : "cgal") << " at "
+                                               << spacing << ", curvature\n"
+                                               << k;
+      }
+    }
+}
+
+TEST(PaperMaterial, PlateBendingGradientAndHessianMatchFiniteDifferences)
+{
+  const StripScene scene = *stripScene(0.1, 0.02, true);
+  const CurvedMesh mesh = *meshStrip(scene, StripMesher::Cgal, 0.01);
+  CurvedMaterial material = stripMaterial(*curvedMaterial(*paperPreset("copy_paper")));
+  material.bend = 1e-2 * material.stretch * 0.01 * 0.01;  // bending as strong as stretching here
+  const CurvedTerms terms = curvedTerms(mesh, scene.paper, material);
+  ASSERT_FALSE(terms.plate.empty());
+  Positions x = placeNodes(mesh, scene.paper);
+  for (Eigen::Index v = 0; v < x.cols(); ++v)  // a generic bent, stretched state
+    x.col(v) += 0.003 * Vec3(std::sin(3.1 * v), std::cos(1.7 * v), std::sin(0.9 * v + 1));
+  std::vector<int> free_index(x.cols());
+  for (Eigen::Index v = 0; v < x.cols(); ++v)
+    free_index[v] = static_cast<int>(v);
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(3 * x.cols());
+  std::vector<Eigen::Triplet<double>> triplets;
+  evaluatePlate(terms.plate, x, { &free_index, &g, &triplets });
+  Eigen::SparseMatrix<double> h(g.size(), g.size());
+  h.setFromTriplets(triplets.begin(), triplets.end());
+  const double step = 1e-7, scale = g.cwiseAbs().maxCoeff();
+  for (int i = 0; i < g.size(); i += 5)
+  {
+    Positions plus = x, minus = x;
+    plus(i % 3, i / 3) += step;
+    minus(i % 3, i / 3) -= step;
+    const double fd = (evaluatePlate(terms.plate, plus) - evaluatePlate(terms.plate, minus)) / (2 * step);
+    EXPECT_NEAR(g[i], fd, 1e-6 * scale) << i;
+    Eigen::VectorXd gp = Eigen::VectorXd::Zero(g.size()), gm = gp;
+    evaluatePlate(terms.plate, plus, { &free_index, &gp, nullptr });
+    evaluatePlate(terms.plate, minus, { &free_index, &gm, nullptr });
+    const Eigen::VectorXd column = (gp - gm) / (2 * step);
+    EXPECT_LT((Eigen::VectorXd(h.col(i)) - column).norm(), 1e-5 * (1 + column.norm())) << i;
+  }
 }
 
 TEST(PaperMaterial, AnEvenStretchCostsThePlatesEnergyOnEitherMesher)

@@ -60,15 +60,15 @@ struct BendTerm
   bool crease = false;
 };
 
-/// One triangle's bending as a plate (plate_bending.h): ½·θᵀ·W·θ over its sides' dihedrals θ
-/// (minus their rest angles).
+/// One triangle's bending as a plate (plate_bending.h): ½·θᵀ·W·θ over the dihedrals θ of up to
+/// three hinges near it (minus their rest angles).
 struct PlateTerm
 {
-  /// The triangle's corners (counter-clockwise), then across each side i (opposite corner i)
-  /// the far node of the next triangle, −1 where the side bends freely.
-  std::array<int, 6> nodes{ -1, -1, -1, -1, -1, -1 };
+  /// Each hinge as hingeAngle takes it (a, b, left, right); a = −1: none.
+  std::array<std::array<int, 4>, 3> hinges{ { { -1, -1, -1, -1 }, { -1, -1, -1, -1 }, { -1, -1, -1, -1 } } };
   std::array<double, 3> rest{ 0.0, 0.0, 0.0 };
   Eigen::Matrix3d weight = Eigen::Matrix3d::Zero();
+  std::vector<int> nodes;  // every node of its hinges, once
 };
 
 struct CurvedTerms

@@ -1,10 +1,9 @@
 // Bending as a thin plate, per triangle (CurvedMaterial::plate_bending): the triangle's
-// curvature H (2 × 2, constant over it) is the one whose quadratic surface leaves the normal
-// slopes at its sides' midpoints (Morley's plate element) where the mesh's hinges put them —
-// each hinge's dihedral split between its two triangles in proportion to their heights — and
-// it costs ½·D·A·(ν·(tr H)² + (1 − ν)·H : H). Unlike one spring per hinge (a plate of Poisson
-// ratio −1/3, its stiffness set by the triangles' shapes) this has the paper's ν, and a side on
-// the sheet's edge (or a free crease) is a free edge: its slope is whatever costs least.
+// curvature H (2 × 2, constant over it) is recovered from the dihedrals of three hinges — its
+// own sides', or where a side bends freely (the sheet's edge, a free crease) a neighbour's —
+// as the uniform curvature that gives them, exactly for any surface of uniform curvature on any
+// mesh; it costs ½·D·A·(ν·(tr H)² + (1 − ν)·H : H). One spring per hinge (the seed's bending)
+// is instead a plate of Poisson ratio −1/3 whose stiffness depends on the triangles' shapes.
 #pragma once
 
 #include <vector>
