@@ -388,6 +388,24 @@ TEST(PaperMaterial, TheRunningSheetRefusesABadMaterialAndStaysAsItWas)
   EXPECT_TRUE(follower.follow(pins).ok());
 }
 
+TEST(PaperMaterial, AThinPapersSolvesAreBalancedAsFinelyAsTheDefaultSheets)
+{
+  // Kami on a 15-cm sheet meshed at 1.5 cm: it bends with D/(k·s²) = 2.4e-6 of its stretch per
+  // radian where the default sheet bends with 1e-4, so the tolerance is cut ~40-fold; the
+  // default material's is left as it is.
+  const Paper paper = Paper::square(0.15);
+  BubbleMeshOptions mesh_options;
+  mesh_options.spacing = 0.015;
+  const CurvedMesh mesh = *bubbleMesh(paper, mesh_options);
+  const CurvedMaterial kami = *curvedMaterial(*paperPreset("kami"));
+  const double ratio = kami.bend / (kami.stretch * mesh.spacing * mesh.spacing);
+  CurvedSolveOptions solve;
+  solve.tolerance = 1e-8;
+  EXPECT_NEAR(solveOptionsFor(kami, solve, mesh).tolerance, 1e-8 * ratio / 1e-4, 1e-20);
+  EXPECT_LT(ratio, 1e-5);
+  EXPECT_EQ(solveOptionsFor(CurvedMaterial{}, solve, mesh).tolerance, 1e-8);
+}
+
 TEST(PaperMaterial, AMeshFinerThanThePaperIsThickIsRefused)
 {
   CurvedMaterial card = *curvedMaterial(*paperPreset("card"));  // 0.3 mm

@@ -105,6 +105,12 @@ private:
 /// faces): one mesh serves both.
 bool sameCreasePattern(const Paper& a, const Paper& b);
 
+/// The solve options the follower gives a solver on `mesh`: `solve`, its tolerance cut for a
+/// physical paper (material.thickness > 0) by as much as the paper's bending is softer against its
+/// stretch than the default material's on its default mesh (bend / (stretch · spacing²) against
+/// 1e-4), so that a thin paper's bending and weight are resolved as finely.
+CurvedSolveOptions solveOptionsFor(const CurvedMaterial& material, CurvedSolveOptions solve, const CurvedMesh& mesh);
+
 /// Refuses surroundings with a gravity, table height or table stiffness that is not finite, or a
 /// negative table stiffness.
 Status checkSurroundings(const Surroundings& surroundings);
