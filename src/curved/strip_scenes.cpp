@@ -36,7 +36,6 @@ Expected<StripScene> stripScene(double length, double width, bool held_end, doub
   std::vector<Vec2> corners = { { -clamp, 0 }, { 0, 0 }, { length, 0 } };
   if (held_end)
     corners.push_back({ end, 0 });
-  const int bottom = static_cast<int>(corners.size());
   if (held_end)
     corners.push_back({ end, width });
   corners.push_back({ length, width });
@@ -47,7 +46,8 @@ Expected<StripScene> stripScene(double length, double width, bool held_end, doub
   const int n = static_cast<int>(corners.size());
   for (int i = 0; i < n; ++i)
     p.edges.push_back({ { i, (i + 1) % n }, Assignment::Boundary, 0.0, { -1, -1 }, false, {} });
-  // Vertex indices: bottom row 0 … bottom − 1 (x = −c, 0, L[, L + c]), top row back.
+  // Vertex indices: the bottom row from 0 (x = −c, 0, L[, L + c]), the top row back: the vertex
+  // above bottom vertex i is n − 1 − i.
   const auto top = [&](int bottom_index) { return n - 1 - bottom_index; };
   p.edges.push_back({ { 1, top(1) }, Assignment::Flat, 0.0, { -1, -1 }, false, {} });
   p.faces.push_back({ { 0, 1, top(1), top(0) }, {} });
@@ -57,7 +57,6 @@ Expected<StripScene> stripScene(double length, double width, bool held_end, doub
     p.edges.push_back({ { 2, top(2) }, Assignment::Flat, 0.0, { -1, -1 }, false, {} });
     p.faces.push_back({ { 2, 3, top(3), top(2) }, {} });
   }
-  (void)bottom;
   p.sheet_area = (end + clamp) * width;
   if (const Status linked = linkTopology(p); !linked)
     return Expected<StripScene>::failure("strip: " + linked.message());

@@ -1,7 +1,7 @@
 // Paper in physical units (SPEC §4.2): thickness, Young's modulus, Poisson ratio and areal
-// mass, and the moduli of the mesh's forces (CurvedMaterial) that give the plate's energies:
-// stretch and shear ½·(E h)·… of the membrane, bending ½·D·κ² with D = E h³ / (12 (1 − ν²)).
-// The sheet's coordinates are then metres, forces newtons and gravity m/s².
+// mass, and the moduli of the mesh's forces (CurvedMaterial) that give a thin plate's energies:
+// the membrane's (E h, G h) and the bending's, D = E h³ / (12 (1 − ν²)). The sheet's
+// coordinates are then metres, forces newtons and gravity m/s².
 #pragma once
 
 #include <string>
