@@ -119,6 +119,9 @@ std::vector<PlateTerm> plateTerms(const CurvedMesh& mesh, const Paper& paper, co
 
   std::vector<PlateTerm> terms;
   terms.reserve(mesh.triangles.size());
+  // Per triangle: its hinges (by mesh edge) and the map from their dihedrals to its curvature.
+  std::vector<std::vector<Hinge>> hinges_of(mesh.triangles.size());
+  std::vector<Eigen::MatrixXd> curvature_of(mesh.triangles.size());
   for (size_t t = 0; t < mesh.triangles.size(); ++t)
   {
     const MeshTriangle& tri = mesh.triangles[t];
@@ -188,27 +191,72 @@ std::vector<PlateTerm> plateTerms(const CurvedMesh& mesh, const Paper& paper, co
     Eigen::MatrixXd r(used.size(), 3);
     for (size_t k = 0; k < used.size(); ++k)
       r.row(k) = used[k].row;
-    Eigen::MatrixXd weight;
+    // h = C·θ: R⁻¹ when three hinges fix it; else the least-energy curvature that gives them.
+    Eigen::MatrixXd curvature;
     if (used.size() == 3 && independence(rowsOf(used)) > kIndependent)
+      curvature = Eigen::Matrix3d(r).inverse();
+    else
     {
-      const Eigen::Matrix3d inverse = Eigen::Matrix3d(r).inverse();  // h = R⁻¹·θ
-      weight = inverse.transpose() * plate * inverse;
+      const Eigen::Matrix3d compliance = plate.inverse();
+      curvature = compliance * r.transpose() * (r * compliance * r.transpose()).inverse();
     }
-    else  // too few to fix it: the least energy over the curvatures the hinges leave open
-      weight = (r * plate.inverse() * r.transpose()).inverse();
-
     PlateTerm term;
-    for (size_t k = 0; k < used.size(); ++k)
+    for (const Hinge& h : used)
     {
-      term.hinges[k] = used[k].nodes;
-      term.rest[k] = used[k].rest;
-      for (int node : used[k].nodes)
+      term.hinges.push_back(h.nodes);
+      term.rest.push_back(h.rest);
+    }
+    term.weight = curvature.transpose() * plate * curvature;
+    terms.push_back(std::move(term));
+    hinges_of[t] = used;
+    curvature_of[t] = curvature;
+  }
+  // The jump of the curvature across each bending side: ½·s·A·(h − h')ᵀ·Q·(h − h'), over the
+  // hinges of both triangles, A the mean of their areas.
+  if (material.plate_smoothing > 0)
+    for (const MeshEdge& edge : mesh.edges)
+    {
+      if (!edge.isHinge())
+        continue;
+      const int t = edge.triangles[0], u = edge.triangles[1];
+      if (hinges_of[t].empty() || hinges_of[u].empty())
+        continue;
+      if (mesh.triangles[t].face != mesh.triangles[u].face)
+        continue;  // a crease: the curvature may jump there
+      PlateTerm term;
+      std::vector<int> edges;
+      const auto slotOf = [&](const Hinge& h) {
+        const auto at = std::find(edges.begin(), edges.end(), h.edge);
+        if (at != edges.end())
+          return static_cast<int>(at - edges.begin());
+        edges.push_back(h.edge);
+        term.hinges.push_back(h.nodes);
+        term.rest.push_back(h.rest);
+        return static_cast<int>(edges.size()) - 1;
+      };
+      std::vector<int> slots_t, slots_u;
+      for (const Hinge& h : hinges_of[t])
+        slots_t.push_back(slotOf(h));
+      for (const Hinge& h : hinges_of[u])
+        slots_u.push_back(slotOf(h));
+      // A hinge seen from the other side has the same dihedral: slotOf matches it by its edge.
+      Eigen::MatrixXd jump = Eigen::MatrixXd::Zero(3, edges.size());
+      for (size_t k = 0; k < slots_t.size(); ++k)
+        jump.col(slots_t[k]) += curvature_of[t].col(k);
+      for (size_t k = 0; k < slots_u.size(); ++k)
+        jump.col(slots_u[k]) -= curvature_of[u].col(k);
+      double stiffness = material.bend;
+      if (mesh.triangles[t].face < static_cast<int>(mesh.curved_faces.size()) && !mesh.curved_faces[mesh.triangles[t].face])
+        stiffness *= material.flat_face;
+      const double area = 0.5 * (mesh.restArea(t) + mesh.restArea(u));
+      term.weight = material.plate_smoothing * stiffness * area * jump.transpose() * density * jump;
+      terms.push_back(std::move(term));
+    }
+  for (PlateTerm& term : terms)
+    for (const auto& h : term.hinges)
+      for (int node : h)
         if (std::find(term.nodes.begin(), term.nodes.end(), node) == term.nodes.end())
           term.nodes.push_back(node);
-    }
-    term.weight.topLeftCorner(used.size(), used.size()) = weight;
-    terms.push_back(std::move(term));
-  }
   return terms;
 }
 
@@ -217,18 +265,14 @@ double evaluatePlate(const std::vector<PlateTerm>& terms, const Positions& x, co
   double energy = 0.0;
   for (const PlateTerm& term : terms)
   {
-    const int n = static_cast<int>(term.nodes.size());
-    std::array<std::array<int, 4>, 3> slot{};  // where each hinge's nodes sit in term.nodes
-    Eigen::Vector3d theta = Eigen::Vector3d::Zero();
-    std::array<Eigen::Matrix<double, 3, 4>, 3> grad;
-    std::array<Eigen::Matrix<double, 12, 12>, 3> curvature;
-    std::array<bool, 3> present{ false, false, false };
-    for (int i = 0; i < 3; ++i)
+    const int n = static_cast<int>(term.nodes.size()), m = static_cast<int>(term.hinges.size());
+    std::vector<std::array<int, 4>> slot(m);  // where each hinge's nodes sit in term.nodes
+    Eigen::VectorXd theta(m);
+    std::vector<Eigen::Matrix<double, 3, 4>> grad(m);
+    std::vector<Eigen::Matrix<double, 12, 12>> curvature(m);
+    for (int i = 0; i < m; ++i)
     {
       const auto& h = term.hinges[i];
-      if (h[0] < 0)
-        continue;
-      present[i] = true;
       for (int k = 0; k < 4; ++k)
         slot[i][k] = static_cast<int>(std::find(term.nodes.begin(), term.nodes.end(), h[k]) - term.nodes.begin());
       double angle = hingeAngle(x.col(h[0]), x.col(h[1]), x.col(h[2]), x.col(h[3]), out.free_index ? &grad[i] : nullptr,
@@ -240,38 +284,29 @@ double evaluatePlate(const std::vector<PlateTerm>& terms, const Positions& x, co
         angle += 2 * M_PI;
       theta[i] = angle - term.rest[i];
     }
-    const Eigen::Vector3d moment = term.weight * theta;
+    const Eigen::VectorXd moment = term.weight * theta;
     energy += 0.5 * theta.dot(moment);
     if (!out.free_index)
       continue;
-    std::array<Eigen::VectorXd, 3> spread;  // each hinge's gradient over the term's nodes
-    for (int i = 0; i < 3; ++i)
-    {
-      spread[i] = Eigen::VectorXd::Zero(3 * n);
-      if (present[i])
-        for (int k = 0; k < 4; ++k)
-          spread[i].segment<3>(3 * slot[i][k]) += grad[i].col(k);
-    }
+    Eigen::MatrixXd spread = Eigen::MatrixXd::Zero(3 * n, m);  // each hinge's gradient over the nodes
+    for (int i = 0; i < m; ++i)
+      for (int k = 0; k < 4; ++k)
+        spread.block<3, 1>(3 * slot[i][k], i) += grad[i].col(k);
     const std::vector<int>& free_index = *out.free_index;
     if (out.gradient)
+    {
+      const Eigen::VectorXd g = spread * moment;
       for (int k = 0; k < n; ++k)
         if (const int f = free_index[term.nodes[k]]; f >= 0)
-          for (int i = 0; i < 3; ++i)
-            out.gradient->segment<3>(3 * f) += moment[i] * spread[i].segment<3>(3 * k);
+          out.gradient->segment<3>(3 * f) += g.segment<3>(3 * k);
+    }
     if (!out.wantsHessian())
       continue;
-    Eigen::MatrixXd hessian = Eigen::MatrixXd::Zero(3 * n, 3 * n);
-    for (int i = 0; i < 3; ++i)
-    {
-      if (!present[i])
-        continue;
-      for (int j = 0; j < 3; ++j)
-        if (present[j] && term.weight(i, j) != 0.0)
-          hessian += term.weight(i, j) * spread[i] * spread[j].transpose();
+    Eigen::MatrixXd hessian = spread * term.weight * spread.transpose();
+    for (int i = 0; i < m; ++i)
       for (int k = 0; k < 4; ++k)
         for (int l = 0; l < 4; ++l)
           hessian.block<3, 3>(3 * slot[i][k], 3 * slot[i][l]) += moment[i] * curvature[i].block<3, 3>(3 * k, 3 * l);
-    }
     for (int k = 0; k < n; ++k)
       if (const int fk = free_index[term.nodes[k]]; fk >= 0)
         for (int l = 0; l < n; ++l)

@@ -38,6 +38,10 @@ struct CurvedMaterial
   /// `bend` its D, instead of one spring per hinge. Off: the seed's hinges.
   bool plate_bending = false;
   double poisson_ratio = 0.0;
+  /// Plate bending: the jump of the curvature between neighbouring triangles costs this times
+  /// the plate's energy of the jump (nothing for a uniform curvature), so that the sheet cannot
+  /// trade curvature between triangles for mesh-scale wrinkles.
+  double plate_smoothing = 0.0;
 };
 
 struct StretchTerm
@@ -60,14 +64,13 @@ struct BendTerm
   bool crease = false;
 };
 
-/// One triangle's bending as a plate (plate_bending.h): ½·θᵀ·W·θ over the dihedrals θ of up to
-/// three hinges near it (minus their rest angles).
+/// Bending as a plate (plate_bending.h): ½·θᵀ·W·θ over the dihedrals θ of a few hinges (minus
+/// their rest angles) — one triangle's curvature, or the jump of it between two triangles.
 struct PlateTerm
 {
-  /// Each hinge as hingeAngle takes it (a, b, left, right); a = −1: none.
-  std::array<std::array<int, 4>, 3> hinges{ { { -1, -1, -1, -1 }, { -1, -1, -1, -1 }, { -1, -1, -1, -1 } } };
-  std::array<double, 3> rest{ 0.0, 0.0, 0.0 };
-  Eigen::Matrix3d weight = Eigen::Matrix3d::Zero();
+  std::vector<std::array<int, 4>> hinges;  // each as hingeAngle takes it: a, b, left, right
+  std::vector<double> rest;
+  Eigen::MatrixXd weight;
   std::vector<int> nodes;  // every node of its hinges, once
 };
 
