@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "virtual_origami/curved/paper_material.h"
+
 namespace virtual_origami::core
 {
 bool sameCreasePattern(const Paper& a, const Paper& b)
@@ -54,10 +56,53 @@ Status CurvedSheetFollower::checkPins(const Paper& paper, const std::vector<Pull
   return success();
 }
 
+CurvedSolveOptions solveOptionsFor(const CurvedMaterial& material, CurvedSolveOptions solve, const CurvedMesh& mesh)
+{
+  // The tolerance is a share of an edge's force per unit strain times the spacing; it was tuned
+  // where a hinge bends with 1e-4 of that per radian (bend 1e-6 × stretch on a unit sheet
+  // meshed at 0.1). A physical paper bends far more softly against its stretch: the share is
+  // cut by as much, so that bending (and the weight, which bending carries) is resolved as finely.
+  constexpr double kTunedBendRatio = 1e-4;
+  if (material.thickness > 0 && mesh.spacing > 0)
+    solve.tolerance *= std::min(1.0, material.bend / (material.stretch * mesh.spacing * mesh.spacing) / kTunedBendRatio);
+  return solve;
+}
+
+Status checkSurroundings(const Surroundings& surroundings)
+{
+  if (!std::isfinite(surroundings.gravity) || !std::isfinite(surroundings.table_height) ||
+      !std::isfinite(surroundings.table_stiffness) || surroundings.table_stiffness < 0)
+    return failure("gravity, the table's height and its stiffness must be finite (and the stiffness not negative)");
+  return success();
+}
+
+Status CurvedSheetFollower::setMaterial(const CurvedMaterial& material, const Surroundings& surroundings)
+{
+  if (const Status checked = checkCurvedMaterial(material); !checked)
+    return checked;
+  if (const Status checked = checkSurroundings(surroundings); !checked)
+    return checked;
+  if (mesh_)
+    if (const Status checked = checkThicknessAgainstSpacing(material.thickness, mesh_->spacing); !checked)
+      return checked;
+  options_.material = material;
+  options_.surroundings = surroundings;
+  // The same mesh, a solver for the new paper; the sheet solves on from where it lies.
+  if (mesh_)
+    solver_ = std::make_unique<CurvedSolver>(*mesh_, *paper_, options_.material, options_.contact,
+                                             solveOptionsFor(options_.material, options_.solve, *mesh_),
+                                             options_.surroundings);
+  return success();
+}
+
 Expected<CurvedReport> CurvedSheetFollower::solveState(const Paper& paper, const std::vector<PullTarget>& pins)
 {
   using Failure = Expected<CurvedReport>;
   if (const Status checked = checkPins(paper, pins); !checked)
+    return Failure::failure(checked.message());
+  if (const Status checked = checkCurvedMaterial(options_.material); !checked)
+    return Failure::failure(checked.message());
+  if (const Status checked = checkSurroundings(options_.surroundings); !checked)
     return Failure::failure(checked.message());
   const bool same_pattern = mesh_ && sameCreasePattern(*paper_, paper);
   if (same_pattern && sameFoldedState(*paper_, paper))
@@ -74,10 +119,13 @@ Expected<CurvedReport> CurvedSheetFollower::solveState(const Paper& paper, const
     Expected<CurvedMesh> meshed = mesher_(paper);
     if (!meshed)
       return Failure::failure("cannot mesh the paper: " + meshed.message());
+    if (const Status checked = checkThicknessAgainstSpacing(options_.material.thickness, meshed->spacing); !checked)
+      return Failure::failure(checked.message());
     next_mesh = std::make_unique<CurvedMesh>(std::move(*meshed));
   }
   auto next_solver = std::make_unique<CurvedSolver>(*next_mesh, *next_paper, options_.material, options_.contact,
-                                                    options_.solve, options_.surroundings);
+                                                    solveOptionsFor(options_.material, options_.solve, *next_mesh),
+                                                    options_.surroundings);
   Positions next_x = placeNodes(*next_mesh, *next_paper);
 
   std::swap(paper_, next_paper);
@@ -139,10 +187,10 @@ Expected<CurvedReport> CurvedSheetFollower::moveTo(const std::vector<PullTarget>
     report.factorizations += total.factorizations;
     report.seconds += total.seconds;
     total = report;
-    if (report.diverged)
+    if (report.diverged || report.refused)
     {
       x_ = start;
-      return Failure::failure("the curved sheet diverged: " + report.message);
+      return Failure::failure((report.refused ? "refused: " : "the curved sheet diverged: ") + report.message);
     }
   }
   pins_ = pins;

@@ -1,5 +1,7 @@
 #include "virtual_origami/curved/curved_forces.h"
 
+#include "virtual_origami/curved/plate_bending.h"
+
 #include <cmath>
 #include <optional>
 
@@ -200,6 +202,8 @@ CurvedTerms curvedTerms(const CurvedMesh& mesh, const Paper& paper, const Curved
     }
     const int face_left = mesh.triangles[e.triangles[0]].face, face_right = mesh.triangles[e.triangles[1]].face;
     b.crease = face_left != face_right;
+    if (material.plate_bending && (!b.crease || material.crease > 0))
+      continue;  // bent by the plate terms of its triangles
     double modulus = material.bend;
     if (b.crease)
     {
@@ -212,6 +216,8 @@ CurvedTerms curvedTerms(const CurvedMesh& mesh, const Paper& paper, const Curved
     if (b.weight > 0)
       terms.bend.push_back(b);
   }
+  if (material.plate_bending)
+    terms.plate = plateTerms(mesh, paper, material);
   return terms;
 }
 
@@ -225,6 +231,11 @@ std::vector<std::array<int, 4>> termGroups(const CurvedTerms& terms)
     groups.push_back({ s.o, s.i, s.j, -1 });
   for (const BendTerm& b : terms.bend)
     groups.push_back({ b.a, b.b, b.left, b.right });
+  // A plate term couples every two of its nodes.
+  for (const PlateTerm& p : terms.plate)
+    for (size_t i = 0; i < p.nodes.size(); ++i)
+      for (size_t j = i + 1; j < p.nodes.size(); ++j)
+        groups.push_back({ p.nodes[i], p.nodes[j], -1, -1 });
   return groups;
 }
 
@@ -333,6 +344,7 @@ CurvedEnergy evaluateCurved(const CurvedTerms& terms, const Positions& x, const 
     energy.bend += addTerm<4>({ b.a, b.b, b.left, b.right }, b.weight, angle - b.rest, grad, out,
                               out.wantsHessian() ? &curvature : nullptr);
   }
+  energy.bend += evaluatePlate(terms.plate, x, out);
   return energy;
 }
 

@@ -171,6 +171,26 @@ double CurvedSolver::maxForce(const Positions& x_in, const std::vector<CurvedPin
 
 CurvedReport CurvedSolver::solve(Positions& x, const std::vector<CurvedPin>& pins)
 {
+  // A pin off the sheet (no such node) or at no finite point: refused before anything moves.
+  for (const CurvedPin& pin : pins)
+    if (pin.node < 0 || pin.node >= static_cast<int>(mesh_.nodes.size()) || !pin.position.allFinite())
+    {
+      CurvedReport refused;
+      refused.refused = true;
+      refused.message = pin.node < 0 || pin.node >= static_cast<int>(mesh_.nodes.size()) ?
+                            "pinned node " + std::to_string(pin.node) + " is off the sheet (the mesh has " +
+                                std::to_string(mesh_.nodes.size()) + " nodes)" :
+                            "the pin of node " + std::to_string(pin.node) + " is not at a finite point";
+      return refused;
+    }
+  if (x.cols() != static_cast<Eigen::Index>(mesh_.nodes.size()))
+  {
+    CurvedReport refused;
+    refused.refused = true;
+    refused.message = "the positions have " + std::to_string(x.cols()) + " columns for " +
+                      std::to_string(mesh_.nodes.size()) + " nodes";
+    return refused;
+  }
   std::vector<char> fixed(mesh_.nodes.size(), 0);
   for (const CurvedPin& pin : pins)
     fixed[pin.node] = 1;

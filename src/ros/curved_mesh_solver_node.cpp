@@ -4,6 +4,7 @@
 
 #include "virtual_origami/curved/bubble_mesh.h"
 #include "virtual_origami/curved/cgal_mesh.h"
+#include "virtual_origami/curved/paper_material.h"
 #include "virtual_origami/ros/conversions.h"
 
 namespace virtual_origami
@@ -36,15 +37,64 @@ core::CurvedSolveOptions solveOptions(const CurvedMeshSolverConfig& config)
 }
 }  // namespace
 
-core::CurvedSheetFollower curvedFollower(const CurvedMeshSolverConfig& config)
+core::Expected<core::PaperMaterial> physicalPaper(const CurvedMeshSolverConfig& config)
 {
+  using Failure = core::Expected<core::PaperMaterial>;
+  core::PaperMaterial paper;
+  if (config.material != "custom")
+  {
+    core::Expected<core::PaperMaterial> preset = core::paperPreset(config.material);
+    if (!preset)
+      return Failure::failure("material: " + preset.message() + ", relative or custom");
+    paper = *preset;
+  }
+  // 0 keeps the preset's value; a custom paper needs every one.
+  const auto take = [](double given, double& value) {
+    if (given != 0.0)
+      value = given;
+  };
+  take(config.thickness, paper.thickness);
+  take(config.youngs_modulus, paper.youngs_modulus);
+  take(config.poisson_ratio, paper.poisson_ratio);
+  take(config.areal_density, paper.areal_density);
+  if (const core::Status checked = core::checkPaperMaterial(paper); !checked)
+    return Failure::failure(checked.message() +
+                            (config.material == "custom" ? " (a custom paper needs thickness, youngs_modulus, "
+                                                           "poisson_ratio and areal_density)" :
+                                                           ""));
+  return paper;
+}
+
+core::Expected<core::CurvedFollowOptions> curvedFollowOptions(const CurvedMeshSolverConfig& config)
+{
+  using Failure = core::Expected<core::CurvedFollowOptions>;
   core::CurvedFollowOptions options;
-  options.material.bend = config.bend * options.material.stretch;
+  if (config.material == "relative")
+    options.material.bend = config.bend * options.material.stretch;
+  else
+  {
+    const core::Expected<core::PaperMaterial> paper = physicalPaper(config);
+    if (!paper)
+      return Failure::failure(paper.message());
+    options.material = *core::curvedMaterial(*paper);
+  }
+  if (const core::Status checked = core::checkCurvedMaterial(options.material); !checked)
+    return Failure::failure(checked.message());
   options.surroundings.gravity = config.gravity;
   options.surroundings.table = config.table;
+  if (const core::Status checked = core::checkSurroundings(options.surroundings); !checked)
+    return Failure::failure(checked.message());
   options.solve = solveOptions(config);
+  return options;
+}
+
+core::Expected<core::CurvedSheetFollower> curvedFollower(const CurvedMeshSolverConfig& config)
+{
+  core::Expected<core::CurvedFollowOptions> options = curvedFollowOptions(config);
+  if (!options)
+    return core::Expected<core::CurvedSheetFollower>::failure(options.message());
   return core::CurvedSheetFollower([config](const core::Paper& paper) { return meshCurvedSheet(paper, config); },
-                                   options);
+                                   *options);
 }
 
 namespace
@@ -120,11 +170,29 @@ CurvedMeshSolverNode::CurvedMeshSolverNode(ros::NodeHandle nh, ros::NodeHandle p
 
 void CurvedMeshSolverNode::reconfigure(CurvedMeshSolverConfig& config, uint32_t)
 {
+  // Parameters that describe no paper are refused: the sheet keeps the last good ones (and the
+  // reconfigure client is shown them again).
+  const auto refuse = [&](const std::string& why) {
+    ROS_ERROR("curved_mesh_solver: %s; %s", why.c_str(),
+              follower_ ? "the previous parameters stay" : "nothing is solved until the parameters are fixed");
+    if (follower_)
+      config = config_;
+  };
+  core::Expected<core::CurvedSheetFollower> follower = curvedFollower(config);
+  if (!follower)
+    return refuse(follower.message());
+  // A paper thicker than the current sheet's mesh spacing (checked again on each new sheet).
+  const double thickness = curvedFollowOptions(config)->material.thickness;
+  if (last_state_)
+    if (const core::Expected<core::Paper> paper = fromMessage(*last_state_); paper)
+      if (const core::Status thin = core::checkThicknessAgainstSpacing(thickness, config.spacing * paper->scale()); !thin)
+        return refuse(thin.message());
   config_ = config;
-  follower_.emplace(curvedFollower(config_));  // a new mesh and solver with the new parameters
-  ROS_INFO("curved_mesh_solver: %s, %s mesh, spacing %g of the sheet, tolerance %g%s%s", config_.method.c_str(),
-           config_.mesher.c_str(), config_.spacing, config_.tolerance,
-           config_.gravity > 0 || config_.table ? ", weight and table" : "", config_.enabled ? "" : " (disabled)");
+  follower_.emplace(std::move(*follower));  // a new mesh and solver with the new parameters
+  ROS_INFO("curved_mesh_solver: %s, %s mesh, spacing %g of the sheet, tolerance %g, %s paper%s%s",
+           config_.method.c_str(), config_.mesher.c_str(), config_.spacing, config_.tolerance,
+           config_.material.c_str(), config_.gravity > 0 || config_.table ? ", weight and table" : "",
+           config_.enabled ? "" : " (disabled)");
   if (last_state_)
     solveAndPublish();
 }

@@ -36,9 +36,16 @@ public:
   /// kept while the crease pattern stays the same, else made anew; the solve starts from the
   /// last balance while the folded positions stay the same too (the pins alone moved), else
   /// from the state's rigid faces. Fails, changing nothing, on a pin of a vertex that does not
-  /// exist or at a point that is not finite, a paper the mesher cannot mesh, a move of more than
-  /// max_steps steps, or a solve that diverges (the last balance stays).
+  /// exist or at a point that is not finite, a paper the mesher cannot mesh, a material or
+  /// surroundings setMaterial would refuse (a paper thicker than the new mesh's spacing too), a
+  /// move of more than max_steps steps, or a solve that diverges (the last balance stays).
   Expected<CurvedReport> solveState(const Paper& paper, const std::vector<PullTarget>& pins);
+
+  /// Another paper or surroundings (a physical paper's moduli, gravity): the sheet keeps its
+  /// mesh and shape and solves on with them from the next solve. Refused, changing nothing, for
+  /// moduli checkCurvedMaterial refuses, surroundings that are not finite, or a paper thicker
+  /// than the mesh's spacing.
+  Status setMaterial(const CurvedMaterial& material, const Surroundings& surroundings);
 
   /// The pins of the current state moved: the same as solveState with the current state.
   /// Fails, changing nothing, before any state.
@@ -97,5 +104,15 @@ private:
 /// Whether two papers have the same crease pattern (vertices, edges with their assignments,
 /// faces): one mesh serves both.
 bool sameCreasePattern(const Paper& a, const Paper& b);
+
+/// The solve options the follower gives a solver on `mesh`: `solve`, its tolerance cut for a
+/// physical paper (material.thickness > 0) by as much as the paper's bending is softer against its
+/// stretch than the default material's on its default mesh (bend / (stretch · spacing²) against
+/// 1e-4), so that a thin paper's bending and weight are resolved as finely.
+CurvedSolveOptions solveOptionsFor(const CurvedMaterial& material, CurvedSolveOptions solve, const CurvedMesh& mesh);
+
+/// Refuses surroundings with a gravity, table height or table stiffness that is not finite, or a
+/// negative table stiffness.
+Status checkSurroundings(const Surroundings& surroundings);
 
 }  // namespace virtual_origami::core

@@ -10,6 +10,7 @@
 #include <array>
 #include <vector>
 
+#include <Eigen/Dense>
 #include <Eigen/Sparse>
 
 #include "virtual_origami/curved/curved_mesh.h"
@@ -29,7 +30,18 @@ struct CurvedMaterial
   double crease = 0.0;
   /// Faces kept coarse and flat (§4.3, curved_faces 0) bend this many times stiffer.
   double flat_face = 1e4;
-  double density = 1.0;  // mass per area, for the dynamics
+  double density = 1.0;  // mass per area, for the dynamics and the weight (kg/m² in SI)
+  /// The paper's thickness (m) when the moduli come from a physical paper (paper_material.h);
+  /// 0: not given. A mesh finer than this is refused (see checkThicknessAgainstSpacing).
+  double thickness = 0.0;
+  /// Bending per triangle as a thin plate (plate_bending.h) of Poisson ratio `poisson_ratio`,
+  /// `bend` its D, instead of one spring per hinge. Off: the seed's hinges.
+  bool plate_bending = false;
+  double poisson_ratio = 0.0;
+  /// Plate bending: the jump of the curvature between neighbouring triangles costs this times
+  /// the plate's energy of the jump (nothing for a uniform curvature), so that the sheet cannot
+  /// trade curvature between triangles for mesh-scale wrinkles.
+  double plate_smoothing = 0.0;
 };
 
 struct StretchTerm
@@ -52,11 +64,22 @@ struct BendTerm
   bool crease = false;
 };
 
+/// Bending as a plate (plate_bending.h): ½·θᵀ·W·θ over the dihedrals θ of a few hinges (minus
+/// their rest angles) — one triangle's curvature, or the jump of it between two triangles.
+struct PlateTerm
+{
+  std::vector<std::array<int, 4>> hinges;  // each as hingeAngle takes it: a, b, left, right
+  std::vector<double> rest;
+  Eigen::MatrixXd weight;
+  std::vector<int> nodes;  // every node of its hinges, once
+};
+
 struct CurvedTerms
 {
   std::vector<StretchTerm> stretch;
   std::vector<ShearTerm> shear;
   std::vector<BendTerm> bend;
+  std::vector<PlateTerm> plate;  // with plate_bending, in place of the non-crease bend terms
   std::vector<double> mass;  // lumped: a third of each adjacent triangle's rest area × density
 };
 

@@ -71,6 +71,7 @@ struct CurvedReport
 {
   bool converged = false;
   bool diverged = false;   // non-finite or exploding: the positions were rolled back
+  bool refused = false;    // a pin off the sheet or not finite, or positions of another mesh: x untouched
   int iterations = 0;      // Newton iterations or RK4 steps
   int factorizations = 0;  // Newton: sparse Cholesky factorisations (the rest reused one)
   int krylov_steps = 0;    // Newton: exact Hessian steps by preconditioned conjugate gradients
@@ -97,7 +98,9 @@ public:
   /// set to their positions first. Contact sides persist from one solve to the next, so a
   /// drag solved in small steps keeps every layer on its side; a pin must not jump through a
   /// layer between two solves (move it less than a mesh spacing at a time near other layers).
-  /// On divergence `x` is left as it was given (pins applied) and the report says so.
+  /// On divergence `x` is left as it was given (pins applied) and the report says so. A pin of a
+  /// node the mesh does not have, or at a point that is not finite, is refused (`refused`, with
+  /// a message) and `x` left untouched.
   CurvedReport solve(Positions& x, const std::vector<CurvedPin>& pins);
 
   const CurvedTerms& terms() const

@@ -12,9 +12,10 @@ namespace virtual_origami::core
 struct Surroundings
 {
   /// Weight per unit mass, along −z of the paper's frame (the crease pattern's normal); 0:
-  /// weightless. With the default material (bend 1e-6, density 1), 3e-5 gives a sheet of side 1
-  /// the sag of 15-cm origami paper: its gravity–bending length (bend / (density·g))^⅓ is a
-  /// third of the side.
+  /// weightless. With a physical paper (paper_material.h: density in kg/m², the sheet in
+  /// metres) it is in m/s²: 9.81. With the default material (bend 1e-6, density 1), 3e-5 gives
+  /// a sheet of side 1 the sag of 15-cm origami paper: its gravity–bending length
+  /// (bend / (density·g))^⅓ is a third of the side.
   double gravity = 0.0;
   /// A table at z = table_height that nodes cannot sink below (penalty).
   bool table = false;

@@ -19,14 +19,24 @@
 
 #include "virtual_origami/curved/curved_follow.h"
 #include "virtual_origami/curved/curved_solver.h"
+#include "virtual_origami/curved/paper_material.h"
 
 namespace virtual_origami
 {
 /// The mesh of `paper` the node makes with `config` (its mesher and spacing).
 core::Expected<core::CurvedMesh> meshCurvedSheet(const core::Paper& paper, const CurvedMeshSolverConfig& config);
 
+/// The physical paper of `config` (material a preset or custom; thickness, youngs_modulus,
+/// poisson_ratio, areal_density override a preset's where not 0); fails, saying why, on an
+/// unknown preset or a paper checkPaperMaterial refuses.
+core::Expected<core::PaperMaterial> physicalPaper(const CurvedMeshSolverConfig& config);
+
+/// Material (relative: `bend`; else the physical paper's plate moduli), surroundings and solve
+/// options from `config`; fails on a material or gravity the core refuses.
+core::Expected<core::CurvedFollowOptions> curvedFollowOptions(const CurvedMeshSolverConfig& config);
+
 /// The follower the node keeps: its mesher, material and solve options from `config`.
-core::CurvedSheetFollower curvedFollower(const CurvedMeshSolverConfig& config);
+core::Expected<core::CurvedSheetFollower> curvedFollower(const CurvedMeshSolverConfig& config);
 
 class CurvedMeshSolverNode
 {
