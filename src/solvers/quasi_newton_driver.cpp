@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <optional>
 
 #include <Eigen/SparseCholesky>
 
@@ -32,34 +33,45 @@ double dot(const Eigen::MatrixX3d& a, const Eigen::MatrixX3d& b)
   return (a.array() * b.array()).sum();
 }
 
-/// Takes out of a step (row per free vertex, every vertex free) its part along the six rigid
-/// motions of the sheet at x: the energy does not see them, so without an anchor they are
-/// only rounding noise the shift of the matrix would blow up into a drift.
-void removeRigidMotion(Eigen::MatrixX3d& step, const Positions& x, const std::vector<int>& free)
+/// The six rigid motions of the sheet at x over the free vertices (every vertex free), made
+/// orthonormal once per state: the energy does not see them, so without an anchor they are
+/// only rounding noise the shift of the matrix would blow up into a drift, and every step is
+/// cleared of them.
+class RigidMotions
 {
-  const Eigen::Index n = static_cast<Eigen::Index>(free.size());
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-  for (int v : free)
-    centre += x.col(v);
-  centre /= static_cast<double>(n);
-  std::vector<Eigen::MatrixX3d> basis;
-  for (int axis = 0; axis < 6; ++axis)
+public:
+  RigidMotions(const Positions& x, const std::vector<int>& free)
   {
-    Eigen::MatrixX3d b(n, 3);
-    for (Eigen::Index i = 0; i < n; ++i)
+    const Eigen::Index n = static_cast<Eigen::Index>(free.size());
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    for (int v : free)
+      centre += x.col(v);
+    centre /= static_cast<double>(n);
+    for (int axis = 0; axis < 6; ++axis)
     {
-      const Eigen::Vector3d unit = Eigen::Vector3d::Unit(axis % 3);
-      b.row(i) = (axis < 3 ? unit : unit.cross(x.col(free[i]) - centre)).transpose();
+      Eigen::MatrixX3d b(n, 3);
+      for (Eigen::Index i = 0; i < n; ++i)
+      {
+        const Eigen::Vector3d unit = Eigen::Vector3d::Unit(axis % 3);
+        b.row(i) = (axis < 3 ? unit : unit.cross(x.col(free[i]) - centre)).transpose();
+      }
+      for (const Eigen::MatrixX3d& c : basis_)
+        b -= dot(c, b) * c;
+      const double norm = std::sqrt(dot(b, b));
+      if (norm > 1e-12)
+        basis_.push_back(b / norm);
     }
-    for (const Eigen::MatrixX3d& c : basis)
-      b -= dot(c, b) * c;
-    const double norm = std::sqrt(dot(b, b));
-    if (norm > 1e-12)
-      basis.push_back(b / norm);
   }
-  for (const Eigen::MatrixX3d& c : basis)
-    step -= dot(c, step) * c;
-}
+
+  void remove(Eigen::MatrixX3d& step) const
+  {
+    for (const Eigen::MatrixX3d& c : basis_)
+      step -= dot(c, step) * c;
+  }
+
+private:
+  std::vector<Eigen::MatrixX3d> basis_;
+};
 
 bool driven(double target)
 {
@@ -204,8 +216,18 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
     return report;
   }
 
+  const std::vector<int>& free = s.free_vertices;
+  const bool anchored = std::any_of(fixed.begin(), fixed.end(), [](char c) { return c != 0; });
   Positions gradient;
+  const double evaluate_from = budget.seconds();
   DrivenFaces::Evaluation now = energy.evaluate(x, &gradient);
+  // What an energy pass and a back-substitution cost here: a frame's budget is spent only on
+  // work that ends within it (the last step's line search and the report come after).
+  const double evaluate_seconds = budget.seconds() - evaluate_from;
+  double solve_seconds = 0.0;
+  const auto fits = [&](double work) {
+    return limits_.max_seconds <= 0 || budget.seconds() + work + 2 * evaluate_seconds < limits_.max_seconds;
+  };
   // Start from a prediction along the motion when this is the frame after the last two.
   if (options_.predict && s.last.cols() == x.cols() && s.before_last.cols() == x.cols() && s.last == start &&
       s.last_target.size() == target.size())
@@ -225,7 +247,31 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
         if (s.free_index[v] < 0)
           predicted.col(static_cast<Eigen::Index>(v)) = x.col(static_cast<Eigen::Index>(v));
       Positions predicted_gradient;
-      const DrivenFaces::Evaluation guess = energy.evaluate(predicted, &predicted_gradient);
+      DrivenFaces::Evaluation guess = energy.evaluate(predicted, &predicted_gradient);
+      // Carried on straight, every turning face stretches by about half its turn squared (a
+      // 1 % step of a Miura-ori: 5e-4), which on a large sheet costs more than the step gains.
+      // One step of the constant matrix (rotations fitted, the faces' shapes restored) takes
+      // that out for about one back-substitution.
+      if (options_.restore_predicted_faces)
+      {
+        Eigen::MatrixX3d restore = -s.factor.solve(gather(predicted_gradient, free));
+        if (!anchored)
+          RigidMotions(predicted, free).remove(restore);
+        for (double length = 1.0; length >= 0.25; length *= 0.5)
+        {
+          Positions restored = predicted, restored_gradient;
+          for (size_t i = 0; i < free.size(); ++i)
+            restored.col(free[i]) += length * restore.row(static_cast<Eigen::Index>(i)).transpose();
+          const DrivenFaces::Evaluation better = energy.evaluate(restored, &restored_gradient);
+          if (better.energy < guess.energy)
+          {
+            predicted = std::move(restored);
+            predicted_gradient = std::move(restored_gradient);
+            guess = better;
+            break;
+          }
+        }
+      }
       if (guess.energy < now.energy)
       {
         x = std::move(predicted);
@@ -235,8 +281,6 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
     }
   }
 
-  const std::vector<int>& free = s.free_vertices;
-  const bool anchored = std::any_of(fixed.begin(), fixed.end(), [](char c) { return c != 0; });
   // The Gauss–Newton matrix at x; nothing held, its null space (rigid motions) is shifted away
   // by far less than the faces' stiffness, and a failed factorisation (a degenerate face) is
   // retried with more.
@@ -320,15 +364,17 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
     energy.gaussNewtonProduct(l, spread, product);
     return gather(product, free);
   };
-  const auto newtonKrylovStep = [&](const Positions& at) -> Eigen::MatrixX3d {
+  const auto newtonKrylovStep = [&](const Positions& at, const RigidMotions* rigid) -> Eigen::MatrixX3d {
     const DrivenFaces::Linearization l = energy.linearize(at);
     Eigen::MatrixX3d r = -g;
-    if (!anchored)
-      removeRigidMotion(r, at, free);
+    if (rigid)
+      rigid->remove(r);
     Eigen::MatrixX3d d = Eigen::MatrixX3d::Zero(r.rows(), 3);
+    const double solve_from = budget.seconds();
     Eigen::MatrixX3d z = precondition(r);
-    if (!anchored)
-      removeRigidMotion(z, at, free);
+    solve_seconds = budget.seconds() - solve_from;
+    if (rigid)
+      rigid->remove(z);
     Eigen::MatrixX3d p = z;
     double rz = dot(r, z);
     const double goal = options_.krylov_tolerance * std::sqrt(dot(r, r));
@@ -348,11 +394,11 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
         break;
       }
       // Anytime: a frame's budget spent, the step so far serves (each iteration improves it).
-      if (limits_.max_seconds > 0 && budget.seconds() >= limits_.max_seconds)
+      if (!fits(solve_seconds))
         break;
       z = precondition(r);
-      if (!anchored)
-        removeRigidMotion(z, at, free);
+      if (rigid)
+        rigid->remove(z);
       const double rz_next = dot(r, z);
       p = z + (rz_next / rz) * p;
       rz = rz_next;
@@ -370,6 +416,8 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
     // (the first always: a frame must move), even when computing it spent the budget.
     if (budget.exhausted(report.iterations) && (report.iterations > 0 || limits_.max_iterations <= 0))
       break;
+    if (report.iterations > 0 && !fits(solve_seconds + evaluate_seconds))
+      break;
     if (refresh)
     {
       refresh = false;
@@ -381,12 +429,13 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
       }
     }
     Eigen::MatrixX3d direction;
+    const std::optional<RigidMotions> rigid = anchored ? std::nullopt : std::make_optional<RigidMotions>(x, free);
     if (options_.hessian == DriverHessian::Lagged)
-      direction = newtonKrylovStep(x);
+      direction = newtonKrylovStep(x, rigid ? &*rigid : nullptr);
     else
       direction = lbfgsStep();
-    if (!anchored)
-      removeRigidMotion(direction, x, free);
+    if (rigid)
+      rigid->remove(direction);
     // Balanced when the step the model predicts moves nothing measurably.
     const double step_size = direction.cwiseAbs().maxCoeff();
     if (step_size <= tolerance)
@@ -403,8 +452,8 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
       changes.clear();
       rho.clear();
       direction = -precondition(g);
-      if (!anchored)
-        removeRigidMotion(direction, x, free);
+      if (rigid)
+        rigid->remove(direction);
       slope = dot(g, direction);
       if (!(slope < 0))
       {
