@@ -101,6 +101,7 @@ struct QuasiNewtonDriver::Setup
   // The last two frames this driver returned (as in the paper) and their targets.
   Positions last, before_last;
   std::vector<double> last_target, before_last_target;
+  bool last_balanced = true;  // whether the last frame reached balance within its budget
 
   Setup(const Paper& paper, const std::vector<char>& held, const std::vector<double>& target, double stiffness)
     : crease_pattern(creasePattern(paper)), fixed(held), driven_edges(drivenEdges(paper, target)),
@@ -249,10 +250,12 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
       Positions predicted_gradient;
       DrivenFaces::Evaluation guess = energy.evaluate(predicted, &predicted_gradient);
       // Carried on straight, every turning face stretches by about half its turn squared (a
-      // 1 % step of a Miura-ori: 5e-4), which on a large sheet costs more than the step gains.
-      // One step of the constant matrix (rotations fitted, the faces' shapes restored) takes
-      // that out for about one back-substitution.
-      if (options_.restore_predicted_faces)
+      // 1 % step of a Miura-ori: 5e-4). Where that costs more than the step gains (a large
+      // sheet), or where the last frame ran out of budget before balance (a slide's frames: the
+      // strain they keep would pile up), one step of the constant matrix (rotations fitted, the
+      // faces' shapes restored) takes it out for about one back-substitution. Not otherwise: a
+      // frame solved to balance starts better from the straight prediction.
+      if (options_.restore_predicted_faces && (!(guess.energy < now.energy) || !s.last_balanced))
       {
         Eigen::MatrixX3d restore = -s.factor.solve(gather(predicted_gradient, free));
         if (!anchored)
@@ -554,6 +557,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
   s.before_last_target = s.last_target;
   s.last = result;
   s.last_target = target;
+  s.last_balanced = report.converged;
   return report;
 }
 

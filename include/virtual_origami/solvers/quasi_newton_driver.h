@@ -47,8 +47,9 @@ struct QuasiNewtonOptions
   /// Extrapolate each frame from the last two this driver returned (when the paper it gets
   /// is the last it returned).
   bool predict = true;
-  /// Before a frame's solve, restore the faces of the prediction by one step of the constant
-  /// matrix (a local–global step), and take it when it lowers the energy below the last frame's.
+  /// Restore the faces of a frame's prediction by one step of the constant matrix (a local–
+  /// global step) where the straight prediction costs more energy than it gains, or after a
+  /// frame that its budget stopped before balance.
   bool restore_predicted_faces = true;
 };
 
