@@ -102,6 +102,7 @@ struct QuasiNewtonDriver::Setup
   Positions last, before_last;
   std::vector<double> last_target, before_last_target;
   bool last_balanced = true;  // whether the last frame reached balance within its budget
+  bool last_continued = false;  // the last frame went on from the one before it
 
   Setup(const Paper& paper, const std::vector<char>& held, const std::vector<double>& target, double stiffness)
     : crease_pattern(creasePattern(paper)), fixed(held), driven_edges(drivenEdges(paper, target)),
@@ -229,8 +230,10 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
   const auto fits = [&](double work) {
     return limits_.max_seconds <= 0 || budget.seconds() + work + 2 * evaluate_seconds < limits_.max_seconds;
   };
-  // Start from a prediction along the motion when this is the frame after the last two.
-  if (options_.predict && s.last.cols() == x.cols() && s.before_last.cols() == x.cols() && s.last == start &&
+  // Start from a prediction along the motion when this is the frame after the last two (the
+  // last went on from the one before it: a new slide's second frame has no motion to go by).
+  const bool continues = s.last.cols() == x.cols() && s.last == start;
+  if (options_.predict && continues && s.last_continued && s.before_last.cols() == x.cols() &&
       s.last_target.size() == target.size())
   {
     double step_now = 0.0, step_before = 0.0;
@@ -557,6 +560,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
   s.before_last_target = s.last_target;
   s.last = result;
   s.last_target = target;
+  s.last_continued = continues;
   s.last_balanced = report.converged;
   return report;
 }
