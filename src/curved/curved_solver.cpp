@@ -199,17 +199,21 @@ CurvedReport CurvedSolver::solve(Positions& x, const std::vector<CurvedPin>& pin
   Positions start = x;
   for (const CurvedPin& pin : pins)
     start.col(pin.node) = pin.position;
-  const bool predicted = options_.method == CurvedMethod::Newton && predict(x, pins, free_index, free_count);
+  const bool is_static = options_.method != CurvedMethod::Rk4;
+  const bool predicted = is_static && predict(x, pins, free_index, free_count);
   for (const CurvedPin& pin : pins)
     x.col(pin.node) = pin.position;
-  CurvedReport report =
-      options_.method == CurvedMethod::Newton ? newton(x, free_index, free_count) : rk4(x, free_index, free_count);
+  const auto staticSolve = [&] {
+    return options_.method == CurvedMethod::QuasiNewton ? quasiNewton(x, free_index, free_count) :
+                                                          newton(x, free_index, free_count);
+  };
+  CurvedReport report = is_static ? staticSolve() : rk4(x, free_index, free_count);
   // Newton converges to any balance, a saddle too (a sheet pressed flat in its plane, a curl
   // carried on past where it buckles): where the solve met negative curvature (or, with
   // check_stability, where the Hessian at the balance is not positive definite), the balance
   // is tested, and a saddle is left downhill and the solve goes on (twice at most).
   const auto unstable = [&] {
-    if (!report.converged || options_.method != CurvedMethod::Newton || !options_.leave_saddles)
+    if (!report.converged || !is_static || !options_.leave_saddles)
       return false;
     return negative_curvature_ || (options_.check_stability && unstableAt(x, free_index, free_count));
   };
@@ -218,10 +222,12 @@ CurvedReport CurvedSolver::solve(Positions& x, const std::vector<CurvedPin>& pin
     if (!leaveSaddle(x, free_index, free_count))
       break;
     const CurvedReport before = report;
-    report = newton(x, free_index, free_count);
+    report = staticSolve();
     report.iterations += before.iterations;
     report.factorizations += before.factorizations;
     report.krylov_steps += before.krylov_steps;
+    report.lbfgs_steps += before.lbfgs_steps;
+    report.handed_over = report.handed_over || before.handed_over;
     report.saddles_left = before.saddles_left + 1;
     path_.clear();  // another branch: the last balances no longer foretell this one
   }
@@ -536,6 +542,168 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
   {
     std::ostringstream msg;
     msg << (stuck.empty() ? "stopped" : stuck) << " after " << report.iterations << " iterations at force "
+        << report.max_force << " (tolerance " << options_.tolerance << ")";
+    report.message = msg.str();
+  }
+  return report;
+}
+
+bool CurvedSolver::prepareConstantFactor(const Positions& x, const std::vector<int>& free_index, int free_count)
+{
+  if (constant_free_ == free_index && constant_factor_.valid() && constant_factor_.rows() == 3 * free_count)
+    return true;
+  // The terms' Hessian alone, at the shape given (the flat or rigidly folded sheet, where
+  // every measure is at rest: stretch and shear act as springs along the edges and corners,
+  // bending as its quadratic model at rest). Contact comes and goes and the table pushes only
+  // where the sheet touches it: both stay with the line search's true energy.
+  Eigen::SparseMatrix<double> matrix = blockPattern(free_count, free_index, termGroups(terms_));
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(3 * free_count);
+  BlockHessian blocks{ &matrix };
+  evaluateCurved(terms_, x, { &free_index, &g, nullptr, &blocks });
+  // The free turn about two pins has no stiffness: the smallest shift counted as rounding,
+  // raised where the shape given is bent and its Hessian not positive definite.
+  double shift = kNegligibleCurvature * material_.stretch;
+  for (int attempt = 0; attempt < 12; ++attempt, shift *= 100)
+    if (constant_factor_.factorize(matrix, shift))
+    {
+      constant_free_ = free_index;
+      return true;
+    }
+  constant_free_.clear();
+  return false;
+}
+
+CurvedReport CurvedSolver::quasiNewton(Positions& x, const std::vector<int>& free_index, int free_count)
+{
+  CurvedReport report;
+  negative_curvature_ = false;
+  const SolveBudget budget(budgetLimits(options_, options_.lbfgs_iterations));
+  const double force_scale = material_.stretch * mesh_.spacing;
+  const double max_move = options_.max_step * contact_.range();
+  const int n = 3 * free_count;
+  // The correction pairs s = Δx, y = Δ∇E of the last iterations, oldest first.
+  std::vector<Eigen::VectorXd> s_pairs, y_pairs;
+  std::vector<double> rho;
+  Positions trial = x;
+  Eigen::VectorXd g(n), g_next(n), direction(n);
+  std::string stuck;
+  contact_.update(x);
+  g.setZero();
+  double e = energy(x, { &free_index, &g, nullptr }, &report.energy, &report.contact_energy);
+  while (!stopBeforeStep(g, e, force_scale, options_.tolerance, budget, "non-finite energy; rolled back", report))
+  {
+    // The constant matrix, made at the first step of the first solve with these free nodes
+    // (not for a shape that is balanced already, nor for one that is not finite).
+    if (!(constant_free_ == free_index && constant_factor_.valid() && constant_factor_.rows() == n))
+    {
+      ++report.factorizations;
+      if (!prepareConstantFactor(x, free_index, free_count))
+      {
+        stuck = "the constant matrix is not positive definite at any shift tried";
+        break;
+      }
+    }
+    ++report.lbfgs_steps;
+    const Eigen::MatrixXd free_motions = freeMotions(x, free_index, free_count, inPlaneOnly());
+    // L-BFGS's two loops, the constant factorisation as the initial inverse Hessian (its own
+    // scale: it is a Hessian, not a guess at one to be rescaled).
+    const auto lbfgsDirection = [&] {
+      Eigen::VectorXd q = g;
+      removeFreeMotions(free_motions, q);
+      std::vector<double> a(s_pairs.size());
+      for (size_t i = s_pairs.size(); i-- > 0;)
+      {
+        a[i] = rho[i] * s_pairs[i].dot(q);
+        q -= a[i] * y_pairs[i];
+      }
+      Eigen::VectorXd r = constant_factor_.solve(q);
+      for (size_t i = 0; i < s_pairs.size(); ++i)
+        r += (a[i] - rho[i] * y_pairs[i].dot(r)) * s_pairs[i];
+      removeFreeMotions(free_motions, r);
+      return Eigen::VectorXd(-r);
+    };
+    const double worst_gap = contact_.worstGap(x);
+    // Armijo's line search on the true energy, as Newton's: at most a Newton step's move, no
+    // watched pair crossing over. The step length taken, 0 when none lowers the energy.
+    const auto search = [&](Eigen::VectorXd& step) {
+      double longest = 0.0;
+      for (int i = 0; i < free_count; ++i)
+        longest = std::max(longest, step.segment<3>(3 * i).norm());
+      if (!std::isfinite(longest))
+        return 0.0;
+      if (longest > max_move)
+        step *= max_move / longest;
+      const double slope = g.dot(step);
+      if (!(slope < 0))
+        return 0.0;
+      double alpha = 1.0;
+      for (int k = 0; k < 30; ++k, alpha *= 0.5)
+      {
+        moveFree(trial, x, step, alpha, free_index);
+        if (contact_.worstGap(trial) < std::min(0.0, worst_gap) - 0.5 * contact_.thickness())
+          continue;
+        if (energy(trial, {}) <= e + 1e-4 * alpha * slope)
+          return alpha;
+      }
+      return 0.0;
+    };
+    direction = lbfgsDirection();
+    double alpha = search(direction);
+    if (alpha == 0 && !s_pairs.empty())
+    {
+      // The pairs mislead (contact came, the shape moved far from where they were taken):
+      // forget them, and step with the constant matrix alone.
+      s_pairs.clear();
+      y_pairs.clear();
+      rho.clear();
+      direction = lbfgsDirection();
+      alpha = search(direction);
+    }
+    if (alpha == 0)
+    {
+      stuck = "no step lowers the energy any further";
+      break;
+    }
+    std::swap(x, trial);
+    contact_.update(x);
+    g_next.setZero();
+    e = energy(x, { &free_index, &g_next, nullptr }, &report.energy, &report.contact_energy);
+    Eigen::VectorXd s_new = alpha * direction, y_new = g_next - g;
+    removeFreeMotions(free_motions, y_new);
+    g.swap(g_next);
+    // Only pairs of positive curvature keep the inverse positive definite.
+    const double sy = s_new.dot(y_new);
+    if (sy > 1e-12 * s_new.norm() * y_new.norm() && options_.lbfgs_memory > 0)
+    {
+      s_pairs.push_back(std::move(s_new));
+      y_pairs.push_back(std::move(y_new));
+      rho.push_back(1.0 / sy);
+      if (static_cast<int>(s_pairs.size()) > options_.lbfgs_memory)
+      {
+        s_pairs.erase(s_pairs.begin());
+        y_pairs.erase(y_pairs.begin());
+        rho.erase(rho.begin());
+      }
+    }
+  }
+  if (!report.converged && !report.diverged && options_.hand_over)
+  {
+    // The constant matrix no longer resembles the Hessian (a snap, a sheet turned far from
+    // where the matrix was taken): Newton finishes from here.
+    const CurvedReport lbfgs = report;
+    report = newton(x, free_index, free_count);
+    report.iterations += lbfgs.iterations;
+    report.factorizations += lbfgs.factorizations;
+    report.lbfgs_steps = lbfgs.lbfgs_steps;
+    report.handed_over = true;
+    report.seconds += lbfgs.seconds;
+    return report;
+  }
+  report.seconds = budget.seconds();
+  if (!report.converged && !report.diverged)
+  {
+    std::ostringstream msg;
+    msg << (stuck.empty() ? "stopped" : stuck) << " after " << report.iterations << " L-BFGS iterations at force "
         << report.max_force << " (tolerance " << options_.tolerance << ")";
     report.message = msg.str();
   }

@@ -2,7 +2,9 @@
 // and the layer contact balance around the pinned nodes. Two methods: the seed's (damped
 // dynamics integrated by RK4, seed 002 §4.1), and a static Newton method (the exact Hessian,
 // shifted by Levenberg–Marquardt damping until it is positive definite, and a line search)
-// that reaches the same balance in tens of steps instead of thousands.
+// that reaches the same balance in tens of steps instead of thousands; and a quasi-Newton
+// method (L-BFGS on one constant matrix, factorised once per mesh and pin set) that balances
+// the same energy without a Hessian per solve.
 #pragma once
 
 #include <string>
@@ -26,6 +28,12 @@ enum class CurvedMethod
 {
   Newton,  // static equilibrium directly
   Rk4,     // the seed: damped motion until it comes to rest
+  /// Static equilibrium by L-BFGS (Liu, Bouaziz & Kavan 2017) whose initial inverse Hessian is
+  /// one constant matrix: the terms' Hessian at the shape of the first solve with these pins
+  /// (the flat or rigidly folded sheet: stretch and shear as springs, bending as at rest),
+  /// factorised once and kept while the mesh and the pinned nodes stay. A line search on the
+  /// true energy (contact and surroundings included); the same balance test as Newton.
+  QuasiNewton,
 };
 
 struct CurvedSolveOptions
@@ -61,6 +69,12 @@ struct CurvedSolveOptions
   /// pull or two. Costs a factorisation per solve, which on meshes of thousands of vertices
   /// about doubles a drag's solves; the factorisation then serves the next solve.
   bool check_stability = false;
+  /// QuasiNewton: correction pairs kept by L-BFGS, and its iterations before the solve hands
+  /// over to Newton (the snaps of a drag, where the constant matrix no longer resembles the
+  /// Hessian); without hand_over the solve stops there unconverged.
+  int lbfgs_memory = 8;
+  int lbfgs_iterations = 200;
+  bool hand_over = true;
   /// RK4: the step (0: half the stability limit of the stiffest mode) and the
   /// mass-proportional damping rate (0: twice the first bending mode's frequency).
   double time_step = 0.0;
@@ -75,6 +89,8 @@ struct CurvedReport
   int iterations = 0;      // Newton iterations or RK4 steps
   int factorizations = 0;  // Newton: sparse Cholesky factorisations (the rest reused one)
   int krylov_steps = 0;    // Newton: exact Hessian steps by preconditioned conjugate gradients
+  int lbfgs_steps = 0;     // QuasiNewton: L-BFGS iterations (Newton's, after a hand-over, in iterations too)
+  bool handed_over = false;  // QuasiNewton: L-BFGS did not balance within its iterations; Newton finished
   double max_force = 0.0;  // largest force on a free node, / (stretch × spacing)
   CurvedEnergy energy;
   double contact_energy = 0.0;
@@ -145,6 +161,11 @@ private:
   /// to factorise (negative curvature: a saddle to leave). On success the factorisation is
   /// kept for the next solve.
   bool unstableAt(const Positions& x, const std::vector<int>& free_index, int free_count);
+  /// L-BFGS on the constant matrix (see CurvedMethod::QuasiNewton), then Newton if it stalls.
+  CurvedReport quasiNewton(Positions& x, const std::vector<int>& free_index, int free_count);
+  /// Factorises the constant matrix for these free nodes at shape `x` unless it is kept; false
+  /// when no shift makes it positive definite.
+  bool prepareConstantFactor(const Positions& x, const std::vector<int>& free_index, int free_count);
   CurvedReport rk4(Positions& x, const std::vector<int>& free_index, int free_count);
   /// Energy, gradient (into g) and Hessian (into hessian_) at x.
   double assembleHessian(const Positions& x, const std::vector<int>& free_index, int free_count, Eigen::VectorXd& g,
@@ -168,6 +189,9 @@ private:
   bool stale_steps_help_ = true;      // its own step was a full one when last tried
   bool negative_curvature_ = false;   // the last Newton solve met it (see leave_saddles)
   unsigned saddle_seed_ = 1;          // the random starts of leaveSaddle, reproducible
+  // QuasiNewton's constant matrix, factorised, and the free nodes it is for.
+  SpdFactorization constant_factor_;
+  std::vector<int> constant_free_;
   std::vector<int> pattern_free_;  // the free nodes hessian_'s pattern is for
   std::vector<std::array<int, 4>> pattern_groups_;
   /// The last three balanced shapes and their pins, oldest first.
