@@ -66,6 +66,10 @@ struct PulledSheet
 /// on to 1e-11 from where the drag left it (by a solver of its own, outside the timing), and the
 /// largest distance of a node between the two, over the sheet's side, is the drag's error
 /// there: one row of curved_drag_accuracy.csv.
+/// QuasiNewton's steps by conjugate gradients on the exact Hessian (the `methods` part's
+/// quasi_newton_krylov); 0: L-BFGS.
+int constant_krylov_iterations = 0;
+
 struct DragSummary
 {
   int solves = 0, converged = 0, iterations = 0, lbfgs_steps = 0, factorizations = 0, handed_over = 0;
@@ -80,6 +84,7 @@ DragSummary dragSheet(int n, double tolerance, std::ostream& csv, std::ostream* 
   CurvedSolver solver(sheet.mesh, sheet.scene.paper);
   solver.options().tolerance = tolerance;
   solver.options().method = method;
+  solver.options().constant_krylov_iterations = constant_krylov_iterations;
   DragSummary summary;
   Positions x = sheet.rest;
   std::vector<double> errors;
@@ -232,7 +237,9 @@ void methods(const std::string& dir, const std::vector<int>& sizes, const std::v
       const DragSummary d = dragSheet(n, tolerance, ignored, &accuracy, method, 10);
       std::vector<double> errors = d.errors;
       std::sort(errors.begin(), errors.end());
-      const char* name = method == CurvedMethod::Newton ? "newton" : "quasi_newton";
+      const char* name = method == CurvedMethod::Newton   ? "newton" :
+                         constant_krylov_iterations > 0 ? "quasi_newton_krylov" :
+                                                          "quasi_newton";
       csv << sheet.mesh.nodes.size() << ',' << name << ',' << d.solves << ',' << d.converged << ',' << d.handed_over
           << ',' << d.iterations << ',' << d.lbfgs_steps << ',' << d.factorizations << ',' << d.cpu << ','
           << d.solves / d.cpu << ',' << d.median_cpu * 1e3 << ',' << errors.size() << ','
@@ -407,7 +414,7 @@ int main(int argc, char** argv)
     scaling(dir);
   if (part == "methods")
   {
-    // curved_speed_bench dir methods [grid sides, e.g. 32,100] [newton|quasi_newton]
+    // curved_speed_bench dir methods [grid sides, e.g. 32,100] [newton|quasi_newton|quasi_newton_krylov]
     std::vector<int> sizes = { 32, 50, 71, 100 };
     if (argc > 3)
     {
@@ -418,7 +425,12 @@ int main(int argc, char** argv)
     }
     std::vector<CurvedMethod> which = { CurvedMethod::QuasiNewton, CurvedMethod::Newton };
     if (argc > 4)
-      which = { std::string(argv[4]) == "newton" ? CurvedMethod::Newton : CurvedMethod::QuasiNewton };
+    {
+      const std::string method = argv[4];
+      which = { method == "newton" ? CurvedMethod::Newton : CurvedMethod::QuasiNewton };
+      if (method == "quasi_newton_krylov")
+        constant_krylov_iterations = 30;
+    }
     methods(dir, sizes, which);
   }
   std::cout << "wrote the CSV files into " << dir << "\n";

@@ -740,8 +740,38 @@ CurvedReport CurvedSolver::quasiNewton(Positions& x, const std::vector<int>& fre
       }
       return 0.0;
     };
-    direction = lbfgsDirection();
-    double alpha = search(direction);
+    double alpha = 0.0;
+    if (options_.constant_krylov_iterations > 0)
+    {
+      // Newton–Krylov: the exact Hessian's step by conjugate gradients, preconditioned by the
+      // turned constant matrix (Steihaug's stop at negative curvature).
+      e = assembleHessian(x, free_index, free_count, g);
+      const std::function<Eigen::VectorXd(const Eigen::VectorXd&)> precondition = [&](const Eigen::VectorXd& v) {
+        Eigen::VectorXd q = v;
+        turn(q, true);
+        Eigen::VectorXd r = constant_factor_.solve(q);
+        turn(r, false);
+        return r;
+      };
+      int iterations = 0;
+      const double mu = 1e-14 * material_.stretch;
+      if (conjugateGradients(g, mu, free_motions, options_.constant_krylov_iterations, direction, &iterations, nullptr,
+                             &precondition) > 0)
+      {
+        report.krylov_steps += 1;
+        alpha = search(direction);
+      }
+      if (alpha == 0)
+      {
+        stuck = "no step lowers the energy any further";
+        break;
+      }
+    }
+    else
+    {
+      direction = lbfgsDirection();
+      alpha = search(direction);
+    }
     if (alpha == 0 && !s_pairs.empty())
     {
       // The pairs mislead (contact came, the shape moved far from where they were taken):
@@ -879,8 +909,12 @@ bool CurvedSolver::leaveSaddle(Positions& x, const std::vector<int>& free_index,
 
 double CurvedSolver::conjugateGradients(const Eigen::VectorXd& g, double mu, const Eigen::MatrixXd& free_motions,
                                         int max_iterations, Eigen::VectorXd& step, int* iterations,
-                                        Eigen::VectorXd* negative) const
+                                        Eigen::VectorXd* negative,
+                                        const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>* precondition) const
 {
+  const auto apply = [&](const Eigen::VectorXd& v) {
+    return precondition ? (*precondition)(v) : factorization_.solve(v);
+  };
   // (H + μI)·step = −g by preconditioned conjugate gradients, the kept factorisation as the
   // preconditioner, within the complement of the free rigid motions (H is singular on them).
   // Stops where the linear model leaves half the tolerance (a tenth of the largest force when
@@ -898,7 +932,7 @@ double CurvedSolver::conjugateGradients(const Eigen::VectorXd& g, double mu, con
   const double goal =
       negative ? 0.0 : std::max(1e-2 * start, start > tolerance ? 0.5 * tolerance : 0.1 * start);
   step = Eigen::VectorXd::Zero(g.size());
-  Eigen::VectorXd z = factorization_.solve(r);
+  Eigen::VectorXd z = apply(r);
   removeFreeMotions(free_motions, z);
   Eigen::VectorXd d = z;
   double rz = r.dot(z);
@@ -923,7 +957,7 @@ double CurvedSolver::conjugateGradients(const Eigen::VectorXd& g, double mu, con
     left = largestNodeForce(r);
     if (left <= goal)
       break;
-    z = factorization_.solve(r);
+    z = apply(r);
     removeFreeMotions(free_motions, z);
     const double rz_next = r.dot(z);
     d = z + (rz_next / rz) * d;

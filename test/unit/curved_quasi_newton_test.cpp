@@ -76,7 +76,7 @@ Stiffness stiffnessAt(const CurvedMesh& mesh, const Paper& paper, const CurvedMa
   Eigen::SparseMatrix<double> h(3 * free_count, 3 * free_count);
   h.setFromTriplets(triplets.begin(), triplets.end());
   const Eigen::MatrixXd dense(h);
-  return { g.norm(), Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(dense).eigenvalues().minCoeff() };
+  return { g.norm(), Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(dense, Eigen::EigenvaluesOnly).eigenvalues().minCoeff() };
 }
 
 /// How far apart two shapes may lie that balance the same energy to their residual forces:
@@ -101,9 +101,9 @@ TEST(CurvedQuasiNewton, ReachesNewtonsBalanceOnALiftedCorner)
 {
   // The corner lifted in ten small steps by L-BFGS alone (as a hand drags it: its use), the
   // last balance against Newton's, solved in one go.
-  const double lift = 0.15;
-  const int steps = 10;
-  const CornerLift scene = cornerLift(0.04, lift);
+  const double lift = 0.06;
+  const int steps = 6;
+  const CornerLift scene = cornerLift(0.05, lift);
   const Positions start = placeNodes(scene.mesh, scene.paper);
   CurvedSolveOptions newton_options;
   newton_options.tolerance = 1e-10;
@@ -129,7 +129,12 @@ TEST(CurvedQuasiNewton, ReachesNewtonsBalanceOnALiftedCorner)
   EXPECT_EQ(factorizations, 1);  // the constant matrix, once for the whole drag
   const double bound = balanceDistanceBound(scene.mesh, scene.paper, {}, x_newton, x_quasi, scene.pins);
   EXPECT_LT(largestNodeDistance(x_newton, x_quasi), bound);
-  EXPECT_GT(x_quasi.row(2).maxCoeff(), 0.1);  // it really bent up towards the lifted corner
+  // The sheet really bent (the lifted corner drags its free neighbours up).
+  double highest_free = 0;
+  for (Eigen::Index v = 0; v < x_quasi.cols(); ++v)
+    if (scene.mesh.nodes[v].paper_vertex < 0)
+      highest_free = std::max(highest_free, x_quasi(2, v));
+  EXPECT_GT(highest_free, 0.5 * lift);
   for (const CurvedPin& pin : scene.pins)
     EXPECT_EQ(x_quasi.col(pin.node), pin.position);
 }

@@ -7,6 +7,7 @@
 // the same energy without a Hessian per solve.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -85,6 +86,10 @@ struct CurvedSolveOptions
   /// of each edge's stretch weight on its graph Laplacian. 1e-4, the strain of a curl: 1.8
   /// solves per CPU second on the 10,000-vertex drag, against 0.75 without and 0.95 at 1e-5.
   double lbfgs_prestress = 1e-4;
+  /// QuasiNewton: instead of L-BFGS, Newton–Krylov: conjugate gradients on the exact Hessian
+  /// (assembled each iteration), the turned constant matrix as their preconditioner, at most
+  /// this many iterations per step; 0: L-BFGS.
+  int constant_krylov_iterations = 0;
   /// RK4: the step (0: half the stability limit of the stiffest mode) and the
   /// mass-proportional damping rate (0: twice the first bending mode's frequency).
   double time_step = 0.0;
@@ -162,7 +167,8 @@ private:
   /// curvature it stopped at.
   double conjugateGradients(const Eigen::VectorXd& g, double mu, const Eigen::MatrixXd& free_motions,
                             int max_iterations, Eigen::VectorXd& step, int* iterations,
-                            Eigen::VectorXd* negative = nullptr) const;
+                            Eigen::VectorXd* negative = nullptr,
+                            const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>* precondition = nullptr) const;
   /// At a balance `x`: a direction of negative curvature of the Hessian there (conjugate
   /// gradients from a random start, the kept factorisation as preconditioner), and a move
   /// along it that lowers the energy. False, `x` untouched, when none is found.
