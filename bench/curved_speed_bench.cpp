@@ -69,6 +69,8 @@ struct PulledSheet
 /// QuasiNewton's steps by conjugate gradients on the exact Hessian (the `methods` part's
 /// quasi_newton_krylov); 0: L-BFGS.
 int constant_krylov_iterations = 0;
+/// The drags' solvers test every balance (check_stability; the `methods` part's *_checked).
+bool check_every_balance = false;
 
 struct DragSummary
 {
@@ -85,6 +87,7 @@ DragSummary dragSheet(int n, double tolerance, std::ostream& csv, std::ostream* 
   solver.options().tolerance = tolerance;
   solver.options().method = method;
   solver.options().constant_krylov_iterations = constant_krylov_iterations;
+  solver.options().check_stability = check_every_balance;
   DragSummary summary;
   Positions x = sheet.rest;
   std::vector<double> errors;
@@ -237,9 +240,11 @@ void methods(const std::string& dir, const std::vector<int>& sizes, const std::v
       const DragSummary d = dragSheet(n, tolerance, ignored, &accuracy, method, 10);
       std::vector<double> errors = d.errors;
       std::sort(errors.begin(), errors.end());
-      const char* name = method == CurvedMethod::Newton   ? "newton" :
+      std::string name = method == CurvedMethod::Newton   ? "newton" :
                          constant_krylov_iterations > 0 ? "quasi_newton_krylov" :
                                                           "quasi_newton";
+      if (check_every_balance)
+        name += "_checked";
       csv << sheet.mesh.nodes.size() << ',' << name << ',' << d.solves << ',' << d.converged << ',' << d.handed_over
           << ',' << d.iterations << ',' << d.lbfgs_steps << ',' << d.factorizations << ',' << d.cpu << ','
           << d.solves / d.cpu << ',' << d.median_cpu * 1e3 << ',' << errors.size() << ','
@@ -247,7 +252,8 @@ void methods(const std::string& dir, const std::vector<int>& sizes, const std::v
           << ',' << back_substitution * 1e3 << ',' << gradient * 1e3 << ','
           << 1 / (back_substitution + gradient) << '\n';
       csv.flush();
-      std::printf("  %s: %d L-BFGS steps, %d handed over; error median %.3g, max %.3g; floor %.2f + %.2f ms\n", name,
+      std::printf("  %s: %d quasi-Newton steps, %d handed over; error median %.3g, max %.3g; floor %.2f + %.2f ms\n",
+                  name.c_str(),
                   d.lbfgs_steps, d.handed_over, errors.empty() ? NAN : errors[errors.size() / 2],
                   errors.empty() ? NAN : errors.back(), back_substitution * 1e3, gradient * 1e3);
       std::fflush(stdout);
@@ -414,7 +420,7 @@ int main(int argc, char** argv)
     scaling(dir);
   if (part == "methods")
   {
-    // curved_speed_bench dir methods [grid sides, e.g. 32,100] [newton|quasi_newton|quasi_newton_krylov]
+    // curved_speed_bench dir methods [grid sides, e.g. 32,100] [newton|quasi_newton|quasi_newton_krylov, each optionally _checked]
     std::vector<int> sizes = { 32, 50, 71, 100 };
     if (argc > 3)
     {
@@ -426,7 +432,13 @@ int main(int argc, char** argv)
     std::vector<CurvedMethod> which = { CurvedMethod::QuasiNewton, CurvedMethod::Newton };
     if (argc > 4)
     {
-      const std::string method = argv[4];
+      std::string method = argv[4];
+      const std::string checked = "_checked";
+      if (method.size() > checked.size() && method.compare(method.size() - checked.size(), checked.size(), checked) == 0)
+      {
+        check_every_balance = true;
+        method.resize(method.size() - checked.size());
+      }
       which = { method == "newton" ? CurvedMethod::Newton : CurvedMethod::QuasiNewton };
       if (method == "quasi_newton_krylov")
         constant_krylov_iterations = 30;

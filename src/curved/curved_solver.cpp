@@ -214,14 +214,20 @@ CurvedReport CurvedSolver::solve(Positions& x, const std::vector<CurvedPin>& pin
   // carried on past where it buckles): where the solve met negative curvature (or, with
   // check_stability, where the Hessian at the balance is not positive definite), the balance
   // is tested, and a saddle is left downhill and the solve goes on (twice at most).
+  // QuasiNewton's own balances (no Hessian factorised to fail): with check_stability, the
+  // search for a way down runs at every balance, on the exact Hessian there with the turned
+  // constant matrix as preconditioner, and finds one or not (no factorisation).
+  const bool by_constant = options_.method == CurvedMethod::QuasiNewton && !report.handed_over;
   const auto unstable = [&] {
     if (!report.converged || !is_static || !options_.leave_saddles)
       return false;
+    if (by_constant)
+      return options_.check_stability;
     return negative_curvature_ || (options_.check_stability && unstableAt(x, free_index, free_count));
   };
   for (int left = 0; left < 2 && unstable(); ++left)
   {
-    if (!leaveSaddle(x, free_index, free_count))
+    if (!leaveSaddle(x, free_index, free_count, by_constant))
       break;
     const CurvedReport before = report;
     report = staticSolve();
@@ -633,6 +639,36 @@ std::vector<Eigen::Matrix3d> CurvedSolver::nodeFrames(const Positions& x) const
   return frames;
 }
 
+std::vector<Eigen::Matrix3d> CurvedSolver::constantTurns(const Positions& x) const
+{
+  // Each node's turn from where the constant matrix was made: the matrix R·H·Rᵀ (R block
+  // diagonal) has the inverse R·H⁻¹·Rᵀ, one back-substitution of the constant factor.
+  if (!options_.warp)
+    return {};
+  std::vector<Eigen::Matrix3d> turns = nodeFrames(x);
+  for (size_t v = 0; v < turns.size(); ++v)
+    turns[v] *= constant_frames_[v].transpose();
+  return turns;
+}
+
+Eigen::VectorXd CurvedSolver::constantInverse(const Eigen::VectorXd& v, const std::vector<Eigen::Matrix3d>& turns,
+                                              const std::vector<int>& free_index) const
+{
+  Eigen::VectorXd q = v;
+  const auto turn = [&](Eigen::VectorXd& u, bool back) {
+    if (turns.empty())
+      return;
+    for (size_t node = 0; node < free_index.size(); ++node)
+      if (const int f = free_index[node]; f >= 0)
+        u.segment<3>(3 * f) = back ? Eigen::Vector3d(turns[node].transpose() * u.segment<3>(3 * f)) :
+                                     Eigen::Vector3d(turns[node] * u.segment<3>(3 * f));
+  };
+  turn(q, true);
+  Eigen::VectorXd r = constant_factor_.solve(q);
+  turn(r, false);
+  return r;
+}
+
 CurvedReport CurvedSolver::quasiNewton(Positions& x, const std::vector<int>& free_index, int free_count)
 {
   CurvedReport report;
@@ -667,24 +703,7 @@ CurvedReport CurvedSolver::quasiNewton(Positions& x, const std::vector<int>& fre
     }
     ++report.lbfgs_steps;
     const Eigen::MatrixXd free_motions = freeMotions(x, free_index, free_count, inPlaneOnly());
-    // Each node's turn from where the constant matrix was made: the matrix R·H·Rᵀ (R block
-    // diagonal) has the inverse R·H⁻¹·Rᵀ, one back-substitution of the constant factor.
-    std::vector<Eigen::Matrix3d> turns;
-    if (options_.warp)
-    {
-      const std::vector<Eigen::Matrix3d> frames = nodeFrames(x);
-      turns.resize(frames.size());
-      for (size_t v = 0; v < frames.size(); ++v)
-        turns[v] = frames[v] * constant_frames_[v].transpose();
-    }
-    const auto turn = [&](Eigen::VectorXd& v, bool back) {
-      if (turns.empty())
-        return;
-      for (size_t node = 0; node < free_index.size(); ++node)
-        if (const int f = free_index[node]; f >= 0)
-          v.segment<3>(3 * f) = back ? Eigen::Vector3d(turns[node].transpose() * v.segment<3>(3 * f)) :
-                                       Eigen::Vector3d(turns[node] * v.segment<3>(3 * f));
-    };
+    const std::vector<Eigen::Matrix3d> turns = constantTurns(x);
     // L-BFGS's two loops, the constant factorisation as the initial inverse Hessian (its own
     // scale: it is a Hessian, not a guess at one to be rescaled).
     const auto lbfgsDirection = [&] {
@@ -696,9 +715,7 @@ CurvedReport CurvedSolver::quasiNewton(Positions& x, const std::vector<int>& fre
         a[i] = rho[i] * s_pairs[i].dot(q);
         q -= a[i] * y_pairs[i];
       }
-      turn(q, true);
-      Eigen::VectorXd r = constant_factor_.solve(q);
-      turn(r, false);
+      Eigen::VectorXd r = constantInverse(q, turns, free_index);
       for (size_t i = 0; i < s_pairs.size(); ++i)
         r += (a[i] - rho[i] * y_pairs[i].dot(r)) * s_pairs[i];
       removeFreeMotions(free_motions, r);
@@ -747,11 +764,7 @@ CurvedReport CurvedSolver::quasiNewton(Positions& x, const std::vector<int>& fre
       // turned constant matrix (Steihaug's stop at negative curvature).
       e = assembleHessian(x, free_index, free_count, g);
       const std::function<Eigen::VectorXd(const Eigen::VectorXd&)> precondition = [&](const Eigen::VectorXd& v) {
-        Eigen::VectorXd q = v;
-        turn(q, true);
-        Eigen::VectorXd r = constant_factor_.solve(q);
-        turn(r, false);
-        return r;
+        return constantInverse(v, turns, free_index);
       };
       int iterations = 0;
       const double mu = 1e-14 * material_.stretch;
@@ -857,9 +870,10 @@ bool CurvedSolver::unstableAt(const Positions& x, const std::vector<int>& free_i
   return true;
 }
 
-bool CurvedSolver::leaveSaddle(Positions& x, const std::vector<int>& free_index, int free_count)
+bool CurvedSolver::leaveSaddle(Positions& x, const std::vector<int>& free_index, int free_count, bool with_constant)
 {
-  if (!factorization_.valid() || factor_free_ != free_index)
+  if (with_constant ? !(constant_factor_.valid() && constant_free_ == free_index) :
+                      !(factorization_.valid() && factor_free_ == free_index))
     return false;
   contact_.update(x);
   Eigen::VectorXd g(3 * free_count);
@@ -875,7 +889,12 @@ bool CurvedSolver::leaveSaddle(Positions& x, const std::vector<int>& free_index,
     r[i] = normal(random);
   Eigen::VectorXd step, downhill;
   int iterations = 0;
-  conjugateGradients(r, 0.0, free_motions, kSaddleIterations, step, &iterations, &downhill);
+  const std::vector<Eigen::Matrix3d> turns = with_constant ? constantTurns(x) : std::vector<Eigen::Matrix3d>();
+  const std::function<Eigen::VectorXd(const Eigen::VectorXd&)> constant = [&](const Eigen::VectorXd& v) {
+    return constantInverse(v, turns, free_index);
+  };
+  conjugateGradients(r, 0.0, free_motions, kSaddleIterations, step, &iterations, &downhill,
+                     with_constant ? &constant : nullptr);
   if (downhill.size() == 0 || !(downhill.dot(hessian_.selfadjointView<Eigen::Lower>() * downhill) <
                                 -kNegligibleCurvature * material_.stretch * downhill.squaredNorm()))
     return false;

@@ -290,3 +290,44 @@ TEST(CurvedQuasiNewton, RollsBackANonFiniteStart)
       EXPECT_EQ(x.col(v), given.col(v));
     }
 }
+
+TEST(CurvedQuasiNewton, ASheetPressedInItsPlaneBucklesWhenItsBalancesAreChecked)
+{
+  // Two opposite corners pushed together along the diagonal by 2 %, from the flat sheet: the
+  // flat, compressed sheet is a balance (nothing pushes out of the plane) but a saddle. L-BFGS
+  // has no factorisation of the Hessian to fail there and stays flat; with check_stability its
+  // balance is searched for a way down (the exact Hessian, the constant matrix as
+  // preconditioner), and the sheet buckles.
+  Paper paper = Paper::square(1.0);
+  BubbleMeshOptions mesh_options;
+  mesh_options.spacing = 0.1;
+  const Expected<CurvedMesh> mesh = bubbleMesh(paper, mesh_options);
+  ASSERT_TRUE(mesh.ok()) << mesh.message();
+  const Vec3 a = paper.vertices[0].folded, c = paper.vertices[2].folded;
+  const std::vector<CurvedPin> pins = { { mesh->vertex_nodes[0], a + 0.01 * (c - a) },
+                                        { mesh->vertex_nodes[2], c + 0.01 * (a - c) } };
+  const auto height = [](const Positions& x) { return x.row(2).cwiseAbs().maxCoeff(); };
+
+  CurvedSolveOptions unchecked = quasiNewtonAlone();
+  CurvedSolver flat_solver(*mesh, paper, {}, {}, unchecked);
+  Positions flat = placeNodes(*mesh, paper);
+  const CurvedReport at_saddle = flat_solver.solve(flat, pins);
+  ASSERT_TRUE(at_saddle.converged) << at_saddle.message;
+  EXPECT_EQ(height(flat), 0.0);  // the flat saddle
+  EXPECT_EQ(at_saddle.saddles_left, 0);
+  EXPECT_FALSE(at_saddle.handed_over);
+
+  // The way down is found by the constant matrix's search; the buckled balance, far from the
+  // flat sheet the matrix was made on, is finished by Newton if L-BFGS does not reach it.
+  CurvedSolveOptions checked;
+  checked.method = CurvedMethod::QuasiNewton;
+  checked.check_stability = true;
+  CurvedSolver solver(*mesh, paper, {}, {}, checked);
+  Positions x = placeNodes(*mesh, paper);
+  const CurvedReport report = solver.solve(x, pins);
+  ASSERT_TRUE(report.converged) << report.message;
+  EXPECT_GE(report.saddles_left, 1);
+  EXPECT_GT(height(x), 0.05);  // buckled out of the plane
+  EXPECT_LT(report.energy.total() + report.contact_energy, 0.5 * (at_saddle.energy.total() + at_saddle.contact_energy));
+  EXPECT_LE(solver.maxForce(x, pins), checked.tolerance);
+}

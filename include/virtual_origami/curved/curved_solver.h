@@ -172,7 +172,14 @@ private:
   /// At a balance `x`: a direction of negative curvature of the Hessian there (conjugate
   /// gradients from a random start, the kept factorisation as preconditioner), and a move
   /// along it that lowers the energy. False, `x` untouched, when none is found.
-  bool leaveSaddle(Positions& x, const std::vector<int>& free_index, int free_count);
+  /// With `with_constant`, the turned constant matrix of QuasiNewton preconditions the search.
+  bool leaveSaddle(Positions& x, const std::vector<int>& free_index, int free_count, bool with_constant = false);
+  /// Each node's turn (3 × 3) from its frame where the constant matrix was made to its frame at
+  /// x; empty without warp.
+  std::vector<Eigen::Matrix3d> constantTurns(const Positions& x) const;
+  /// The turned constant matrix's inverse applied to v (one back-substitution).
+  Eigen::VectorXd constantInverse(const Eigen::VectorXd& v, const std::vector<Eigen::Matrix3d>& turns,
+                                  const std::vector<int>& free_index) const;
   /// Whether the Hessian at balance `x`, shifted by the curvature counted as rounding, fails
   /// to factorise (negative curvature: a saddle to leave). On success the factorisation is
   /// kept for the next solve.
