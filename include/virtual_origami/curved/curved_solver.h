@@ -83,8 +83,9 @@ struct CurvedSolveOptions
   bool warp = true;
   /// QuasiNewton: the constant matrix carries a membrane prestress of this strain (the
   /// out-of-plane stiffness of a sheet under tension, which the rest state lacks), as a share
-  /// of each edge's stretch weight on its graph Laplacian. 1e-4, the strain of a curl: 1.8
-  /// solves per CPU second on the 10,000-vertex drag, against 0.75 without and 0.95 at 1e-5.
+  /// of each edge's stretch weight on its graph Laplacian. 1e-4, the strain of a curl: on the
+  /// 10,000-vertex drag of curved_speed_bench 1.7 solves per CPU second, against 0.95 at 1e-5
+  /// and 0.75 without (docs/CURVED.md).
   double lbfgs_prestress = 1e-4;
   /// QuasiNewton: instead of L-BFGS, Newton–Krylov: conjugate gradients on the exact Hessian
   /// (assembled each iteration), the turned constant matrix as their preconditioner, at most
@@ -101,10 +102,11 @@ struct CurvedReport
   bool converged = false;
   bool diverged = false;   // non-finite or exploding: the positions were rolled back
   bool refused = false;    // a pin off the sheet or not finite, or positions of another mesh: x untouched
-  int iterations = 0;      // Newton iterations or RK4 steps
+  int iterations = 0;      // Newton or quasi-Newton iterations, or RK4 steps
   int factorizations = 0;  // Newton: sparse Cholesky factorisations (the rest reused one)
   int krylov_steps = 0;    // Newton: exact Hessian steps by preconditioned conjugate gradients
-  int lbfgs_steps = 0;     // QuasiNewton: L-BFGS iterations (Newton's, after a hand-over, in iterations too)
+  int lbfgs_steps = 0;     // QuasiNewton: its own iterations (L-BFGS or Newton–Krylov); after a hand-over
+                           // Newton's are in `iterations` too
   bool handed_over = false;  // QuasiNewton: L-BFGS did not balance within its iterations; Newton finished
   double max_force = 0.0;  // largest force on a free node, / (stretch × spacing)
   CurvedEnergy energy;
