@@ -826,7 +826,8 @@ CurvedReport CurvedSolver::quasiNewton(Positions& x, const std::vector<int>& fre
   {
     // The constant matrix no longer resembles the Hessian (a snap, a sheet turned far from
     // where the matrix was taken): Newton finishes from here.
-    const CurvedReport lbfgs = report;
+    CurvedReport lbfgs = report;
+    lbfgs.seconds = budget.seconds();
     report = newton(x, free_index, free_count);
     report.iterations += lbfgs.iterations;
     report.factorizations += lbfgs.factorizations;
@@ -839,7 +840,7 @@ CurvedReport CurvedSolver::quasiNewton(Positions& x, const std::vector<int>& fre
   if (!report.converged && !report.diverged)
   {
     std::ostringstream msg;
-    msg << (stuck.empty() ? "stopped" : stuck) << " after " << report.iterations << " L-BFGS iterations at force "
+    msg << (stuck.empty() ? "stopped" : stuck) << " after " << report.iterations << " quasi-Newton iterations at force "
         << report.max_force << " (tolerance " << options_.tolerance << ")";
     report.message = msg.str();
   }
