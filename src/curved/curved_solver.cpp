@@ -389,7 +389,7 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
   const double max_move = options_.max_step * contact_.range();
   const int n = 3 * free_count;
   Positions trial = x;
-  Eigen::VectorXd g(n);
+  Eigen::VectorXd g(n), g_trial(n);
   std::string stuck;
   // Three kinds of step, cheapest first. A factorisation of an earlier Hessian (this solve's
   // or an earlier one's, for the same free nodes) is a positive definite step matrix: its
@@ -460,7 +460,17 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
         moveFree(trial, x, step, alpha, free_index);
         if (contact_.worstGap(trial) < std::min(0.0, worst_gap) - 0.5 * contact_.thickness())
           continue;
-        if (energy(trial, {}) <= e + 1e-4 * alpha * slope)
+        const double moved = energy(trial, {});
+        bool accept = moved <= e + 1e-4 * alpha * slope;
+        // Near balance the energy's change can fall below its rounding while the force is
+        // still above the tolerance: there the slope at the trial decides (as in quasiNewton).
+        if (!accept && std::abs(moved - e) <= kEnergyRounding * std::abs(e))
+        {
+          g_trial.setZero();
+          energy(trial, { &free_index, &g_trial, nullptr });
+          accept = g_trial.dot(step) <= -(1 - 2e-4) * slope;
+        }
+        if (accept)
         {
           std::swap(x, trial);
           return alpha;
