@@ -7,8 +7,13 @@
 // against the predicted limit. Wall time and process CPU time both: the machine is shared, and
 // the charts use CPU time (one core: make bench caps CHOLMOD's OpenMP loops to one thread).
 //
-//   curved_speed_bench [out_dir] [pulls|stability|scaling]   writes curved_speed.csv and
-//   curved_drag_accuracy.csv, curved_stability.csv, curved_scaling.csv (all, or the part named)
+// (d) the same drag by Newton and by the quasi-Newton method (L-BFGS on a constant matrix) at
+// 1,024 to 10,000 vertices, each balance's error against a tight Newton balance, beside the
+// quasi-Newton floor (one back-substitution of the constant factor and one gradient).
+//
+//   curved_speed_bench [out_dir] [pulls|stability|scaling|methods]   writes curved_speed.csv and
+//   curved_drag_accuracy.csv, curved_stability.csv, curved_scaling.csv, curved_methods.csv (all,
+//   or the part named; `methods` is not part of the default run)
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -61,11 +66,29 @@ struct PulledSheet
 /// on to 1e-11 from where the drag left it (by a solver of its own, outside the timing), and the
 /// largest distance of a node between the two, over the sheet's side, is the drag's error
 /// there: one row of curved_drag_accuracy.csv.
-void dragSheet(int n, double tolerance, std::ostream& csv, std::ostream* accuracy = nullptr)
+/// QuasiNewton's steps by conjugate gradients on the exact Hessian (the `methods` part's
+/// quasi_newton_krylov); 0: L-BFGS.
+int constant_krylov_iterations = 0;
+/// The drags' solvers test every balance (check_stability; the `methods` part's *_checked).
+bool check_every_balance = false;
+
+struct DragSummary
+{
+  int solves = 0, converged = 0, iterations = 0, lbfgs_steps = 0, factorizations = 0, handed_over = 0;
+  double cpu = 0, median_cpu = 0;
+  std::vector<double> errors;  // of the balances checked, over the sheet's side
+};
+
+DragSummary dragSheet(int n, double tolerance, std::ostream& csv, std::ostream* accuracy = nullptr,
+                      CurvedMethod method = CurvedMethod::Newton, int check_every = 20)
 {
   PulledSheet sheet(n);
   CurvedSolver solver(sheet.mesh, sheet.scene.paper);
   solver.options().tolerance = tolerance;
+  solver.options().method = method;
+  solver.options().constant_krylov_iterations = constant_krylov_iterations;
+  solver.options().check_stability = check_every_balance;
+  DragSummary summary;
   Positions x = sheet.rest;
   std::vector<double> errors;
   double s = 0;
@@ -81,7 +104,9 @@ void dragSheet(int n, double tolerance, std::ostream& csv, std::ostream* accurac
     const CurvedReport r = solver.solve(x, sheet.pins);
     solve_cpu.push_back(cpuNow() - solve_start);
     ++solves;
-    if (accuracy && solves % 20 == 0 && r.converged)
+    summary.lbfgs_steps += r.lbfgs_steps;
+    summary.handed_over += r.handed_over;
+    if (accuracy && solves % check_every == 0 && r.converged)
     {
       CurvedSolver exact(sheet.mesh, sheet.scene.paper);
       exact.options().tolerance = 1e-11;
@@ -130,6 +155,15 @@ void dragSheet(int n, double tolerance, std::ostream& csv, std::ostream* accurac
               "second), median solve %.1f ms of cpu\n",
               sheet.mesh.nodes.size(), tolerance, solves, converged, predicted, iterations, factorizations, krylov,
               seconds, cpu, solves / seconds, solves / cpu, median * 1e3);
+  std::fflush(stdout);
+  summary.solves = solves;
+  summary.converged = converged;
+  summary.iterations = iterations;
+  summary.factorizations = factorizations;
+  summary.cpu = cpu;
+  summary.median_cpu = median;
+  summary.errors = errors;
+  return summary;
 }
 
 /// (a) The drag on the 10,000-vertex sheet of the target, and on smaller sheets: how large a
@@ -150,6 +184,81 @@ void smallPulls(const std::string& dir)
   std::ostringstream ignored;
   for (double t : { 1e-4, 1e-6, 1e-8, 1e-10 })
     dragSheet(45, t, ignored, &accuracy);
+}
+
+/// (d) The drag of (a) by each static method at four sizes, every tenth balance checked against
+/// a tight Newton balance (1e-11) from where the drag left it; and the quasi-Newton floor: one
+/// back-substitution of the constant factor and one gradient pass (contact included), each the
+/// mean of ten, at the drag's first shape.
+void methods(const std::string& dir, const std::vector<int>& sizes, const std::vector<CurvedMethod>& which)
+{
+  std::ofstream csv(dir + "/curved_methods.csv");
+  csv << "vertices,method,solves,converged,handed_over,iterations,lbfgs_steps,factorizations,cpu_seconds,"
+         "solves_per_cpu_second,median_solve_cpu_ms,checked,median_error,max_error,floor_back_substitution_ms,"
+         "floor_gradient_ms,floor_solves_per_cpu_second\n";
+  const double tolerance = CurvedSolveOptions().tolerance;
+  for (int n : sizes)
+  {
+    // The floor, on a constant matrix made as the solver makes it.
+    PulledSheet sheet(n);
+    sheet.pullTo(5e-4);
+    std::vector<int> free_index(sheet.mesh.nodes.size());
+    int free_count = 0;
+    for (size_t v = 0; v < free_index.size(); ++v)
+      free_index[v] = (static_cast<int>(v) == sheet.pins[0].node || static_cast<int>(v) == sheet.pins[1].node) ?
+                          -1 :
+                          free_count++;
+    const CurvedTerms terms = curvedTerms(sheet.mesh, sheet.scene.paper, {});
+    Positions x = sheet.rest;
+    for (const CurvedPin& pin : sheet.pins)
+      x.col(pin.node) = pin.position;
+    Eigen::SparseMatrix<double> matrix = blockPattern(free_count, free_index, termGroups(terms));
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(3 * free_count);
+    BlockHessian blocks{ &matrix };
+    evaluateCurved(terms, x, { &free_index, &g, nullptr, &blocks });
+    SpdFactorization factorization;
+    double shift = 1e-11;
+    while (!factorization.factorize(matrix, shift) && shift < 1e3)
+      shift *= 100;
+    constexpr int kRepeats = 10;
+    double cpu_start = cpuNow();
+    double sink = 0;
+    for (int k = 0; k < kRepeats; ++k)
+      sink += factorization.solve(g)[0];
+    const double back_substitution = (cpuNow() - cpu_start) / kRepeats;
+    CurvedSolver gradient_solver(sheet.mesh, sheet.scene.paper);
+    sink += gradient_solver.maxForce(x, sheet.pins);  // builds the contact candidates, as the drag's first solve
+    cpu_start = cpuNow();
+    for (int k = 0; k < kRepeats; ++k)
+      sink += gradient_solver.maxForce(x, sheet.pins);
+    const double gradient = (cpuNow() - cpu_start) / kRepeats;
+    if (!std::isfinite(sink))
+      std::printf("(non-finite floor)\n");
+    for (CurvedMethod method : which)
+    {
+      std::ostringstream ignored, accuracy;
+      const DragSummary d = dragSheet(n, tolerance, ignored, &accuracy, method, 10);
+      std::vector<double> errors = d.errors;
+      std::sort(errors.begin(), errors.end());
+      std::string name = method == CurvedMethod::Newton   ? "newton" :
+                         constant_krylov_iterations > 0 ? "quasi_newton_krylov" :
+                                                          "quasi_newton";
+      if (check_every_balance)
+        name += "_checked";
+      csv << sheet.mesh.nodes.size() << ',' << name << ',' << d.solves << ',' << d.converged << ',' << d.handed_over
+          << ',' << d.iterations << ',' << d.lbfgs_steps << ',' << d.factorizations << ',' << d.cpu << ','
+          << d.solves / d.cpu << ',' << d.median_cpu * 1e3 << ',' << errors.size() << ','
+          << (errors.empty() ? NAN : errors[errors.size() / 2]) << ',' << (errors.empty() ? NAN : errors.back())
+          << ',' << back_substitution * 1e3 << ',' << gradient * 1e3 << ','
+          << 1 / (back_substitution + gradient) << '\n';
+      csv.flush();
+      std::printf("  %s: %d quasi-Newton steps, %d handed over; error median %.3g, max %.3g; floor %.2f + %.2f ms\n",
+                  name.c_str(),
+                  d.lbfgs_steps, d.handed_over, errors.empty() ? NAN : errors[errors.size() / 2],
+                  errors.empty() ? NAN : errors.back(), back_substitution * 1e3, gradient * 1e3);
+      std::fflush(stdout);
+    }
+  }
 }
 
 /// Bytes an RK4 step must move at least: four force evaluations, each reading the term lists
@@ -309,6 +418,33 @@ int main(int argc, char** argv)
     stability(dir);
   if (part.empty() || part == "scaling")
     scaling(dir);
+  if (part == "methods")
+  {
+    // curved_speed_bench dir methods [grid sides, e.g. 32,100] [newton|quasi_newton|quasi_newton_krylov, each optionally _checked]
+    std::vector<int> sizes = { 32, 50, 71, 100 };
+    if (argc > 3)
+    {
+      sizes.clear();
+      std::stringstream list(argv[3]);
+      for (std::string item; std::getline(list, item, ',');)
+        sizes.push_back(std::stoi(item));
+    }
+    std::vector<CurvedMethod> which = { CurvedMethod::QuasiNewton, CurvedMethod::Newton };
+    if (argc > 4)
+    {
+      std::string method = argv[4];
+      const std::string checked = "_checked";
+      if (method.size() > checked.size() && method.compare(method.size() - checked.size(), checked.size(), checked) == 0)
+      {
+        check_every_balance = true;
+        method.resize(method.size() - checked.size());
+      }
+      which = { method == "newton" ? CurvedMethod::Newton : CurvedMethod::QuasiNewton };
+      if (method == "quasi_newton_krylov")
+        constant_krylov_iterations = 30;
+    }
+    methods(dir, sizes, which);
+  }
   std::cout << "wrote the CSV files into " << dir << "\n";
   return 0;
 }

@@ -82,6 +82,8 @@ Eigen::MatrixXd freeMotions(const Positions& x, const std::vector<int>& free_ind
 /// Negative curvature of the energy (per unit move, over the stretch stiffness) smaller than
 /// this is rounding: the free turn about two pins, a sheet lying flat.
 constexpr double kNegligibleCurvature = 1e-11;
+/// Relative rounding of the summed energy, below which a line search compares slopes instead.
+constexpr double kEnergyRounding = 1e-10;
 /// Conjugate-gradient iterations spent looking for a way down from a balance.
 constexpr int kSaddleIterations = 6;
 
@@ -199,29 +201,41 @@ CurvedReport CurvedSolver::solve(Positions& x, const std::vector<CurvedPin>& pin
   Positions start = x;
   for (const CurvedPin& pin : pins)
     start.col(pin.node) = pin.position;
-  const bool predicted = options_.method == CurvedMethod::Newton && predict(x, pins, free_index, free_count);
+  const bool is_static = options_.method != CurvedMethod::Rk4;
+  const bool predicted = is_static && predict(x, pins, free_index, free_count);
   for (const CurvedPin& pin : pins)
     x.col(pin.node) = pin.position;
-  CurvedReport report =
-      options_.method == CurvedMethod::Newton ? newton(x, free_index, free_count) : rk4(x, free_index, free_count);
+  const auto staticSolve = [&] {
+    return options_.method == CurvedMethod::QuasiNewton ? quasiNewton(x, free_index, free_count) :
+                                                          newton(x, free_index, free_count);
+  };
+  CurvedReport report = is_static ? staticSolve() : rk4(x, free_index, free_count);
   // Newton converges to any balance, a saddle too (a sheet pressed flat in its plane, a curl
   // carried on past where it buckles): where the solve met negative curvature (or, with
   // check_stability, where the Hessian at the balance is not positive definite), the balance
   // is tested, and a saddle is left downhill and the solve goes on (twice at most).
+  // QuasiNewton's own balances (no Hessian factorised to fail): with check_stability, the
+  // search for a way down runs at every balance, on the exact Hessian there with the turned
+  // constant matrix as preconditioner, and finds one or not (no factorisation).
+  const bool by_constant = options_.method == CurvedMethod::QuasiNewton && !report.handed_over;
   const auto unstable = [&] {
-    if (!report.converged || options_.method != CurvedMethod::Newton || !options_.leave_saddles)
+    if (!report.converged || !is_static || !options_.leave_saddles)
       return false;
+    if (by_constant)
+      return options_.check_stability;
     return negative_curvature_ || (options_.check_stability && unstableAt(x, free_index, free_count));
   };
   for (int left = 0; left < 2 && unstable(); ++left)
   {
-    if (!leaveSaddle(x, free_index, free_count))
+    if (!leaveSaddle(x, free_index, free_count, by_constant))
       break;
     const CurvedReport before = report;
-    report = newton(x, free_index, free_count);
+    report = staticSolve();
     report.iterations += before.iterations;
     report.factorizations += before.factorizations;
     report.krylov_steps += before.krylov_steps;
+    report.lbfgs_steps += before.lbfgs_steps;
+    report.handed_over = report.handed_over || before.handed_over;
     report.saddles_left = before.saddles_left + 1;
     path_.clear();  // another branch: the last balances no longer foretell this one
   }
@@ -375,7 +389,7 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
   const double max_move = options_.max_step * contact_.range();
   const int n = 3 * free_count;
   Positions trial = x;
-  Eigen::VectorXd g(n);
+  Eigen::VectorXd g(n), g_trial(n);
   std::string stuck;
   // Three kinds of step, cheapest first. A factorisation of an earlier Hessian (this solve's
   // or an earlier one's, for the same free nodes) is a positive definite step matrix: its
@@ -446,7 +460,17 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
         moveFree(trial, x, step, alpha, free_index);
         if (contact_.worstGap(trial) < std::min(0.0, worst_gap) - 0.5 * contact_.thickness())
           continue;
-        if (energy(trial, {}) <= e + 1e-4 * alpha * slope)
+        const double moved = energy(trial, {});
+        bool accept = moved <= e + 1e-4 * alpha * slope;
+        // Near balance the energy's change can fall below its rounding while the force is
+        // still above the tolerance: there the slope at the trial decides (as in quasiNewton).
+        if (!accept && std::abs(moved - e) <= kEnergyRounding * std::abs(e))
+        {
+          g_trial.setZero();
+          energy(trial, { &free_index, &g_trial, nullptr });
+          accept = g_trial.dot(step) <= -(1 - 2e-4) * slope;
+        }
+        if (accept)
         {
           std::swap(x, trial);
           return alpha;
@@ -542,6 +566,297 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
   return report;
 }
 
+bool CurvedSolver::prepareConstantFactor(const Positions& x, const std::vector<int>& free_index, int free_count)
+{
+  if (constant_free_ == free_index && constant_factor_.valid() && constant_factor_.rows() == 3 * free_count)
+    return true;
+  // The terms' Hessian alone, at the shape given (the flat or rigidly folded sheet, where
+  // every measure is at rest: stretch and shear act as springs along the edges and corners,
+  // bending as its quadratic model at rest). Contact comes and goes and the table pushes only
+  // where the sheet touches it: both stay with the line search's true energy.
+  Eigen::SparseMatrix<double> matrix = blockPattern(free_count, free_index, termGroups(terms_));
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(3 * free_count);
+  BlockHessian blocks{ &matrix };
+  evaluateCurved(terms_, x, { &free_index, &g, nullptr, &blocks });
+  if (options_.lbfgs_prestress > 0)
+    for (const StretchTerm& term : terms_.stretch)
+    {
+      const int fi = free_index[term.i], fj = free_index[term.j];
+      const Eigen::Matrix3d k = options_.lbfgs_prestress * term.weight * Eigen::Matrix3d::Identity();
+      if (fi >= 0)
+        blocks.add(fi, fi, k);
+      if (fj >= 0)
+        blocks.add(fj, fj, k);
+      if (fi >= 0 && fj >= 0)
+        blocks.add(std::max(fi, fj), std::min(fi, fj), Eigen::Matrix3d(-k));
+    }
+  // The free turn about two pins has no stiffness: the smallest shift counted as rounding,
+  // raised where the shape given is bent and its Hessian not positive definite.
+  double shift = kNegligibleCurvature * material_.stretch;
+  for (int attempt = 0; attempt < 12; ++attempt, shift *= 100)
+    if (constant_factor_.factorize(matrix, shift))
+    {
+      constant_free_ = free_index;
+      constant_frames_ = nodeFrames(x);
+      return true;
+    }
+  constant_free_.clear();
+  return false;
+}
+
+std::vector<Eigen::Matrix3d> CurvedSolver::nodeFrames(const Positions& x) const
+{
+  const size_t nodes = mesh_.nodes.size();
+  if (frame_partner_.size() != nodes)
+  {
+    auto& partner = const_cast<std::vector<int>&>(frame_partner_);
+    partner.assign(nodes, -1);
+    for (const MeshEdge& edge : mesh_.edges)
+      for (int k = 0; k < 2; ++k)
+        if (partner[edge.nodes[k]] < 0)
+          partner[edge.nodes[k]] = edge.nodes[1 - k];
+  }
+  std::vector<Vec3> normal(nodes, Vec3::Zero());
+  std::vector<Vec3> first(nodes, Vec3::Zero());  // a node's first triangle's normal
+  for (const MeshTriangle& t : mesh_.triangles)
+  {
+    const Vec3 n = (x.col(t.nodes[1]) - x.col(t.nodes[0])).cross(x.col(t.nodes[2]) - x.col(t.nodes[0]));
+    for (int node : t.nodes)
+    {
+      normal[node] += n;
+      if (first[node].isZero())
+        first[node] = n;
+    }
+  }
+  std::vector<Eigen::Matrix3d> frames(nodes, Eigen::Matrix3d::Identity());
+  for (size_t v = 0; v < nodes; ++v)
+  {
+    // A node on a crease folded flat has layers facing both ways: its triangles' normals
+    // cancel, and one triangle's stands for them.
+    Vec3 n = normal[v].norm() > 0.1 * first[v].norm() ? normal[v] : first[v];
+    if (!(n.norm() > 0) || frame_partner_[v] < 0)
+      continue;
+    n.normalize();
+    Vec3 t = x.col(frame_partner_[v]) - x.col(v);
+    t -= t.dot(n) * n;
+    if (!(t.norm() > 0))
+      continue;
+    t.normalize();
+    frames[v].col(0) = t;
+    frames[v].col(1) = n.cross(t);
+    frames[v].col(2) = n;
+  }
+  return frames;
+}
+
+std::vector<Eigen::Matrix3d> CurvedSolver::constantTurns(const Positions& x) const
+{
+  // Each node's turn from where the constant matrix was made: the matrix R·H·Rᵀ (R block
+  // diagonal) has the inverse R·H⁻¹·Rᵀ, one back-substitution of the constant factor.
+  if (!options_.warp)
+    return {};
+  std::vector<Eigen::Matrix3d> turns = nodeFrames(x);
+  for (size_t v = 0; v < turns.size(); ++v)
+    turns[v] *= constant_frames_[v].transpose();
+  return turns;
+}
+
+Eigen::VectorXd CurvedSolver::constantInverse(const Eigen::VectorXd& v, const std::vector<Eigen::Matrix3d>& turns,
+                                              const std::vector<int>& free_index) const
+{
+  Eigen::VectorXd q = v;
+  const auto turn = [&](Eigen::VectorXd& u, bool back) {
+    if (turns.empty())
+      return;
+    for (size_t node = 0; node < free_index.size(); ++node)
+      if (const int f = free_index[node]; f >= 0)
+        u.segment<3>(3 * f) = back ? Eigen::Vector3d(turns[node].transpose() * u.segment<3>(3 * f)) :
+                                     Eigen::Vector3d(turns[node] * u.segment<3>(3 * f));
+  };
+  turn(q, true);
+  Eigen::VectorXd r = constant_factor_.solve(q);
+  turn(r, false);
+  return r;
+}
+
+CurvedReport CurvedSolver::quasiNewton(Positions& x, const std::vector<int>& free_index, int free_count)
+{
+  CurvedReport report;
+  negative_curvature_ = false;
+  const SolveBudget budget(budgetLimits(options_, options_.lbfgs_iterations));
+  const double force_scale = material_.stretch * mesh_.spacing;
+  const double max_move = options_.max_step * contact_.range();
+  const int n = 3 * free_count;
+  // The correction pairs s = Δx, y = Δ∇E of this solve's last iterations, oldest first (kept
+  // from one solve of a drag to the next they made no difference: 1.73 against 1.79 solves
+  // per CPU second at 10,000 vertices).
+  std::vector<Eigen::VectorXd> s_pairs, y_pairs;
+  std::vector<double> rho;
+  Positions trial = x;
+  Eigen::VectorXd g(n), g_next(n), direction(n);
+  std::string stuck;
+  contact_.update(x);
+  g.setZero();
+  double e = energy(x, { &free_index, &g, nullptr }, &report.energy, &report.contact_energy);
+  while (!stopBeforeStep(g, e, force_scale, options_.tolerance, budget, "non-finite energy; rolled back", report))
+  {
+    // The constant matrix, made at the first step of the first solve with these free nodes
+    // (not for a shape that is balanced already, nor for one that is not finite).
+    if (!(constant_free_ == free_index && constant_factor_.valid() && constant_factor_.rows() == n))
+    {
+      ++report.factorizations;
+      if (!prepareConstantFactor(x, free_index, free_count))
+      {
+        stuck = "the constant matrix is not positive definite at any shift tried";
+        break;
+      }
+    }
+    ++report.lbfgs_steps;
+    const Eigen::MatrixXd free_motions = freeMotions(x, free_index, free_count, inPlaneOnly());
+    const std::vector<Eigen::Matrix3d> turns = constantTurns(x);
+    // L-BFGS's two loops, the constant factorisation as the initial inverse Hessian (its own
+    // scale: it is a Hessian, not a guess at one to be rescaled).
+    const auto lbfgsDirection = [&] {
+      Eigen::VectorXd q = g;
+      removeFreeMotions(free_motions, q);
+      std::vector<double> a(s_pairs.size());
+      for (size_t i = s_pairs.size(); i-- > 0;)
+      {
+        a[i] = rho[i] * s_pairs[i].dot(q);
+        q -= a[i] * y_pairs[i];
+      }
+      Eigen::VectorXd r = constantInverse(q, turns, free_index);
+      for (size_t i = 0; i < s_pairs.size(); ++i)
+        r += (a[i] - rho[i] * y_pairs[i].dot(r)) * s_pairs[i];
+      removeFreeMotions(free_motions, r);
+      return Eigen::VectorXd(-r);
+    };
+    const double worst_gap = contact_.worstGap(x);
+    // Armijo's line search on the true energy, as Newton's: at most a Newton step's move, no
+    // watched pair crossing over. The step length taken, 0 when none lowers the energy.
+    const auto search = [&](Eigen::VectorXd& step) {
+      double longest = 0.0;
+      for (int i = 0; i < free_count; ++i)
+        longest = std::max(longest, step.segment<3>(3 * i).norm());
+      if (!std::isfinite(longest))
+        return 0.0;
+      if (longest > max_move)
+        step *= max_move / longest;
+      const double slope = g.dot(step);
+      if (!(slope < 0))
+        return 0.0;
+      double alpha = 1.0;
+      for (int k = 0; k < 30; ++k, alpha *= 0.5)
+      {
+        moveFree(trial, x, step, alpha, free_index);
+        if (contact_.worstGap(trial) < std::min(0.0, worst_gap) - 0.5 * contact_.thickness())
+          continue;
+        const double moved = energy(trial, {});
+        if (moved <= e + 1e-4 * alpha * slope)
+          return alpha;
+        // Near balance the energy's change falls below its rounding (a sum over every term)
+        // while the forces are still above the tolerance: there the slope at the trial
+        // decides (Hager and Zhang's approximate Wolfe condition: on a quadratic, Armijo's).
+        if (std::abs(moved - e) <= kEnergyRounding * std::abs(e))
+        {
+          g_next.setZero();
+          energy(trial, { &free_index, &g_next, nullptr });
+          if (g_next.dot(step) <= -(1 - 2e-4) * slope)
+            return alpha;
+        }
+      }
+      return 0.0;
+    };
+    double alpha = 0.0;
+    if (options_.constant_krylov_iterations > 0)
+    {
+      // Newton–Krylov: the exact Hessian's step by conjugate gradients, preconditioned by the
+      // turned constant matrix (Steihaug's stop at negative curvature).
+      e = assembleHessian(x, free_index, free_count, g);
+      const std::function<Eigen::VectorXd(const Eigen::VectorXd&)> precondition = [&](const Eigen::VectorXd& v) {
+        return constantInverse(v, turns, free_index);
+      };
+      int iterations = 0;
+      const double mu = 1e-14 * material_.stretch;
+      if (conjugateGradients(g, mu, free_motions, options_.constant_krylov_iterations, direction, &iterations, nullptr,
+                             &precondition) > 0)
+      {
+        report.krylov_steps += 1;
+        alpha = search(direction);
+      }
+      if (alpha == 0)
+      {
+        stuck = "no step lowers the energy any further";
+        break;
+      }
+    }
+    else
+    {
+      direction = lbfgsDirection();
+      alpha = search(direction);
+    }
+    if (alpha == 0 && !s_pairs.empty())
+    {
+      // The pairs mislead (contact came, the shape moved far from where they were taken):
+      // forget them, and step with the constant matrix alone.
+      s_pairs.clear();
+      y_pairs.clear();
+      rho.clear();
+      direction = lbfgsDirection();
+      alpha = search(direction);
+    }
+    if (alpha == 0)
+    {
+      stuck = "no step lowers the energy any further";
+      break;
+    }
+    std::swap(x, trial);
+    contact_.update(x);
+    g_next.setZero();
+    e = energy(x, { &free_index, &g_next, nullptr }, &report.energy, &report.contact_energy);
+    Eigen::VectorXd s_new = alpha * direction, y_new = g_next - g;
+    removeFreeMotions(free_motions, y_new);
+    g.swap(g_next);
+    // Only pairs of positive curvature keep the inverse positive definite.
+    const double sy = s_new.dot(y_new);
+    if (sy > 1e-12 * s_new.norm() * y_new.norm() && options_.lbfgs_memory > 0)
+    {
+      s_pairs.push_back(std::move(s_new));
+      y_pairs.push_back(std::move(y_new));
+      rho.push_back(1.0 / sy);
+      if (static_cast<int>(s_pairs.size()) > options_.lbfgs_memory)
+      {
+        s_pairs.erase(s_pairs.begin());
+        y_pairs.erase(y_pairs.begin());
+        rho.erase(rho.begin());
+      }
+    }
+  }
+  if (!report.converged && !report.diverged && options_.hand_over)
+  {
+    // The constant matrix no longer resembles the Hessian (a snap, a sheet turned far from
+    // where the matrix was taken): Newton finishes from here.
+    CurvedReport lbfgs = report;
+    lbfgs.seconds = budget.seconds();
+    report = newton(x, free_index, free_count);
+    report.iterations += lbfgs.iterations;
+    report.factorizations += lbfgs.factorizations;
+    report.lbfgs_steps = lbfgs.lbfgs_steps;
+    report.handed_over = true;
+    report.seconds += lbfgs.seconds;
+    return report;
+  }
+  report.seconds = budget.seconds();
+  if (!report.converged && !report.diverged)
+  {
+    std::ostringstream msg;
+    msg << (stuck.empty() ? "stopped" : stuck) << " after " << report.iterations << " quasi-Newton iterations at force "
+        << report.max_force << " (tolerance " << options_.tolerance << ")";
+    report.message = msg.str();
+  }
+  return report;
+}
+
 bool CurvedSolver::unstableAt(const Positions& x, const std::vector<int>& free_index, int free_count)
 {
   contact_.update(x);
@@ -566,9 +881,10 @@ bool CurvedSolver::unstableAt(const Positions& x, const std::vector<int>& free_i
   return true;
 }
 
-bool CurvedSolver::leaveSaddle(Positions& x, const std::vector<int>& free_index, int free_count)
+bool CurvedSolver::leaveSaddle(Positions& x, const std::vector<int>& free_index, int free_count, bool with_constant)
 {
-  if (!factorization_.valid() || factor_free_ != free_index)
+  if (with_constant ? !(constant_factor_.valid() && constant_free_ == free_index) :
+                      !(factorization_.valid() && factor_free_ == free_index))
     return false;
   contact_.update(x);
   Eigen::VectorXd g(3 * free_count);
@@ -584,7 +900,12 @@ bool CurvedSolver::leaveSaddle(Positions& x, const std::vector<int>& free_index,
     r[i] = normal(random);
   Eigen::VectorXd step, downhill;
   int iterations = 0;
-  conjugateGradients(r, 0.0, free_motions, kSaddleIterations, step, &iterations, &downhill);
+  const std::vector<Eigen::Matrix3d> turns = with_constant ? constantTurns(x) : std::vector<Eigen::Matrix3d>();
+  const std::function<Eigen::VectorXd(const Eigen::VectorXd&)> constant = [&](const Eigen::VectorXd& v) {
+    return constantInverse(v, turns, free_index);
+  };
+  conjugateGradients(r, 0.0, free_motions, kSaddleIterations, step, &iterations, &downhill,
+                     with_constant ? &constant : nullptr);
   if (downhill.size() == 0 || !(downhill.dot(hessian_.selfadjointView<Eigen::Lower>() * downhill) <
                                 -kNegligibleCurvature * material_.stretch * downhill.squaredNorm()))
     return false;
@@ -618,8 +939,12 @@ bool CurvedSolver::leaveSaddle(Positions& x, const std::vector<int>& free_index,
 
 double CurvedSolver::conjugateGradients(const Eigen::VectorXd& g, double mu, const Eigen::MatrixXd& free_motions,
                                         int max_iterations, Eigen::VectorXd& step, int* iterations,
-                                        Eigen::VectorXd* negative) const
+                                        Eigen::VectorXd* negative,
+                                        const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>* precondition) const
 {
+  const auto apply = [&](const Eigen::VectorXd& v) {
+    return precondition ? (*precondition)(v) : factorization_.solve(v);
+  };
   // (H + μI)·step = −g by preconditioned conjugate gradients, the kept factorisation as the
   // preconditioner, within the complement of the free rigid motions (H is singular on them).
   // Stops where the linear model leaves half the tolerance (a tenth of the largest force when
@@ -637,7 +962,7 @@ double CurvedSolver::conjugateGradients(const Eigen::VectorXd& g, double mu, con
   const double goal =
       negative ? 0.0 : std::max(1e-2 * start, start > tolerance ? 0.5 * tolerance : 0.1 * start);
   step = Eigen::VectorXd::Zero(g.size());
-  Eigen::VectorXd z = factorization_.solve(r);
+  Eigen::VectorXd z = apply(r);
   removeFreeMotions(free_motions, z);
   Eigen::VectorXd d = z;
   double rz = r.dot(z);
@@ -662,7 +987,7 @@ double CurvedSolver::conjugateGradients(const Eigen::VectorXd& g, double mu, con
     left = largestNodeForce(r);
     if (left <= goal)
       break;
-    z = factorization_.solve(r);
+    z = apply(r);
     removeFreeMotions(free_motions, z);
     const double rz_next = r.dot(z);
     d = z + (rz_next / rz) * d;

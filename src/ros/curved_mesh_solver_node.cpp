@@ -28,7 +28,9 @@ namespace
 core::CurvedSolveOptions solveOptions(const CurvedMeshSolverConfig& config)
 {
   core::CurvedSolveOptions options;
-  options.method = config.method == "rk4" ? core::CurvedMethod::Rk4 : core::CurvedMethod::Newton;
+  options.method = config.method == "rk4"          ? core::CurvedMethod::Rk4 :
+                   config.method == "quasi_newton" ? core::CurvedMethod::QuasiNewton :
+                                                     core::CurvedMethod::Newton;
   options.tolerance = config.tolerance;
   options.max_iterations = config.max_iterations;
   options.max_seconds = config.max_seconds;

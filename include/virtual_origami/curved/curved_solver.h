@@ -2,9 +2,12 @@
 // and the layer contact balance around the pinned nodes. Two methods: the seed's (damped
 // dynamics integrated by RK4, seed 002 §4.1), and a static Newton method (the exact Hessian,
 // shifted by Levenberg–Marquardt damping until it is positive definite, and a line search)
-// that reaches the same balance in tens of steps instead of thousands.
+// that reaches the same balance in tens of steps instead of thousands; and a quasi-Newton
+// method (L-BFGS on one constant matrix, factorised once per mesh and pin set) that balances
+// the same energy without a Hessian per solve.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -26,6 +29,14 @@ enum class CurvedMethod
 {
   Newton,  // static equilibrium directly
   Rk4,     // the seed: damped motion until it comes to rest
+  /// Static equilibrium by L-BFGS (Liu, Bouaziz & Kavan 2017) whose initial inverse Hessian is
+  /// one constant matrix: the terms' Hessian at the shape of the first solve with these pins
+  /// (the flat or rigidly folded sheet: stretch and shear as springs, bending as at rest),
+  /// factorised once and kept while the mesh and the pinned nodes stay, each node's block
+  /// turned with the node's frame (stiffness warping: stiff along the sheet, soft across it,
+  /// wherever the sheet has turned). A line search on the true energy (contact and
+  /// surroundings included); the same balance test as Newton.
+  QuasiNewton,
 };
 
 struct CurvedSolveOptions
@@ -61,6 +72,25 @@ struct CurvedSolveOptions
   /// pull or two. Costs a factorisation per solve, which on meshes of thousands of vertices
   /// about doubles a drag's solves; the factorisation then serves the next solve.
   bool check_stability = false;
+  /// QuasiNewton: correction pairs kept by L-BFGS, and its iterations before the solve hands
+  /// over to Newton (the snaps of a drag, where the constant matrix no longer resembles the
+  /// Hessian); without hand_over the solve stops there unconverged.
+  int lbfgs_memory = 8;
+  int lbfgs_iterations = 200;
+  bool hand_over = true;
+  /// QuasiNewton: turn the constant matrix with each node's frame (stiffness warping); false:
+  /// the matrix as made, stiff only along the sheet's first shape.
+  bool warp = true;
+  /// QuasiNewton: the constant matrix carries a membrane prestress of this strain (the
+  /// out-of-plane stiffness of a sheet under tension, which the rest state lacks), as a share
+  /// of each edge's stretch weight on its graph Laplacian. 1e-4, the strain of a curl: on the
+  /// 10,000-vertex drag of curved_speed_bench 1.7 solves per CPU second, against 0.95 at 1e-5
+  /// and 0.75 without (docs/CURVED.md).
+  double lbfgs_prestress = 1e-4;
+  /// QuasiNewton: instead of L-BFGS, Newton–Krylov: conjugate gradients on the exact Hessian
+  /// (assembled each iteration), the turned constant matrix as their preconditioner, at most
+  /// this many iterations per step; 0: L-BFGS.
+  int constant_krylov_iterations = 0;
   /// RK4: the step (0: half the stability limit of the stiffest mode) and the
   /// mass-proportional damping rate (0: twice the first bending mode's frequency).
   double time_step = 0.0;
@@ -72,9 +102,12 @@ struct CurvedReport
   bool converged = false;
   bool diverged = false;   // non-finite or exploding: the positions were rolled back
   bool refused = false;    // a pin off the sheet or not finite, or positions of another mesh: x untouched
-  int iterations = 0;      // Newton iterations or RK4 steps
+  int iterations = 0;      // Newton or quasi-Newton iterations, or RK4 steps
   int factorizations = 0;  // Newton: sparse Cholesky factorisations (the rest reused one)
   int krylov_steps = 0;    // Newton: exact Hessian steps by preconditioned conjugate gradients
+  int lbfgs_steps = 0;     // QuasiNewton: its own iterations (L-BFGS or Newton–Krylov); after a hand-over
+                           // Newton's are in `iterations` too
+  bool handed_over = false;  // QuasiNewton: L-BFGS did not balance within its iterations; Newton finished
   double max_force = 0.0;  // largest force on a free node, / (stretch × spacing)
   CurvedEnergy energy;
   double contact_energy = 0.0;
@@ -136,15 +169,28 @@ private:
   /// curvature it stopped at.
   double conjugateGradients(const Eigen::VectorXd& g, double mu, const Eigen::MatrixXd& free_motions,
                             int max_iterations, Eigen::VectorXd& step, int* iterations,
-                            Eigen::VectorXd* negative = nullptr) const;
+                            Eigen::VectorXd* negative = nullptr,
+                            const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>* precondition = nullptr) const;
   /// At a balance `x`: a direction of negative curvature of the Hessian there (conjugate
   /// gradients from a random start, the kept factorisation as preconditioner), and a move
   /// along it that lowers the energy. False, `x` untouched, when none is found.
-  bool leaveSaddle(Positions& x, const std::vector<int>& free_index, int free_count);
+  /// With `with_constant`, the turned constant matrix of QuasiNewton preconditions the search.
+  bool leaveSaddle(Positions& x, const std::vector<int>& free_index, int free_count, bool with_constant = false);
+  /// Each node's turn (3 × 3) from its frame where the constant matrix was made to its frame at
+  /// x; empty without warp.
+  std::vector<Eigen::Matrix3d> constantTurns(const Positions& x) const;
+  /// The turned constant matrix's inverse applied to v (one back-substitution).
+  Eigen::VectorXd constantInverse(const Eigen::VectorXd& v, const std::vector<Eigen::Matrix3d>& turns,
+                                  const std::vector<int>& free_index) const;
   /// Whether the Hessian at balance `x`, shifted by the curvature counted as rounding, fails
   /// to factorise (negative curvature: a saddle to leave). On success the factorisation is
   /// kept for the next solve.
   bool unstableAt(const Positions& x, const std::vector<int>& free_index, int free_count);
+  /// L-BFGS on the constant matrix (see CurvedMethod::QuasiNewton), then Newton if it stalls.
+  CurvedReport quasiNewton(Positions& x, const std::vector<int>& free_index, int free_count);
+  /// Factorises the constant matrix for these free nodes at shape `x` unless it is kept; false
+  /// when no shift makes it positive definite.
+  bool prepareConstantFactor(const Positions& x, const std::vector<int>& free_index, int free_count);
   CurvedReport rk4(Positions& x, const std::vector<int>& free_index, int free_count);
   /// Energy, gradient (into g) and Hessian (into hessian_) at x.
   double assembleHessian(const Positions& x, const std::vector<int>& free_index, int free_count, Eigen::VectorXd& g,
@@ -168,6 +214,14 @@ private:
   bool stale_steps_help_ = true;      // its own step was a full one when last tried
   bool negative_curvature_ = false;   // the last Newton solve met it (see leave_saddles)
   unsigned saddle_seed_ = 1;          // the random starts of leaveSaddle, reproducible
+  // QuasiNewton's constant matrix, factorised, and the free nodes it is for.
+  SpdFactorization constant_factor_;
+  std::vector<int> constant_free_;
+  std::vector<Eigen::Matrix3d> constant_frames_;  // each node's frame where the matrix was made
+  std::vector<int> frame_partner_;                // the neighbour whose edge sets a node's frame
+  /// Each node's frame at x: its normal (the area-weighted one of its triangles) and the
+  /// direction to frame_partner_ in its tangent plane, as the columns (tangent, bitangent, normal).
+  std::vector<Eigen::Matrix3d> nodeFrames(const Positions& x) const;
   std::vector<int> pattern_free_;  // the free nodes hessian_'s pattern is for
   std::vector<std::array<int, 4>> pattern_groups_;
   /// The last three balanced shapes and their pins, oldest first.
