@@ -845,7 +845,7 @@ def chart_fold(tables):
     save(fig, "fold_scaling.png")
 
     lines = ["| vertices | driver | frame p50 | frame p95 | frame strain | frames balanced | commit | commit strain | "
-             "rigid | floor | 33 ms slide: p95 | slide strain |", "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "rigid | floor | slide (30 ms frames): p95 | slide strain |", "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in data:
         lines.append(f"| {int(num(r['vertices']))} | {r['driver']} | {fmt(num(r['frame_p50_ms']))} ms | "
                      f"{fmt(num(r['frame_p95_ms']))} ms | {fmt(num(r['frame_max_strain']))} | {r['frames_balanced']}/10 | "
