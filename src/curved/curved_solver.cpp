@@ -154,6 +154,44 @@ double CurvedSolver::energy(const Positions& x, const Assembly& out, CurvedEnerg
   return e.total() + c;
 }
 
+double CurvedSolver::lineSearch(const Positions& x, double e, const Eigen::VectorXd& g, Eigen::VectorXd& step,
+                                int tries, double max_move, double worst_gap, const std::vector<int>& free_index,
+                                Positions& trial, Eigen::VectorXd& trial_gradient) const
+{
+  const int free_count = static_cast<int>(g.size() / 3);
+  double longest = 0.0;
+  for (int i = 0; i < free_count; ++i)
+    longest = std::max(longest, step.segment<3>(3 * i).norm());
+  if (!std::isfinite(longest))
+    return 0.0;
+  if (longest > max_move)
+    step *= max_move / longest;
+  const double slope = g.dot(step);
+  if (!(slope < 0))
+    return 0.0;
+  double alpha = 1.0;
+  for (int k = 0; k < tries; ++k, alpha *= 0.5)
+  {
+    moveFree(trial, x, step, alpha, free_index);
+    if (contact_.worstGap(trial) < std::min(0.0, worst_gap) - 0.5 * contact_.thickness())
+      continue;
+    const double moved = energy(trial, {});
+    if (moved <= e + 1e-4 * alpha * slope)
+      return alpha;
+    // Near balance the energy's change falls below its rounding (a sum over every term)
+    // while the forces are still above the tolerance: there the slope at the trial decides
+    // (Hager and Zhang's approximate Wolfe condition: on a quadratic, Armijo's).
+    if (std::abs(moved - e) <= kEnergyRounding * std::abs(e))
+    {
+      trial_gradient.setZero();
+      energy(trial, { &free_index, &trial_gradient, nullptr });
+      if (trial_gradient.dot(step) <= -(1 - 2e-4) * slope)
+        return alpha;
+    }
+  }
+  return 0.0;
+}
+
 double CurvedSolver::maxForce(const Positions& x_in, const std::vector<CurvedPin>& pins)
 {
   Positions x = x_in;
@@ -437,46 +475,15 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
     last_force = report.max_force;
     const double worst_gap = contact_.worstGap(x);
     const Eigen::MatrixXd free_motions = freeMotions(x, free_index, free_count, inPlaneOnly());
-    // Armijo's line search along `step`, at most `tries` halvings, no watched pair crossing
-    // over (by more than half the thickness, which the penalty then pushes back: a penalty
-    // alone can be outweighed by a large step). Returns the step length taken, 0 when none
-    // lowers the energy.
+    // Armijo's line search along `step` (lineSearch), at most `tries` halvings; the point it
+    // reaches becomes x.
     const auto search = [&](Eigen::VectorXd& step, int tries) {
       // No force resists a free rigid motion: its part of the step is rounding over damping.
       removeFreeMotions(free_motions, step);
-      double longest = 0.0;
-      for (int i = 0; i < free_count; ++i)
-        longest = std::max(longest, step.segment<3>(3 * i).norm());
-      if (!std::isfinite(longest))
-        return 0.0;
-      if (longest > max_move)
-        step *= max_move / longest;
-      const double slope = g.dot(step);
-      if (!(slope < 0))
-        return 0.0;
-      double alpha = 1.0;
-      for (int k = 0; k < tries; ++k, alpha *= 0.5)
-      {
-        moveFree(trial, x, step, alpha, free_index);
-        if (contact_.worstGap(trial) < std::min(0.0, worst_gap) - 0.5 * contact_.thickness())
-          continue;
-        const double moved = energy(trial, {});
-        bool accept = moved <= e + 1e-4 * alpha * slope;
-        // Near balance the energy's change can fall below its rounding while the force is
-        // still above the tolerance: there the slope at the trial decides (as in quasiNewton).
-        if (!accept && std::abs(moved - e) <= kEnergyRounding * std::abs(e))
-        {
-          g_trial.setZero();
-          energy(trial, { &free_index, &g_trial, nullptr });
-          accept = g_trial.dot(step) <= -(1 - 2e-4) * slope;
-        }
-        if (accept)
-        {
-          std::swap(x, trial);
-          return alpha;
-        }
-      }
-      return 0.0;
+      const double alpha = lineSearch(x, e, g, step, tries, max_move, worst_gap, free_index, trial, g_trial);
+      if (alpha > 0)
+        std::swap(x, trial);
+      return alpha;
     };
     if (!refresh && !krylov)
     {
@@ -732,40 +739,10 @@ CurvedReport CurvedSolver::quasiNewton(Positions& x, const std::vector<int>& fre
       return Eigen::VectorXd(-r);
     };
     const double worst_gap = contact_.worstGap(x);
-    // Armijo's line search on the true energy, as Newton's: at most a Newton step's move, no
-    // watched pair crossing over. The step length taken, 0 when none lowers the energy.
+    // Armijo's line search on the true energy, as Newton's (lineSearch); the point reached is
+    // left in `trial`.
     const auto search = [&](Eigen::VectorXd& step) {
-      double longest = 0.0;
-      for (int i = 0; i < free_count; ++i)
-        longest = std::max(longest, step.segment<3>(3 * i).norm());
-      if (!std::isfinite(longest))
-        return 0.0;
-      if (longest > max_move)
-        step *= max_move / longest;
-      const double slope = g.dot(step);
-      if (!(slope < 0))
-        return 0.0;
-      double alpha = 1.0;
-      for (int k = 0; k < 30; ++k, alpha *= 0.5)
-      {
-        moveFree(trial, x, step, alpha, free_index);
-        if (contact_.worstGap(trial) < std::min(0.0, worst_gap) - 0.5 * contact_.thickness())
-          continue;
-        const double moved = energy(trial, {});
-        if (moved <= e + 1e-4 * alpha * slope)
-          return alpha;
-        // Near balance the energy's change falls below its rounding (a sum over every term)
-        // while the forces are still above the tolerance: there the slope at the trial
-        // decides (Hager and Zhang's approximate Wolfe condition: on a quadratic, Armijo's).
-        if (std::abs(moved - e) <= kEnergyRounding * std::abs(e))
-        {
-          g_next.setZero();
-          energy(trial, { &free_index, &g_next, nullptr });
-          if (g_next.dot(step) <= -(1 - 2e-4) * slope)
-            return alpha;
-        }
-      }
-      return 0.0;
+      return lineSearch(x, e, g, step, 30, max_move, worst_gap, free_index, trial, g_next);
     };
     double alpha = 0.0;
     if (options_.constant_krylov_iterations > 0)

@@ -8,6 +8,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "corner_lift.h"
 #include "virtual_origami/curved/bubble_mesh.h"
 #include "virtual_origami/curved/curved_solver.h"
 #include "virtual_origami/curved/elastica.h"
@@ -16,31 +17,10 @@
 #include "virtual_origami/curved/strip_scenes.h"
 
 using namespace virtual_origami::core;
+using namespace virtual_origami::core::test;
 
 namespace
 {
-/// A square sheet, three corners held flat, the fourth lifted by `lift`.
-struct CornerLift
-{
-  Paper paper = Paper::square(1.0);
-  CurvedMesh mesh;
-  std::vector<CurvedPin> pins;
-};
-
-CornerLift cornerLift(double spacing, double lift)
-{
-  CornerLift scene;
-  BubbleMeshOptions options;
-  options.spacing = spacing;
-  Expected<CurvedMesh> mesh = bubbleMesh(scene.paper, options);
-  EXPECT_TRUE(mesh.ok()) << mesh.message();
-  scene.mesh = std::move(*mesh);
-  for (int v = 1; v < 4; ++v)
-    scene.pins.push_back({ scene.mesh.vertex_nodes[v], scene.paper.vertices[v].folded });
-  scene.pins.push_back({ scene.mesh.vertex_nodes[0], scene.paper.vertices[0].folded + lift * Vec3::UnitZ() });
-  return scene;
-}
-
 CurvedSolveOptions quasiNewtonAlone()
 {
   CurvedSolveOptions options;

@@ -8,6 +8,7 @@
 
 #include "test_models.h"
 #include "virtual_origami/core/geometry.h"
+#include "corner_lift.h"
 #include "virtual_origami/curved/bubble_mesh.h"
 #include "virtual_origami/curved/model_choice.h"
 #include "virtual_origami/curved/seed_scenes.h"
@@ -46,27 +47,6 @@ void expectEveryStepBalanced(const SeedSceneRun& run)
   EXPECT_TRUE(run.positions.allFinite());
 }
 
-/// A small sheet for comparing methods: three corners held flat, the fourth lifted.
-struct CornerLift
-{
-  Paper paper = Paper::square(1.0);
-  CurvedMesh mesh;
-  std::vector<CurvedPin> pins;
-};
-
-CornerLift cornerLift(double spacing, double lift)
-{
-  CornerLift scene;
-  BubbleMeshOptions options;
-  options.spacing = spacing;
-  Expected<CurvedMesh> mesh = bubbleMesh(scene.paper, options);
-  EXPECT_TRUE(mesh.ok()) << mesh.message();
-  scene.mesh = std::move(*mesh);
-  for (int v = 1; v < 4; ++v)
-    scene.pins.push_back({ scene.mesh.vertex_nodes[v], scene.paper.vertices[v].folded });
-  scene.pins.push_back({ scene.mesh.vertex_nodes[0], scene.paper.vertices[0].folded + lift * Vec3::UnitZ() });
-  return scene;
-}
 
 /// A sheet in a random place: rotated about a random axis and moved.
 struct RandomPlacement

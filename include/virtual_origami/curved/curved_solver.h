@@ -195,6 +195,14 @@ private:
   /// Energy, gradient (into g) and Hessian (into hessian_) at x.
   double assembleHessian(const Positions& x, const std::vector<int>& free_index, int free_count, Eigen::VectorXd& g,
                          CurvedEnergy* parts = nullptr, double* contact = nullptr);
+  /// Armijo's line search from x (energy e, gradient g) along `step`, first cut to move no node
+  /// farther than max_move; at most `tries` halvings, none letting a watched pair cross over
+  /// by more than half the thickness (worst_gap: the closest they are at x); where the
+  /// energy's change is below its rounding, the slope at the trial decides. Leaves the point
+  /// reached in `trial` and returns the step length taken, 0 when none lowers the energy.
+  double lineSearch(const Positions& x, double e, const Eigen::VectorXd& g, Eigen::VectorXd& step, int tries,
+                    double max_move, double worst_gap, const std::vector<int>& free_index, Positions& trial,
+                    Eigen::VectorXd& trial_gradient) const;
   double energy(const Positions& x, const Assembly& out, CurvedEnergy* parts = nullptr,
                 double* contact = nullptr) const;
 
