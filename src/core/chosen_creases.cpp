@@ -84,6 +84,32 @@ double markAngle(CreaseMark mark, double fold)
   return mark == CreaseMark::Valley ? fold : mark == CreaseMark::Mountain ? -fold : 0.0;
 }
 
+Vec2 creasePatternPoint(const Paper& paper, int face)
+{
+  Vec2 centroid = Vec2::Zero();
+  for (int v : paper.faces[face].vertices)
+    centroid += paper.vertices[v].crease_pattern;
+  return centroid / static_cast<double>(paper.faces[face].vertices.size());
+}
+
+int faceContaining(const Paper& paper, const Vec2& point)
+{
+  for (size_t f = 0; f < paper.faces.size(); ++f)
+  {
+    const std::vector<int>& vs = paper.faces[f].vertices;
+    bool inside = true;
+    for (size_t i = 0; i < vs.size() && inside; ++i)
+    {
+      const Vec2 a = paper.vertices[vs[i]].crease_pattern, b = paper.vertices[vs[(i + 1) % vs.size()]].crease_pattern;
+      const Vec2 ab = b - a, ap = point - a;
+      inside = ab.x() * ap.y() - ab.y() * ap.x() >= -1e-12 * paper.scale();  // counter-clockwise faces
+    }
+    if (inside)
+      return static_cast<int>(f);
+  }
+  return -1;
+}
+
 std::optional<FlatFoldRequest> chosenCreasesFold(const Paper& paper, const CreaseMarks& marks, int fixed_face,
                                                  double fold)
 {
@@ -93,12 +119,7 @@ std::optional<FlatFoldRequest> chosenCreasesFold(const Paper& paper, const Creas
   for (const MarkedCrease& m : marks.marks())
     request.creases.push_back({ m.start, m.end, markAngle(m.mark, fold) });
   if (fixed_face >= 0 && static_cast<size_t>(fixed_face) < paper.faces.size())
-  {
-    Vec2 centroid = Vec2::Zero();
-    for (int v : paper.faces[fixed_face].vertices)
-      centroid += paper.vertices[v].crease_pattern;
-    request.fixed_point = centroid / static_cast<double>(paper.faces[fixed_face].vertices.size());
-  }
+    request.fixed_point = creasePatternPoint(paper, fixed_face);
   else
     request.fixed_point = Vec2::Constant(-1.0 * paper.scale());  // off the sheet: flatFold says so
   return request;

@@ -59,6 +59,8 @@ TEST(ChosenCreases, AValleyMarkFoldsTheHalfOverTheFaceThatStays)
   for (const Vertex& v : folded.vertices)  // the right half lies over the left, the left stayed
     EXPECT_LE(v.folded.x(), 0.5 + 1e-12);
   EXPECT_NEAR(folded.edges[crease].fold_angle, M_PI, 1e-12);
+  EXPECT_EQ(faceContaining(paper, creasePatternPoint(paper, left)), left);
+  EXPECT_EQ(faceContaining(paper, Vec2(1.5, 0.5)), -1);
   // No face picked: refused as off the sheet, the paper unchanged.
   Paper untouched = paper;
   EXPECT_FALSE(flatFold(untouched, *chosenCreasesFold(paper, marks, -1)).ok());

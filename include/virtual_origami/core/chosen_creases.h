@@ -50,6 +50,13 @@ private:
 /// 0 for unfold.
 double markAngle(CreaseMark mark, double fold = M_PI);
 
+/// A crease-pattern point inside `face` (its crease-pattern centroid): where a face is named by
+/// a point, as the flat fold's face that stays is.
+Vec2 creasePatternPoint(const Paper& paper, int face);
+
+/// The face whose crease-pattern polygon holds `point`, or -1.
+int faceContaining(const Paper& paper, const Vec2& point);
+
 /// The flat fold the marks ask for, the face under `fixed_face`'s crease-pattern centroid
 /// staying. Empty when nothing is marked.
 std::optional<FlatFoldRequest> chosenCreasesFold(const Paper& paper, const CreaseMarks& marks, int fixed_face,
