@@ -89,16 +89,6 @@ InteractionNode::InteractionNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   };
   crease_entry_ = entry("Crease mode", Action::CreaseMode);
   rotate_entry_ = entry("Rotate mode", Action::RotateMode);
-  fold_entry_ = entry("Fold mode: mark creases", Action::FoldMode);
-  drag_entry_ = entry("Drag mode: drag a vertex", Action::DragMode);
-  const auto marked = menu_.insert("Fold on the marked creases");
-  menu_.insert(marked, "Fold flat", [this](const Feedback::ConstPtr& f) { received(f, Action::FoldFlat); });
-  menu_.insert(marked, "Fold to a right angle",
-               [this](const Feedback::ConstPtr& f) { received(f, Action::FoldRightAngle); });
-  menu_.insert(marked, "Keep the face here", [this](const Feedback::ConstPtr& f) { received(f, Action::KeepFace); });
-  menu_.insert(marked, "Clear the marks", [this](const Feedback::ConstPtr& f) { received(f, Action::ClearMarks); });
-  entry("Next layer down", Action::NextLayer);
-  layers_entry_ = entry("Turn the picked layers only", Action::PickedLayersOnly);
   entry("Squash", Action::Squash);
   entry("Undo", Action::Undo);
   entry("Redo", Action::Redo);
@@ -111,6 +101,17 @@ InteractionNode::InteractionNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
       received(f, Action::FoldByAssignment, false, percent / 100.0);
     });
   strain_entry_ = entry("Colour by strain", Action::ColourByStrain);
+  // After the entries above, which keep their places in the menu.
+  fold_entry_ = entry("Fold mode: mark creases", Action::FoldMode);
+  drag_entry_ = entry("Drag mode: drag a vertex", Action::DragMode);
+  const auto marked = menu_.insert("Fold on the marked creases");
+  menu_.insert(marked, "Fold flat", [this](const Feedback::ConstPtr& f) { received(f, Action::FoldFlat); });
+  menu_.insert(marked, "Fold to a right angle",
+               [this](const Feedback::ConstPtr& f) { received(f, Action::FoldRightAngle); });
+  menu_.insert(marked, "Keep the face here", [this](const Feedback::ConstPtr& f) { received(f, Action::KeepFace); });
+  menu_.insert(marked, "Clear the marks", [this](const Feedback::ConstPtr& f) { received(f, Action::ClearMarks); });
+  entry("Next layer down", Action::NextLayer);
+  layers_entry_ = entry("Turn the picked layers only", Action::PickedLayersOnly);
 
   markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("interaction_markers", 10);
   status_pub_ = nh_.advertise<InteractionStatus>("interaction_status", 10);

@@ -293,8 +293,8 @@ std::string InteractionNode::releaseVertex()
     showPicks();
     return "Picked a vertex (" + layerOf(pick_.index, pick_.candidates.size()) + "); drag it.";
   }
-  if (!vertex_previewed_)
-    return vertex_refusal_.empty() ? "No shape follows the vertex there." : vertex_refusal_;
+  if (!vertex_previewed_ || !vertex_refusal_.empty())  // where the pointer ended no shape follows
+    return vertex_refusal_.empty() ? "The paper cannot follow the vertex there." : vertex_refusal_;
   DragVertex srv;
   srv.request.vertex = dragged_vertex_;
   srv.request.position = toPoint(*vertex_previewed_);
