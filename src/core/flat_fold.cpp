@@ -126,6 +126,8 @@ Expected<FlatFoldResult> flatFold(Paper& paper, const FlatFoldRequest& request)
   Paper next = paper;
   for (size_t v = 0; v < next.vertices.size(); ++v)
     next.vertices[v].folded = (*placed)[v];
+  for (int v : paper.faces[root].vertices)  // the face that stays, exactly (its pose is a fit)
+    next.vertices[v].folded = paper.vertices[v].folded;
   std::vector<char> moved(paper.faces.size(), 0);
   for (size_t f = 0; f < paper.faces.size(); ++f)
     for (int v : paper.faces[f].vertices)

@@ -34,7 +34,8 @@ struct FlatFoldResult
   std::vector<int> moved_faces;    // faces whose folded place changed
 };
 
-/// Sets the named creases' angles and re-places every face rigidly from the fixed face. Fails,
+/// Sets the named creases' angles and re-places every face rigidly from the fixed face (whose
+/// vertices keep their positions bit for bit). Fails,
 /// leaving `paper` untouched, when no crease is named, a segment names no crease, a value is
 /// not finite, an angle is outside [−π, π], the fixed point is off the sheet, or the angles do
 /// not close (a vertex would tear: the request is not a fold of this paper; the message then
