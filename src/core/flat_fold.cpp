@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "virtual_origami/core/face_orders.h"
@@ -33,14 +34,28 @@ bool insideFace(const Paper& paper, int face, const Vec2& p)
 }
 }  // namespace
 
-Expected<FlatFoldResult> flatFold(Paper& paper, const FlatFoldRequest& request)
+namespace
 {
-  using Failure = Expected<FlatFoldResult>;
+/// What a request asks of this paper: every edge's angle after the fold, the face that stays.
+struct FoldPlan
+{
+  std::vector<double> angles;
+  int root = -1;
+  std::vector<int> changed_edges;
+};
+
+Expected<FoldPlan> planFold(const Paper& paper, const FlatFoldRequest& request)
+{
+  using Failure = Expected<FoldPlan>;
   const double tolerance = 1e-9 * paper.scale();
-  std::vector<double> angles(paper.edges.size(), 0.0);
+  if (request.creases.empty())
+    return Failure::failure("no creases are chosen: mark at least one crease to fold");
+  if (!request.fixed_point.allFinite())
+    return Failure::failure("the fixed point is not a finite point");
+  FoldPlan plan;
+  plan.angles.resize(paper.edges.size(), 0.0);
   for (size_t e = 0; e < paper.edges.size(); ++e)
-    angles[e] = paper.edges[e].fold_angle;
-  FlatFoldResult result;
+    plan.angles[e] = paper.edges[e].fold_angle;
   for (size_t k = 0; k < request.creases.size(); ++k)
   {
     const CreaseLineAngle& line = request.creases[k];
@@ -60,27 +75,59 @@ Expected<FlatFoldResult> flatFold(Paper& paper, const FlatFoldRequest& request)
           distanceToSegment(paper.vertices[edge.vertices[1]].crease_pattern, line.start, line.end) > tolerance)
         continue;
       ++found;
-      if (angles[e] != line.angle)
-        result.changed_edges.push_back(static_cast<int>(e));
-      angles[e] = line.angle;
+      if (plan.angles[e] != line.angle &&
+          std::find(plan.changed_edges.begin(), plan.changed_edges.end(), static_cast<int>(e)) == plan.changed_edges.end())
+        plan.changed_edges.push_back(static_cast<int>(e));
+      plan.angles[e] = line.angle;
     }
     if (found == 0)
       return Failure::failure(which + " runs along no crease (crease it first)");
   }
-  int root = -1;
-  for (size_t f = 0; f < paper.faces.size() && root < 0; ++f)
+  for (size_t f = 0; f < paper.faces.size() && plan.root < 0; ++f)
     if (insideFace(paper, static_cast<int>(f), request.fixed_point))
-      root = static_cast<int>(f);
-  if (root < 0)
+      plan.root = static_cast<int>(f);
+  if (plan.root < 0)
     return Failure::failure("the fixed point lies off the sheet");
+  return plan;
+}
+
+/// The turn of the face across `edge` from `face` in crease-pattern coordinates (as
+/// kinematics.cpp's foldedPositionsFromAngles turns it).
+Eigen::Isometry3d hinge(const Paper& paper, int edge, int face, double fold_angle)
+{
+  const Edge& e = paper.edges[edge];
+  const Vec2& a2 = paper.vertices[e.vertices[0]].crease_pattern;
+  const Vec2& b2 = paper.vertices[e.vertices[1]].crease_pattern;
+  const Vec3 a(a2.x(), a2.y(), 0.0);
+  const Vec3 dir = Vec3(b2.x() - a2.x(), b2.y() - a2.y(), 0.0).normalized();
+  const double turn = e.faces[0] == face ? -fold_angle : fold_angle;
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.translate(a).rotate(Eigen::AngleAxisd(turn, dir)).translate(-a);
+  return t;
+}
+}  // namespace
+
+Expected<FlatFoldResult> flatFold(Paper& paper, const FlatFoldRequest& request)
+{
+  using Failure = Expected<FlatFoldResult>;
+  const double tolerance = 1e-9 * paper.scale();
+  const Expected<FoldPlan> plan = planFold(paper, request);
+  if (!plan)
+    return Failure::failure(plan.message());
+  const std::vector<double>& angles = plan->angles;
+  const int root = plan->root;
+  FlatFoldResult result;
+  result.changed_edges = plan->changed_edges;
   const Expected<std::vector<Vec3>> placed =
       foldedPositionsFromAngles(paper, angles, root, facePose(paper, root), tolerance);
   if (!placed)
-    return Failure::failure("the fold does not close: " + placed.message());
+    return Failure::failure("the chosen creases do not fold flat: the fold does not close (" + placed.message() + ")");
 
   Paper next = paper;
   for (size_t v = 0; v < next.vertices.size(); ++v)
     next.vertices[v].folded = (*placed)[v];
+  for (int v : paper.faces[root].vertices)  // the face that stays, exactly (its pose is a fit)
+    next.vertices[v].folded = paper.vertices[v].folded;
   std::vector<char> moved(paper.faces.size(), 0);
   for (size_t f = 0; f < paper.faces.size(); ++f)
     for (int v : paper.faces[f].vertices)
@@ -96,6 +143,82 @@ Expected<FlatFoldResult> flatFold(Paper& paper, const FlatFoldRequest& request)
   pruneFaceOrders(next, 1e-7 * paper.scale());
   paper = std::move(next);
   return result;
+}
+
+Expected<Paper> flatFoldFrame(const Paper& paper, const FlatFoldRequest& request, double fraction)
+{
+  using Failure = Expected<Paper>;
+  if (!(fraction >= 0.0 && fraction <= 1.0))  // NaN fails both
+  {
+    std::ostringstream given;
+    given << fraction;
+    return Failure::failure("the fraction of the fold to show must be a number from 0 to 1, not " + given.str());
+  }
+  // The whole fold first: a frame is shown only of a fold that can be made.
+  Paper folded = paper;
+  const Expected<FlatFoldResult> result = flatFold(folded, request);
+  if (!result)
+    return Failure::failure(result.message());
+  if (fraction == 0.0)
+    return paper;
+  if (fraction == 1.0)
+    return folded;
+  const Expected<FoldPlan> plan = planFold(paper, request);
+  if (!plan)
+    return Failure::failure(plan.message());
+
+  // Each face's pose by the walk from the fixed face, now (0) and at `fraction` (t), relative
+  // to the fixed face's pose; depth: creases crossed from the fixed face.
+  const size_t faces = paper.faces.size(), edges = paper.edges.size();
+  std::vector<double> now(edges), then(edges);
+  for (size_t e = 0; e < edges; ++e)
+  {
+    now[e] = paper.edges[e].fold_angle;
+    then[e] = now[e] + fraction * (plan->angles[e] - now[e]);
+  }
+  const int root = plan->root;
+  const Eigen::Isometry3d root_pose = facePose(paper, root);
+  std::vector<Eigen::Isometry3d> pose0(faces, root_pose), pose_t(faces, root_pose);
+  std::vector<int> depth(faces, -1);
+  depth[root] = 0;
+  walkFaces(paper, root, [&](int f, int e, int g) {
+    pose0[g] = pose0[f] * hinge(paper, e, f, now[e]);
+    pose_t[g] = pose_t[f] * hinge(paper, e, f, then[e]);
+    depth[g] = depth[f] + 1;
+  });
+  // The motion of each face from its current place (the fixed face: none).
+  std::vector<Eigen::Isometry3d> motion(faces, Eigen::Isometry3d::Identity());
+  for (size_t f = 0; f < faces; ++f)
+    if (static_cast<int>(f) != root)
+      motion[f] = pose_t[f] * pose0[f].inverse();
+
+  Paper frame = std::move(folded);
+  std::vector<int> nearest(paper.vertices.size(), std::numeric_limits<int>::max());
+  for (size_t f = 0; f < faces; ++f)
+    for (int v : paper.faces[f].vertices)
+      nearest[v] = std::min(nearest[v], depth[f]);
+  std::vector<Vec3> sum(paper.vertices.size(), Vec3::Zero());
+  std::vector<int> count(paper.vertices.size(), 0);
+  for (size_t f = 0; f < faces; ++f)
+    for (int v : paper.faces[f].vertices)
+      if (depth[f] == nearest[v])
+      {
+        sum[v] += static_cast<int>(f) == root ? paper.vertices[v].folded : Vec3(motion[f] * paper.vertices[v].folded);
+        ++count[v];
+      }
+  for (size_t v = 0; v < paper.vertices.size(); ++v)
+    frame.vertices[v].folded = count[v] == 1 ? sum[v] : sum[v] / static_cast<double>(std::max(1, count[v]));
+  for (int v : paper.faces[root].vertices)
+    frame.vertices[v].folded = paper.vertices[v].folded;  // exactly where it was
+  for (size_t e = 0; e < edges; ++e)
+    frame.edges[e].fold_angle = then[e];
+  std::vector<char> moved(faces, 0);
+  for (int f : result->moved_faces)
+    moved[f] = 1;
+  frame.face_orders = paper.face_orders;
+  clearFaceOrdersAcross(frame, moved);
+  pruneFaceOrders(frame, 1e-7 * paper.scale());
+  return frame;
 }
 
 }  // namespace virtual_origami::core

@@ -81,8 +81,8 @@ FoldStep parseStep(const json& j, const std::string& where)
       request.creases.push_back(line);
     }
     request.fixed_point = point(f.value("fixed", json()), where + ".flat_fold.fixed").head<2>();
-    step.flat_fold = request;
-    step.operation.kind = Operation::Kind::Pull;
+    step.operation.kind = Operation::Kind::FlatFold;
+    step.operation.flat_fold = request;
   }
   else if (j.contains("squash"))
     step.operation.kind = Operation::Kind::Squash;
@@ -125,27 +125,6 @@ Expected<FoldSequence> parseFoldSequence(const std::string& text)
   }
 }
 
-namespace
-{
-/// The fold, committed as the pull of every vertex it moves to where the fold puts it: the
-/// faces there are already rigid, so the solver has nothing to move and the state is the fold's.
-Status applyFlatFold(Session& session, const FlatFoldRequest& request)
-{
-  Paper folded = session.paper();
-  const Expected<FlatFoldResult> result = flatFold(folded, request);
-  if (!result)
-    return failure(result.message());
-  std::vector<PullTarget> targets;
-  for (size_t v = 0; v < folded.vertices.size(); ++v)  // those that stay are off by rounding at most
-    if ((folded.vertices[v].folded - session.paper().vertices[v].folded).norm() > 1e-12 * folded.scale())
-      targets.push_back({ static_cast<int>(v), folded.vertices[v].folded });
-  if (targets.empty())
-    return failure("the flat fold moves nothing");
-  const Expected<PullResult> pulled = session.pull(targets);
-  return pulled ? success() : failure(pulled.message());
-}
-}  // namespace
-
 Expected<std::vector<Paper>> foldSequence(const FoldSequence& sequence, Session& session,
                                           std::shared_ptr<ShapeSolver> solver)
 {
@@ -162,7 +141,7 @@ Expected<std::vector<Paper>> foldSequence(const FoldSequence& sequence, Session&
     Operation op = step.operation;
     for (int k = 0; k < step.repeat; ++k)
     {
-      const Status applied = step.flat_fold ? applyFlatFold(session, *step.flat_fold) : session.apply(op);
+      const Status applied = session.apply(op);
       if (!applied)
         return Expected<std::vector<Paper>>::failure("step " + std::to_string(i + 1) +
                                                      (step.note.empty() ? "" : " (" + step.note + ")") + ": " +

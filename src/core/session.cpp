@@ -29,6 +29,10 @@ const char* kindName(Operation::Kind kind)
       return "pull";
     case Operation::Kind::AssignmentFold:
       return "fold_by_assignment";
+    case Operation::Kind::FlatFold:
+      return "flat_fold";
+    case Operation::Kind::DragVertex:
+      return "drag_vertex";
   }
   return "unknown";
 }
@@ -152,6 +156,86 @@ Expected<Computed<AssignmentFoldResult>> computeFoldByAssignment(Workspace works
   Change change = makeChange(workspace.revision, Operation::Kind::AssignmentFold, std::move(paper));
   change.operation.fraction = fraction;
   return Computed<AssignmentFoldResult>{ std::move(*result), std::move(change) };
+}
+
+namespace
+{
+/// The first held vertex `next` puts elsewhere than `before`, or -1.
+int movedHeldVertex(const Paper& before, const Paper& next, const std::vector<int>& held)
+{
+  for (int v : held)
+    if (v >= 0 && v < static_cast<int>(before.vertices.size()) &&
+        (next.vertices[v].folded - before.vertices[v].folded).norm() > 1e-9 * before.scale())
+      return v;
+  return -1;
+}
+
+Expected<Computed<FlatFoldResult>> flatFoldChange(Workspace& workspace, const FlatFoldRequest& request, Paper& folded)
+{
+  using Answer = Expected<Computed<FlatFoldResult>>;
+  folded = workspace.paper;
+  Expected<FlatFoldResult> result = core::flatFold(folded, request);
+  if (!result)
+    return Answer::failure(result.message());
+  if (result->moved_faces.empty())
+    return Answer::failure("the fold moves nothing: the chosen creases are at those angles already");
+  const int pinned = movedHeldVertex(workspace.paper, folded, workspace.held);
+  if (pinned >= 0)
+    return Answer::failure("vertex " + std::to_string(pinned) + " is pinned and the fold would move it; release it first");
+  Change change = makeChange(workspace.revision, Operation::Kind::FlatFold, std::nullopt);
+  change.operation.flat_fold = request;
+  return Computed<FlatFoldResult>{ std::move(*result), std::move(change) };
+}
+}  // namespace
+
+Expected<Computed<FlatFoldResult>> computeFlatFold(Workspace workspace, const FlatFoldRequest& request)
+{
+  Paper folded;
+  auto computed = flatFoldChange(workspace, request, folded);
+  if (computed)
+    computed->change.next = std::move(folded);
+  return computed;
+}
+
+Expected<Computed<FlatFoldResult>> computeFlatFoldPreview(Workspace workspace, const FlatFoldRequest& request,
+                                                          double fraction)
+{
+  using Answer = Expected<Computed<FlatFoldResult>>;
+  Paper folded;
+  auto computed = flatFoldChange(workspace, request, folded);
+  if (!computed)
+    return computed;
+  Expected<Paper> frame = fraction == 1.0 ? Expected<Paper>(std::move(folded)) :
+                                            flatFoldFrame(workspace.paper, request, fraction);
+  if (!frame)
+    return Answer::failure(frame.message());
+  computed->change.next = std::move(*frame);
+  return computed;
+}
+
+Expected<Computed<PullResult>> computeDragVertex(Workspace workspace, const PullTarget& target)
+{
+  using Answer = Expected<Computed<PullResult>>;
+  const int count = static_cast<int>(workspace.paper.vertices.size());
+  if (target.vertex < 0 || target.vertex >= count)
+    return Answer::failure("vertex " + std::to_string(target.vertex) + " does not exist (the model has " +
+                           std::to_string(count) + ")");
+  if (!target.position.allFinite())
+    return Answer::failure("the point to drag vertex " + std::to_string(target.vertex) + " to is not a finite point");
+  for (int v : workspace.held)
+    if (v == target.vertex)
+      return Answer::failure("vertex " + std::to_string(v) + " is pinned; release it before dragging it");
+  const Paper before = workspace.paper;
+  Expected<PullResult> result = core::pull(workspace.paper, { target }, workspace.solver.get(), workspace.held);
+  if (!result)
+    return Answer::failure("no shape of the faces follows vertex " + std::to_string(target.vertex) +
+                           " there: " + result.message());
+  const int pinned = movedHeldVertex(before, workspace.paper, workspace.held);
+  if (pinned >= 0)
+    return Answer::failure("vertex " + std::to_string(pinned) + " is pinned and the drag would move it");
+  Change change = makeChange(workspace.revision, Operation::Kind::DragVertex, std::move(workspace.paper));
+  change.operation.drag = target;
+  return Computed<PullResult>{ std::move(*result), std::move(change) };
 }
 
 Expected<Change> computeReset(uint64_t base_revision, double size)
@@ -353,6 +437,30 @@ Expected<AssignmentFoldResult> Session::foldByAssignment(double fraction, bool c
   return std::move(computed->result);
 }
 
+Expected<FlatFoldResult> Session::flatFold(const FlatFoldRequest& request, bool commit_it, double fraction)
+{
+  auto computed = commit_it ? computeFlatFold(workspace(), request) : computeFlatFoldPreview(workspace(), request, fraction);
+  if (!computed)
+    return Expected<FlatFoldResult>::failure(computed.message());
+  if (commit_it)
+    commit(std::move(computed->change));
+  else
+    setPreview(std::move(computed->change));
+  return std::move(computed->result);
+}
+
+Expected<PullResult> Session::dragVertex(const PullTarget& target, bool commit_it)
+{
+  auto computed = computeDragVertex(workspace(), target);
+  if (!computed)
+    return Expected<PullResult>::failure(computed.message());
+  if (commit_it)
+    commit(std::move(computed->change));
+  else
+    setPreview(std::move(computed->change));
+  return std::move(computed->result);
+}
+
 Status Session::apply(const Operation& operation)
 {
   switch (operation.kind)
@@ -388,6 +496,16 @@ Status Session::apply(const Operation& operation)
     case Operation::Kind::AssignmentFold:
     {
       const auto r = foldByAssignment(operation.fraction, true);
+      return r ? success() : failure(r.message());
+    }
+    case Operation::Kind::FlatFold:
+    {
+      const auto r = flatFold(operation.flat_fold, true);
+      return r ? success() : failure(r.message());
+    }
+    case Operation::Kind::DragVertex:
+    {
+      const auto r = dragVertex(operation.drag, true);
       return r ? success() : failure(r.message());
     }
   }

@@ -155,6 +155,19 @@ json operationToJson(const Operation& op)
       j["axis_edge"] = op.rotate.axis_edge;
       j["click"] = point(op.rotate.click);
       j["angle"] = op.rotate.angle;
+      j["carry_stack"] = op.rotate.carry_stack;  // absent in journals written before: true
+      break;
+    case Operation::Kind::FlatFold:
+      j["creases"] = json::array();
+      for (const CreaseLineAngle& line : op.flat_fold.creases)
+        j["creases"].push_back({ { "start", { line.start.x(), line.start.y() } },
+                                 { "end", { line.end.x(), line.end.y() } },
+                                 { "angle", line.angle } });
+      j["fixed"] = { op.flat_fold.fixed_point.x(), op.flat_fold.fixed_point.y() };
+      break;
+    case Operation::Kind::DragVertex:
+      j["vertex"] = op.drag.vertex;
+      j["position"] = point(op.drag.position);
       break;
     case Operation::Kind::Reset:
       j["size"] = op.size;
@@ -179,6 +192,7 @@ json operationToJson(const Operation& op)
 Expected<Operation> operationFromJson(const json& j)
 {
   const auto point = [](const json& p) { return Vec3(p.at(0).get<double>(), p.at(1).get<double>(), p.at(2).get<double>()); };
+  const auto point2 = [](const json& p) { return Vec2(p.at(0).get<double>(), p.at(1).get<double>()); };
   try
   {
     Operation op;
@@ -186,7 +200,8 @@ Expected<Operation> operationFromJson(const json& j)
     bool known = false;
     for (Operation::Kind k : { Operation::Kind::Crease, Operation::Kind::Rotate, Operation::Kind::Squash,
                                Operation::Kind::Undo, Operation::Kind::Redo, Operation::Kind::Reset,
-                               Operation::Kind::Load, Operation::Kind::Pull, Operation::Kind::AssignmentFold })
+                               Operation::Kind::Load, Operation::Kind::Pull, Operation::Kind::AssignmentFold,
+                               Operation::Kind::FlatFold, Operation::Kind::DragVertex })
       if (kind == kindName(k))
       {
         op.kind = k;
@@ -209,7 +224,17 @@ Expected<Operation> operationFromJson(const json& j)
       op.rotate.axis_edge = integer<int>(j.at("axis_edge"));
       op.rotate.click = point(j.at("click"));
       op.rotate.angle = j.at("angle").get<double>();
+      op.rotate.carry_stack = j.contains("carry_stack") ? j.at("carry_stack").get<bool>() : true;
     }
+    else if (op.kind == Operation::Kind::FlatFold)
+    {
+      for (const json& line : j.at("creases"))
+        op.flat_fold.creases.push_back(
+            { point2(line.at("start")), point2(line.at("end")), line.at("angle").get<double>() });
+      op.flat_fold.fixed_point = point2(j.at("fixed"));
+    }
+    else if (op.kind == Operation::Kind::DragVertex)
+      op.drag = { integer<int>(j.at("vertex")), point(j.at("position")) };
     else if (op.kind == Operation::Kind::Reset)
       op.size = j.at("size").get<double>();
     else if (op.kind == Operation::Kind::Load)

@@ -34,11 +34,31 @@ struct FlatFoldResult
   std::vector<int> moved_faces;    // faces whose folded place changed
 };
 
-/// Sets the named creases' angles and re-places every face rigidly from the fixed face. Fails,
-/// leaving `paper` untouched, when a segment names no crease, an angle is outside [−π, π],
-/// the fixed point is off the sheet, or the angles do not close (a vertex would tear: the
-/// request is not a fold of this paper). Layer orders between faces that moved and faces that
-/// did not are dropped (a flat fold re-stacks them; the faces' 3D places stay exact).
+/// Sets the named creases' angles and re-places every face rigidly from the fixed face (whose
+/// vertices keep their positions bit for bit). Fails,
+/// leaving `paper` untouched, when no crease is named, a segment names no crease, a value is
+/// not finite, an angle is outside [−π, π], the fixed point is off the sheet, or the angles do
+/// not close (a vertex would tear: the request is not a fold of this paper; the message then
+/// begins "the chosen creases do not fold flat"). Layer orders between faces that moved and
+/// faces that did not are dropped (a flat fold re-stacks them; the faces' 3D places stay exact).
 Expected<FlatFoldResult> flatFold(Paper& paper, const FlatFoldRequest& request);
+
+/// The paper `fraction` (0 to 1) of the way through the flat fold `request`, for a preview that
+/// shows the faces turning: exactly `paper` at 0 and exactly flatFold's result at 1; fails as
+/// flatFold does (and on a fraction outside [0, 1]), so a frame is shown only of a fold that can
+/// be made.
+///
+/// In between, every crease's fold angle goes linearly from its current value to its final one,
+/// and each face is placed by the turns about the creases along the walk (walkFaces) from the
+/// fixed face, as the final fold is (kinematics.h): the face's rigid motion from its current
+/// place is the one those turns give, applied to its current vertices. The fixed face never
+/// moves. A fold of several creases at once (a squash, a petal fold) does not stay rigid in
+/// between: faces the walk reaches along different creases may put a shared vertex in
+/// different places. Such a vertex goes where the face reached first (fewest creases from the
+/// fixed face) puts it, the faces as far as that from the fixed face averaged: the faces near
+/// the fixed face turn rigidly, the far ones stretch a little until the fold closes at 1.
+/// Crease angles in the frame are the interpolated ones; layer orders are the current ones
+/// without the pairs the fold separates (as flatFold drops them).
+Expected<Paper> flatFoldFrame(const Paper& paper, const FlatFoldRequest& request, double fraction);
 
 }  // namespace virtual_origami::core

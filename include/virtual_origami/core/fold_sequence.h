@@ -11,8 +11,8 @@
 // may name "face" and "axis_edge" instead of clicking, and "repeat" turns the same face about
 // the same axis again (one history step each), so a solver follows a large fold in stages.
 // A flat fold (squash, petal, reverse fold: see flat_fold.h) names its creases and the face
-// that stays by crease-pattern points; it is recorded as the pull of every vertex it moves to
-// where the fold puts it, so bags and replays carry it like any other operation.
+// that stays by crease-pattern points; it is committed as the session's flat_fold operation
+// (the paper_model's `flat_fold` service), so bags and replays carry it like any other.
 #pragma once
 
 #include <memory>
@@ -28,8 +28,7 @@ namespace virtual_origami::core
 {
 struct FoldStep
 {
-  Operation operation;
-  std::optional<FlatFoldRequest> flat_fold;  // when set, this instead of `operation`
+  Operation operation;  // a flat fold's request in operation.flat_fold
   int repeat = 1;
   std::string note;
 };

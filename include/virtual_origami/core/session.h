@@ -9,6 +9,7 @@
 
 #include "virtual_origami/core/assignment_fold.h"
 #include "virtual_origami/core/crease.h"
+#include "virtual_origami/core/flat_fold.h"
 #include "virtual_origami/core/paper.h"
 #include "virtual_origami/core/pull.h"
 #include "virtual_origami/core/rotate.h"
@@ -32,6 +33,8 @@ struct Operation
     Load,
     Pull,
     AssignmentFold,
+    FlatFold,    // fold on chosen creases (flat_fold.h)
+    DragVertex,  // one vertex dragged to a point, the faces following (pull.h)
   };
   Kind kind = Kind::Crease;
   CreaseRequest crease;   // Crease: the request as given (before snapping)
@@ -40,6 +43,8 @@ struct Operation
   std::string path;       // Load: where the model came from
   std::vector<PullTarget> pull;  // Pull: where the vertices were pulled to (pins following frames)
   double fraction = 0.0;  // AssignmentFold: how far towards the creases' targets, 0 to 1
+  FlatFoldRequest flat_fold;  // FlatFold: the creases, their angles and the face that stays
+  PullTarget drag;            // DragVertex: the vertex and where it was dragged to
   uint64_t revision = 0;  // the revision it produced
 };
 
@@ -105,6 +110,19 @@ Expected<Computed<PullResult>> computePull(Workspace workspace, const std::vecto
 /// last preview, within the preview driver's budget. Pins are held.
 Expected<Computed<AssignmentFoldResult>> computeFoldByAssignment(Workspace workspace, double fraction,
                                                                  bool commit = true);
+/// Folds on chosen creases (flat_fold.h). Refused when the fold moves nothing or would move a
+/// held vertex (a pin). The change's state is the folded paper.
+Expected<Computed<FlatFoldResult>> computeFlatFold(Workspace workspace, const FlatFoldRequest& request);
+/// A preview frame of that fold, `fraction` (0 to 1) of the way from the paper now
+/// (flatFoldFrame): refused exactly when computeFlatFold would be, the result that of the whole
+/// fold, the change's state the frame (for Session::setPreview; never to commit).
+Expected<Computed<FlatFoldResult>> computeFlatFoldPreview(Workspace workspace, const FlatFoldRequest& request,
+                                                          double fraction);
+/// Drags one vertex to a point: the solver restores the faces around it, the held vertices
+/// (pins) hold (pull.h). Refused on an unknown vertex, a point that is not finite, a pinned
+/// vertex, no solver, or when no shape of rigid faces follows. Previews and commits both start
+/// from the committed paper, so a commit is what its last preview showed and what replay makes.
+Expected<Computed<PullResult>> computeDragVertex(Workspace workspace, const PullTarget& target);
 Expected<Change> computeReset(uint64_t base_revision, double size);
 Expected<Change> computeLoad(uint64_t base_revision, Paper paper, const std::string& path);
 
@@ -154,6 +172,10 @@ public:
   Expected<PullResult> pull(const std::vector<PullTarget>& targets);
   /// Folds by assignment to `fraction`; with commit false a preview, as for rotate.
   Expected<AssignmentFoldResult> foldByAssignment(double fraction, bool commit = true);
+  /// Folds on chosen creases; with commit false a preview (`preview()`) `fraction` of the way.
+  Expected<FlatFoldResult> flatFold(const FlatFoldRequest& request, bool commit = true, double fraction = 1.0);
+  /// Drags a vertex to a point; with commit false a preview, as for rotate.
+  Expected<PullResult> dragVertex(const PullTarget& target, bool commit = true);
 
   /// Applies a logged operation again (its parameters as logged).
   Status apply(const Operation& operation);
@@ -165,7 +187,7 @@ public:
   /// Commits a computed change; refused (nothing changed) when the session has moved on from
   /// the revision the change was computed from.
   Status commit(Change change);
-  /// Shows a computed rotation or fold by assignment as the preview, unless the session has
+  /// Shows a computed rotation, fold or drag as the preview, unless the session has
   /// moved on since.
   bool setPreview(Change change);
 
