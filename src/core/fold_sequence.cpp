@@ -83,6 +83,7 @@ FoldStep parseStep(const json& j, const std::string& where)
     request.fixed_point = point(f.value("fixed", json()), where + ".flat_fold.fixed").head<2>();
     step.operation.kind = Operation::Kind::FlatFold;
     step.operation.flat_fold = request;
+    step.flat_fold = request;
   }
   else if (j.contains("squash"))
     step.operation.kind = Operation::Kind::Squash;

@@ -123,6 +123,9 @@ TEST(FoldSequence, AFlatFoldIsCommittedAsTheFlatFoldOperation)
       {"flat_fold": {"creases": [{"start": [0, 0], "end": [1, 1], "angle_deg": 180}], "fixed": [0.9, 0.1]}}]})";
   const Expected<FoldSequence> sequence = parseFoldSequence(text);
   ASSERT_TRUE(sequence.ok()) << sequence.message();
+  EXPECT_FALSE(sequence->steps[0].flat_fold.has_value());
+  ASSERT_TRUE(sequence->steps[1].flat_fold.has_value());
+  EXPECT_EQ(sequence->steps[1].flat_fold->fixed_point, Vec2(0.9, 0.1));
   Session session;
   const auto states = foldSequence(*sequence, session, makeSolver(sequence->solver));
   ASSERT_TRUE(states.ok()) << states.message();

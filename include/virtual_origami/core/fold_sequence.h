@@ -29,6 +29,9 @@ namespace virtual_origami::core
 struct FoldStep
 {
   Operation operation;  // a flat fold's request in operation.flat_fold
+  /// A flat fold step: its request again (the same as operation.flat_fold), for callers that ask
+  /// a step whether it is one.
+  std::optional<FlatFoldRequest> flat_fold;
   int repeat = 1;
   std::string note;
 };
