@@ -112,6 +112,7 @@ InteractionNode::InteractionNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   menu_.insert(marked, "Clear the marks", [this](const Feedback::ConstPtr& f) { received(f, Action::ClearMarks); });
   entry("Next layer down", Action::NextLayer);
   layers_entry_ = entry("Turn the picked layers only", Action::PickedLayersOnly);
+  snap_entry_ = entry("Snap the line", Action::Snapping);
 
   markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("interaction_markers", 10);
   status_pub_ = nh_.advertise<InteractionStatus>("interaction_status", 10);
@@ -235,6 +236,7 @@ void InteractionNode::showPaper()
   menu_.setCheckState(fold_entry_, mode_ == Mode::Fold ? MenuHandler::CHECKED : MenuHandler::UNCHECKED);
   menu_.setCheckState(drag_entry_, mode_ == Mode::Drag ? MenuHandler::CHECKED : MenuHandler::UNCHECKED);
   menu_.setCheckState(layers_entry_, picked_layers_only_ ? MenuHandler::CHECKED : MenuHandler::UNCHECKED);
+  menu_.setCheckState(snap_entry_, snapping_ ? MenuHandler::CHECKED : MenuHandler::UNCHECKED);
   menu_.setCheckState(strain_entry_, colour_by_strain_ ? MenuHandler::CHECKED : MenuHandler::UNCHECKED);
   menu_.apply(server_, style_.marker_name);
   server_.applyChanges();
@@ -407,7 +409,7 @@ void InteractionNode::updateDrag()
   const ros::WallTime start = ros::WallTime::now();
   moved_ = false;
   if (mode_ == Mode::Crease)
-    showMarkers(creaseDragMarkers(core::creaseDrag(*paper_, press_, creaseEnd(), snap_), style_, ros::Time::now()));
+    showMarkers(creaseDragMarkers(core::creaseDrag(*paper_, press_, creaseEnd(), lineSnap()), style_, ros::Time::now()));
   else if (mode_ == Mode::Drag)
     updateVertexDrag();
   else if (ring_)
@@ -475,7 +477,7 @@ void InteractionNode::release()
     message = ring_refusal_;
   else if (mode_ == Mode::Crease)
   {
-    const core::CreaseDrag drag = core::creaseDrag(*paper_, press_, creaseEnd(), snap_);
+    const core::CreaseDrag drag = core::creaseDrag(*paper_, press_, creaseEnd(), lineSnap());
     if (drag.length() >= min_crease_length_ * paper_->scale())
     {
       Crease srv;
@@ -683,6 +685,11 @@ void InteractionNode::menu(Action action, const Feedback& feedback)
       showPicks();
       message = "Marks cleared.";
       break;
+    case Action::Snapping:
+      snapping_ = !snapping_;
+      showPaper();
+      message = snapping_ ? "A drawn line snaps to vertices and divisions." : "A drawn line creases exactly as drawn.";
+      break;
     case Action::PickedLayersOnly:
       picked_layers_only_ = !picked_layers_only_;
       showPaper();
@@ -695,6 +702,14 @@ void InteractionNode::menu(Action action, const Feedback& feedback)
   }
   if (!message.empty())
     tell(message, at);
+}
+
+core::SnapSettings InteractionNode::lineSnap() const
+{
+  core::SnapSettings settings = snap_;
+  if (!snapping_)
+    settings.radius = 0.0;
+  return settings;
 }
 
 void InteractionNode::setMode(Mode mode)

@@ -79,14 +79,19 @@ std::string InteractionNode::foldClick()
   const std::vector<int> creases = core::creasesUnder(*paper_, press_, view, snap_.radius);
   if (creases.empty())
     return keepFaceAt(press_);
-  pick_ = Pick{ Pick::Kind::Crease, press_, creases, 0, revision_, marks_.markOf(*paper_, creases[0]) };
-  const core::CreaseMark mark = core::nextMark(pick_.prior);
+  pick_ = Pick{ Pick::Kind::Crease, press_, creases, 0, revision_ };
+  if (creases.size() > 1)
+  {
+    // Creases of several layers lie here: the click only picks the top one, so that a mark
+    // goes only where the user has seen the pick.
+    showPicks();
+    return std::to_string(creases.size()) + " creases lie here: click again to mark this one (" +
+           layerOf(0, creases.size()) + "), or Next layer down.";
+  }
+  const core::CreaseMark mark = core::nextMark(marks_.markOf(*paper_, creases[0]));
   marks_.mark(*paper_, creases[0], mark);
   showPicks();
-  std::string said = std::string("Crease ") + markName(mark) + " (" + layerOf(0, creases.size()) + ").";
-  if (creases.size() > 1)
-    said += " Next layer down picks the one below.";
-  return said;
+  return std::string("Crease ") + markName(mark) + ".";
 }
 
 std::string InteractionNode::keepFaceAt(const core::Vec3& at)
@@ -95,7 +100,11 @@ std::string InteractionNode::keepFaceAt(const core::Vec3& at)
     return "";
   const std::vector<int> faces = core::facesUnder(*paper_, at, sight(press_camera_, at));
   if (faces.empty())
+  {
+    pick_ = Pick{};  // a click on nothing lets go of the pick
+    showPicks();
     return "No paper here: click on a face to keep it in place.";
+  }
   pick_ = Pick{ Pick::Kind::Face, at, faces, 0, revision_ };
   if (mode_ == Mode::Fold)
     keep_point_ = core::creasePatternPoint(*paper_, faces[0]);
@@ -115,10 +124,7 @@ std::string InteractionNode::nextLayer(const core::Vec3& at)
     if (mode_ == Mode::Drag)
       pick_ = Pick{ Pick::Kind::Vertex, at, core::verticesUnder(*paper_, at, view, snap_.radius), 0, revision_ };
     else if (mode_ == Mode::Fold && !core::creasesUnder(*paper_, at, view, snap_.radius).empty())
-    {
-      const std::vector<int> creases = core::creasesUnder(*paper_, at, view, snap_.radius);
-      pick_ = Pick{ Pick::Kind::Crease, at, creases, 0, revision_, marks_.markOf(*paper_, creases[0]) };
-    }
+      pick_ = Pick{ Pick::Kind::Crease, at, core::creasesUnder(*paper_, at, view, snap_.radius), 0, revision_ };
     else
       pick_ = Pick{ Pick::Kind::Face, at, core::facesUnder(*paper_, at, view), 0, revision_ };
     if (pick_.candidates.empty())
@@ -127,32 +133,12 @@ std::string InteractionNode::nextLayer(const core::Vec3& at)
       showPicks();
       return "Nothing here to pick.";
     }
-    if (pick_.kind == Pick::Kind::Crease)
-      return "No crease marked here yet: click on it first.";
   }
   if (pick_.index + 1 >= pick_.candidates.size())
     return "No layer below this one.";
-  const int from = pick_.current();
   ++pick_.index;
-  const int to = pick_.current();
-  switch (pick_.kind)
-  {
-    case Pick::Kind::Crease: {
-      // The mark the click made moves down with the pick; the crease above gets its old mark back.
-      const core::CreaseMark mark = marks_.markOf(*paper_, from);
-      marks_.mark(*paper_, from, pick_.prior);
-      pick_.prior = marks_.markOf(*paper_, to);
-      marks_.mark(*paper_, to, mark);
-      break;
-    }
-    case Pick::Kind::Face:
-      if (mode_ == Mode::Fold)
-        keep_point_ = core::creasePatternPoint(*paper_, to);
-      break;
-    case Pick::Kind::Vertex:
-    case Pick::Kind::None:
-      break;
-  }
+  if (pick_.kind == Pick::Kind::Face && mode_ == Mode::Fold)
+    keep_point_ = core::creasePatternPoint(*paper_, pick_.current());
   showPicks();
   return "Picked " + layerOf(pick_.index, pick_.candidates.size()) + ".";
 }

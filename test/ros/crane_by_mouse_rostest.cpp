@@ -221,11 +221,24 @@ protected:
     showing(revision_);
   }
 
+  /// Draws the line. Where the drag would snap an end off the line (as its guide shows), with
+  /// snapping switched off for it.
   void crease(const core::Vec3& start, const core::Vec3& end)
   {
     mode("crease");
+    const core::Paper now = paper();
+    core::SnapSettings settings;
+    settings.radius *= now.scale();
+    const core::CreaseDrag drawn = core::creaseDrag(now, start, end, settings);
+    const core::Vec3 d = (end - start).normalized();
+    const auto offLine = [&](const core::Vec3& p) { return ((p - start) - (p - start).dot(d) * d).norm() > 1e-12; };
+    const bool free = offLine(drawn.start.point) || offLine(drawn.end.point);
+    if (free)
+      menu("Snap the line");
     drag(start, end);
     committed("the crease");
+    if (free)
+      menu("Snap the line");
   }
 
   /// Turns the face under `click` by a half turn about its automatic axis: the pointer dragged
@@ -260,17 +273,53 @@ protected:
     };
     if (marked() == wanted)
       return;
-    click(at);
-    for (int down = 0; status_.picked_edge != edge && down < 32; ++down)
-      menu("Next layer down", at);
+    // Where the last pick was made, a click would mark the crease picked there: first down
+    // through the layers, and from the top again (a click on nothing lets go of the pick).
+    const bool here = status_.picked_edge >= 0 && (at - last_pick_).norm() < 1e-9;
+    if (here)
+      while (status_.picked_edge != edge && status_.picked_layer < status_.layers)
+        menu("Next layer down", at);
+    if (status_.picked_edge != edge)
+    {
+      if (here)
+        click(core::Vec3(-0.3, -0.3, 0.0));
+      click(at);
+      last_pick_ = at;
+      for (int down = 0; status_.picked_edge != edge && down < 32; ++down)
+        menu("Next layer down", at);
+    }
     ASSERT_EQ(status_.picked_edge, edge) << "the crease was never picked under " << at.transpose();
     for (int i = 0; marked() != wanted && i < 4; ++i)
       click(at);
     ASSERT_EQ(marked(), wanted);
   }
 
+  /// The face to keep in place: the script's, or, where that one stands edge-on to the view
+  /// from above, a face seen from there that the script's fold leaves in place too (`before`
+  /// and `after`: the script's paper around the fold) — the same fold.
+  static int faceThatStays(const core::Paper& now, const core::FlatFoldRequest& request, const core::Paper& before,
+                           const core::Paper& after)
+  {
+    const auto stays = [&](int f) {
+      for (int v : now.faces[f].vertices)
+        for (size_t r = 0; r < before.vertices.size(); ++r)
+          if ((before.vertices[r].crease_pattern - now.vertices[v].crease_pattern).norm() < 1e-9 &&
+              (before.vertices[r].folded - after.vertices[r].folded).norm() > 1e-9)
+            return false;
+      return true;
+    };
+    const auto seen = [&](int f) { return std::abs(now.faceNormal(f).z()) > 0.5; };
+    const int scripts = core::faceContaining(now, request.fixed_point);
+    if (scripts >= 0 && seen(scripts))
+      return scripts;
+    for (size_t f = 0; f < now.faces.size(); ++f)
+      if (seen(static_cast<int>(f)) && stays(static_cast<int>(f)))
+        return static_cast<int>(f);
+    return -1;
+  }
+
   /// Marks the flat fold's creases, picks the face that stays, and folds.
-  void flatFold(const core::FlatFoldRequest& request)
+  void flatFold(const core::FlatFoldRequest& request, const core::Paper& before, const core::Paper& after)
   {
     mode("fold");
     bool right_angle = false;
@@ -283,7 +332,7 @@ protected:
         mark(e, line.angle);
     }
     const core::Paper now = paper();
-    const int face = core::faceContaining(now, request.fixed_point);
+    const int face = faceThatStays(now, request, before, after);
     ASSERT_GE(face, 0);
     const core::Vec3 at = now.faceCentroid(face);
     menu("Keep the face here", at);
@@ -304,6 +353,7 @@ protected:
   MouseGesture gesture_;
   uint64_t revision_ = 0;
   int gestures_ = 0;
+  core::Vec3 last_pick_ = core::Vec3::Constant(NAN);
 };
 }  // namespace
 
@@ -327,8 +377,8 @@ TEST_F(CraneByMouse, TheCraneFoldsByMouseAloneAsTheScriptFoldsIt)
   {
     const core::FoldStep& step = sequence->steps[i];
     SCOPED_TRACE("step " + std::to_string(i + 1) + ": " + step.note);
-    if (step.flat_fold)
-      flatFold(*step.flat_fold);
+    if (step.operation.kind == core::Operation::Kind::FlatFold)
+      flatFold(step.operation.flat_fold, (*reference)[i], (*reference)[i + 1]);
     else if (step.operation.kind == core::Operation::Kind::Crease)
       crease(step.operation.crease.start, step.operation.crease.end);
     else if (step.operation.kind == core::Operation::Kind::Rotate)

@@ -687,8 +687,8 @@ TEST_F(Interaction, DragModeDragsAVertexThePinHoldsAndADragNoShapeFollowsIsRefus
                        return r;
                      }())
                   .response.success);
+  ASSERT_TRUE(waitFor([&] { return client_.state().pins.size() == 1; }));
   const PaperState before = client_.state();
-  ASSERT_EQ(before.pins.size(), 1u);
   const int pinned = before.pins[0].vertex;
   const core::Vec3 anchor = folded(before, pinned);
   // The corner across the sheet from the pin, turned 10° about it in the sheet's plane.

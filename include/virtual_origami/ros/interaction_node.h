@@ -67,6 +67,7 @@ public:
     FoldRightAngle,
     ClearMarks,
     PickedLayersOnly,
+    Snapping,
   };
 
 private:
@@ -138,7 +139,6 @@ private:
     std::vector<int> candidates;
     size_t index = 0;
     uint64_t revision = 0;
-    core::CreaseMark prior = core::CreaseMark::None;  // Crease: its mark before the click
     int current() const
     {
       return kind == Kind::None || index >= candidates.size() ? -1 : candidates[index];
@@ -148,8 +148,9 @@ private:
   core::Vec3 surfacePoint(const Feedback& feedback) const;
   /// The last pick of `kind`, when it is of this paper and `at` is where it was made.
   bool pickedHere(Pick::Kind kind, const core::Vec3& at) const;
-  /// Fold mode: a click near a crease marks it (again: the next mark), elsewhere it picks the
-  /// face that stays. What to tell the user.
+  /// Fold mode: a click near a crease marks it (again: the next mark; where creases of several
+  /// layers lie, the first click picks the top one), elsewhere it picks the face that stays.
+  /// What to tell the user.
   std::string foldClick();
   std::string keepFaceAt(const core::Vec3& at);
   /// The next layer down under the last pick (or under `at`); what to tell the user.
@@ -173,6 +174,9 @@ private:
   std::optional<core::Vec2> keep_point_;  // the face that stays: a crease-pattern point inside it
   Pick pick_;
   bool picked_layers_only_ = false;  // a rotation turns the picked face's own layers only
+  bool snapping_ = true;             // a drawn line snaps (Fig. 6); off: exactly as drawn
+  /// The snapping a drawn line gets: none when switched off.
+  core::SnapSettings lineSnap() const;
   std::optional<core::FlatFoldRequest> folding_;  // the fold being animated
   int fold_frame_ = 0;
   int fold_frames_ = 8;
@@ -180,7 +184,8 @@ private:
   core::Vec3 vertex_at_press_ = core::Vec3::Zero();
   std::optional<core::Vec3> vertex_previewed_;  // the last target a preview took
   std::string vertex_refusal_;
-  interactive_markers::MenuHandler::EntryHandle fold_entry_ = 0, drag_entry_ = 0, layers_entry_ = 0;
+  interactive_markers::MenuHandler::EntryHandle fold_entry_ = 0, drag_entry_ = 0, layers_entry_ = 0,
+                                                snap_entry_ = 0;
   ros::ServiceClient flat_fold_, drag_vertex_;
 
   // The fold slider (fold_slider.h).
