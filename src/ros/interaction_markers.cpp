@@ -210,6 +210,97 @@ visualization_msgs::MarkerArray namedAxisMarkers(const core::Vec3& a, const core
   return array;
 }
 
+namespace
+{
+/// A face's outline as a LINE_LIST, a little inside it (so that it shows beside its neighbours').
+void addOutline(Marker& m, const core::Paper& paper, int face)
+{
+  const std::vector<int>& vs = paper.faces[face].vertices;
+  const core::Vec3 c = paper.faceCentroid(face);
+  for (size_t i = 0; i < vs.size(); ++i)
+  {
+    const core::Vec3 a = paper.vertices[vs[i]].folded, b = paper.vertices[vs[(i + 1) % vs.size()]].folded;
+    m.points.push_back(toPoint(a + 0.06 * (c - a)));
+    m.points.push_back(toPoint(b + 0.06 * (c - b)));
+  }
+}
+}  // namespace
+
+visualization_msgs::MarkerArray chosenCreaseMarkers(const core::Paper& paper,
+                                                    const std::vector<std::pair<int, core::CreaseMark>>& marks,
+                                                    int picked_edge, int keep_face, const InteractionStyle& style,
+                                                    const ros::Time& stamp)
+{
+  visualization_msgs::MarkerArray array;
+  Marker valley = baseMarker(style, stamp, "marks", Marker::LINE_LIST);
+  valley.id = 0;
+  valley.scale.x = 2.0 * style.line_width;
+  valley.color = rgba(0.1f, 0.3f, 0.9f);
+  Marker mountain = valley;
+  mountain.id = 1;
+  mountain.color = rgba(0.9f, 0.1f, 0.1f);
+  Marker unfold = valley;
+  unfold.id = 2;
+  unfold.color = rgba(0.45f, 0.45f, 0.45f);
+  for (const auto& [edge, mark] : marks)
+  {
+    const core::Vec3& a = paper.vertices[paper.edges[edge].vertices[0]].folded;
+    const core::Vec3& b = paper.vertices[paper.edges[edge].vertices[1]].folded;
+    if (mark == core::CreaseMark::Unfold)
+      addDashed(unfold, a, b, 0.02 * paper.scale());
+    else
+    {
+      Marker& m = mark == core::CreaseMark::Valley ? valley : mountain;
+      m.points.push_back(toPoint(a));
+      m.points.push_back(toPoint(b));
+    }
+  }
+  Marker picked = baseMarker(style, stamp, "marks", Marker::LINE_LIST);
+  picked.id = 3;
+  picked.scale.x = 4.0 * style.line_width;
+  picked.color = rgba(1.0f, 0.85f, 0.0f, 0.6f);
+  if (picked_edge >= 0 && static_cast<size_t>(picked_edge) < paper.edges.size())
+    for (int v : paper.edges[picked_edge].vertices)
+      picked.points.push_back(toPoint(paper.vertices[v].folded));
+  Marker keep = baseMarker(style, stamp, "marks", Marker::LINE_LIST);
+  keep.id = 4;
+  keep.scale.x = 1.5 * style.line_width;
+  keep.color = rgba(0.1f, 0.7f, 0.2f);
+  if (keep_face >= 0 && static_cast<size_t>(keep_face) < paper.faces.size())
+    addOutline(keep, paper, keep_face);
+  for (Marker* m : { &valley, &mountain, &unfold, &picked, &keep })
+  {
+    if (m->points.empty())
+      m->action = Marker::DELETE;  // what is no longer marked goes
+    array.markers.push_back(*m);
+  }
+  return array;
+}
+
+visualization_msgs::MarkerArray pickMarkers(const core::Paper& paper, int face, int vertex,
+                                            const InteractionStyle& style, const ros::Time& stamp)
+{
+  visualization_msgs::MarkerArray array;
+  Marker outline = baseMarker(style, stamp, "pick", Marker::LINE_LIST);
+  outline.id = 0;
+  outline.scale.x = 1.5 * style.line_width;
+  outline.color = rgba(1.0f, 0.6f, 0.0f);
+  if (face >= 0 && static_cast<size_t>(face) < paper.faces.size())
+    addOutline(outline, paper, face);
+  std::vector<core::Vec3> at;
+  if (vertex >= 0 && static_cast<size_t>(vertex) < paper.vertices.size())
+    at.push_back(paper.vertices[vertex].folded);
+  Marker point = points(style, stamp, "pick", at, rgba(1.0f, 0.6f, 0.0f), style.point_size);
+  point.id = 1;
+  for (Marker* m : { &outline, &point })
+  {
+    if (m->points.empty())
+      m->action = Marker::DELETE;
+    array.markers.push_back(*m);
+  }
+  return array;
+}
+
 visualization_msgs::MarkerArray messageMarker(const std::string& text, const core::Vec3& at,
                                               const InteractionStyle& style, const ros::Time& stamp)
 {

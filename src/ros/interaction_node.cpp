@@ -6,6 +6,8 @@
 #include <dynamic_reconfigure/Reconfigure.h>
 #include <std_srvs/Trigger.h>
 #include <virtual_origami/Crease.h>
+#include <virtual_origami/DragVertex.h>
+#include <virtual_origami/FlatFold.h>
 #include <virtual_origami/FoldByAssignment.h>
 #include <virtual_origami/InteractionStatus.h>
 #include <virtual_origami/PinVertex.h>
@@ -57,7 +59,9 @@ InteractionNode::InteractionNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   std::vector<double> view;
   if (private_nh.getParam("view_direction", view) && view.size() == 3)
     view_direction_ = core::Vec3(view[0], view[1], view[2]);
-  mode_ = private_nh.param<std::string>("mode", "crease") == "rotate" ? Mode::Rotate : Mode::Crease;
+  const std::string mode = private_nh.param<std::string>("mode", "crease");
+  mode_ = mode == "rotate" ? Mode::Rotate : mode == "fold" ? Mode::Fold : mode == "drag" ? Mode::Drag : Mode::Crease;
+  fold_frames_ = std::max(1, private_nh.param("fold_frames", fold_frames_));
   camera_frame_ = private_nh.param("camera_frame", camera_frame_);
   camera_timeout_ = private_nh.param("camera_timeout", camera_timeout_);
   view_turn_ = private_nh.param("view_turn", view_turn_);
@@ -72,6 +76,8 @@ InteractionNode::InteractionNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   reset_ = nh_.serviceClient<std_srvs::Trigger>("reset");
   pin_ = nh_.serviceClient<PinVertex>("pin");
   fold_ = nh_.serviceClient<FoldByAssignment>("fold_by_assignment");
+  flat_fold_ = nh_.serviceClient<FlatFold>("flat_fold");
+  drag_vertex_ = nh_.serviceClient<DragVertex>("drag_vertex");
   // Strain colours are paper_model's (it draws the paper): its dynamic_reconfigure.
   const std::string paper_model = private_nh.param<std::string>("paper_model", "paper_model");
   paper_model_reconfigure_ = nh_.serviceClient<dynamic_reconfigure::Reconfigure>(paper_model + "/set_parameters");
@@ -95,6 +101,17 @@ InteractionNode::InteractionNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
       received(f, Action::FoldByAssignment, false, percent / 100.0);
     });
   strain_entry_ = entry("Colour by strain", Action::ColourByStrain);
+  // After the entries above, which keep their places in the menu.
+  fold_entry_ = entry("Fold mode: mark creases", Action::FoldMode);
+  drag_entry_ = entry("Drag mode: drag a vertex", Action::DragMode);
+  const auto marked = menu_.insert("Fold on the marked creases");
+  menu_.insert(marked, "Fold flat", [this](const Feedback::ConstPtr& f) { received(f, Action::FoldFlat); });
+  menu_.insert(marked, "Fold to a right angle",
+               [this](const Feedback::ConstPtr& f) { received(f, Action::FoldRightAngle); });
+  menu_.insert(marked, "Keep the face here", [this](const Feedback::ConstPtr& f) { received(f, Action::KeepFace); });
+  menu_.insert(marked, "Clear the marks", [this](const Feedback::ConstPtr& f) { received(f, Action::ClearMarks); });
+  entry("Next layer down", Action::NextLayer);
+  layers_entry_ = entry("Turn the picked layers only", Action::PickedLayersOnly);
 
   markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("interaction_markers", 10);
   status_pub_ = nh_.advertise<InteractionStatus>("interaction_status", 10);
@@ -128,7 +145,16 @@ void InteractionNode::handleEvents(const ros::TimerEvent&)
     events.swap(events_);
   }
   if (events.empty())
+  {
+    if (folding_)
+    {
+      animateFold();
+      publishStatus();
+    }
     return;
+  }
+  while (folding_)  // the user goes on: the fold first, at once
+    animateFold();
   for (const Event& e : events)
   {
     if (e.action == Action::FoldByAssignment)
@@ -186,13 +212,17 @@ void InteractionNode::stateReceived(const PaperState::ConstPtr& state)
     showPaper();
     showSlider();
   }
+  showPicks();
 }
 
 void InteractionNode::showPaper()
 {
   if (!paper_)
     return;
-  const std::string description = mode_ == Mode::Crease ? "crease: drag a line" : "rotate: drag a face";
+  const std::string description = mode_ == Mode::Crease ? "crease: drag a line" :
+                                  mode_ == Mode::Rotate ? "rotate: drag a face" :
+                                  mode_ == Mode::Fold   ? "fold: click creases, then Fold" :
+                                                          "drag: drag a vertex";
   style_.pick_lift = pick_lift_;
   // With the camera known the drag plane faces the view: the pointer is on the mouse's sight
   // line wherever it goes (a plane along the sheet is missed by sight lines above its horizon).
@@ -202,6 +232,9 @@ void InteractionNode::showPaper()
                  [this](const Feedback::ConstPtr& f) { received(f, Action::None); });
   menu_.setCheckState(crease_entry_, mode_ == Mode::Crease ? MenuHandler::CHECKED : MenuHandler::UNCHECKED);
   menu_.setCheckState(rotate_entry_, mode_ == Mode::Rotate ? MenuHandler::CHECKED : MenuHandler::UNCHECKED);
+  menu_.setCheckState(fold_entry_, mode_ == Mode::Fold ? MenuHandler::CHECKED : MenuHandler::UNCHECKED);
+  menu_.setCheckState(drag_entry_, mode_ == Mode::Drag ? MenuHandler::CHECKED : MenuHandler::UNCHECKED);
+  menu_.setCheckState(layers_entry_, picked_layers_only_ ? MenuHandler::CHECKED : MenuHandler::UNCHECKED);
   menu_.setCheckState(strain_entry_, colour_by_strain_ ? MenuHandler::CHECKED : MenuHandler::UNCHECKED);
   menu_.apply(server_, style_.marker_name);
   server_.applyChanges();
@@ -339,8 +372,10 @@ void InteractionNode::press(const Feedback& feedback)
   if (mode_ == Mode::Rotate)
   {
     crease_at_press_ = core::creaseNear(*paper_, press_, snap_.radius);
+    // A layer picked here (Next layer down) turns instead of the top one.
+    const int face = pickedHere(Pick::Kind::Face, press_) ? pick_.current() : -1;
     core::Expected<core::RotationRing> ring =
-        core::rotationRing(*paper_, press_, sight(press_camera_, press_), -1, namedAxis());
+        core::rotationRing(*paper_, press_, sight(press_camera_, press_), face, namedAxis());
     if (!ring)
     {
       ring_refusal_ = ring.message();
@@ -349,6 +384,8 @@ void InteractionNode::press(const Feedback& feedback)
     ring_ = *ring;
     turnView();
   }
+  if (mode_ == Mode::Drag)
+    pressVertex();
   updateDrag();
 }
 
@@ -371,6 +408,8 @@ void InteractionNode::updateDrag()
   moved_ = false;
   if (mode_ == Mode::Crease)
     showMarkers(creaseDragMarkers(core::creaseDrag(*paper_, press_, creaseEnd(), snap_), style_, ros::Time::now()));
+  else if (mode_ == Mode::Drag)
+    updateVertexDrag();
   else if (ring_)
   {
     const std::optional<ViewCamera> now = camera(pointer_stamp_);
@@ -403,6 +442,7 @@ bool InteractionNode::previewRotation(double angle)
   srv.request.click = toPoint(ring_->press);
   srv.request.angle = angle;
   srv.request.commit = false;
+  srv.request.picked_layers_only = picked_layers_only_;
   std::string message;
   if (!call(rotate_, srv, message) || !srv.response.success)
   {
@@ -425,7 +465,11 @@ void InteractionNode::release()
   showMarkers(clearedMarkers(style_, ros::Time::now()));
   std::string message;
   const bool clicked = reach_ < min_crease_length_ * paper_->scale();
-  if (mode_ == Mode::Rotate && clicked)
+  if (mode_ == Mode::Fold)
+    message = clicked ? foldClick() : "In fold mode click on creases to mark them; drag in the other modes.";
+  else if (mode_ == Mode::Drag)
+    message = releaseVertex();
+  else if (mode_ == Mode::Rotate && clicked)
     message = click();
   else if (mode_ == Mode::Rotate && !ring_)
     message = ring_refusal_;
@@ -461,6 +505,7 @@ void InteractionNode::release()
       srv.request.click = toPoint(ring_->press);
       srv.request.angle = angle;
       srv.request.commit = true;
+      srv.request.picked_layers_only = picked_layers_only_;
       if (call(rotate_, srv, message) && !srv.response.success)
         message = srv.response.message;
     }
@@ -481,6 +526,7 @@ void InteractionNode::release()
     server_.applyChanges();
   if (slider_changed_ && !slider_dragging_)
     showSlider();
+  showPicks();  // the clearing above took the marks with it
 }
 
 std::string InteractionNode::click()
@@ -604,6 +650,45 @@ void InteractionNode::menu(Action action, const Feedback& feedback)
     case Action::ColourByStrain:
       message = toggleStrainColours();
       break;
+    case Action::FoldMode:
+    case Action::DragMode:
+      setMode(action == Action::FoldMode ? Mode::Fold : Mode::Drag);
+      message = mode_ == Mode::Fold ? "Fold mode: click creases to mark them valley, mountain or unfold; click the face "
+                                      "that stays; then Fold on the marked creases." :
+                                      "Drag mode: press on a vertex and drag it.";
+      break;
+    case Action::NextLayer:
+      press_camera_ = camera(feedback.header.stamp);
+      message = nextLayer(surfacePoint(feedback));
+      break;
+    case Action::KeepFace: {
+      press_camera_ = camera(feedback.header.stamp);
+      const Mode was = mode_;
+      mode_ = Mode::Fold;  // the face that stays belongs to the marks
+      message = keepFaceAt(surfacePoint(feedback));
+      if (was != Mode::Fold)
+        setMode(Mode::Fold);
+      break;
+    }
+    case Action::FoldFlat:
+      message = startFold(M_PI);
+      break;
+    case Action::FoldRightAngle:
+      message = startFold(M_PI / 2);
+      break;
+    case Action::ClearMarks:
+      marks_.clear();
+      keep_point_.reset();
+      pick_ = Pick{};
+      showPicks();
+      message = "Marks cleared.";
+      break;
+    case Action::PickedLayersOnly:
+      picked_layers_only_ = !picked_layers_only_;
+      showPaper();
+      message = picked_layers_only_ ? "A turn carries the picked layers only." :
+                                      "A turn carries the whole stack on the face.";
+      break;
     case Action::FoldByAssignment:  // handled with its fraction in handleEvents
     case Action::None:
       break;
@@ -619,6 +704,7 @@ void InteractionNode::setMode(Mode mode)
   turnViewBack();
   showPaper();
   showMarkers(clearedMarkers(style_, ros::Time::now()));
+  showPicks();
 }
 
 void InteractionNode::tell(const std::string& text, const core::Vec3& at)
@@ -636,9 +722,21 @@ void InteractionNode::publishStatus(const ros::TimerEvent&)
     showPaper();  // rviz's camera came or went: the drag plane changes with it
   InteractionStatus status;
   status.header.stamp = ros::Time::now();
-  status.mode = mode_ == Mode::Crease ? "crease" : "rotate";
+  status.mode = mode_ == Mode::Crease ? "crease" : mode_ == Mode::Rotate ? "rotate" : mode_ == Mode::Fold ? "fold" : "drag";
+  const bool fresh = pick_.revision == revision_;
+  status.picked_edge = fresh && pick_.kind == Pick::Kind::Crease ? pick_.current() : -1;
+  status.picked_face = mode_ == Mode::Fold ? keptFace() : fresh && pick_.kind == Pick::Kind::Face ? pick_.current() : -1;
+  status.picked_vertex = fresh && pick_.kind == Pick::Kind::Vertex ? pick_.current() : -1;
+  status.picked_layer = fresh && pick_.kind != Pick::Kind::None ? static_cast<uint32_t>(pick_.index + 1) : 0;
+  status.layers = fresh ? static_cast<uint32_t>(pick_.candidates.size()) : 0;
+  if (paper_)
+    for (const auto& [edge, mark] : marks_.edges(*paper_))
+    {
+      status.marked_edges.push_back(edge);
+      status.marked_angles.push_back(core::markAngle(mark));
+    }
+  status.dragging = dragging_ || slider_dragging_ || folding_.has_value();
   status.revision = revision_;
-  status.dragging = dragging_ || slider_dragging_;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     status.feedback_received = received_;

@@ -29,6 +29,12 @@ std::string forTheUser(const std::string& message)
     { "past 180 degrees", "Not turned further: the part would pass through the paper beside it." },
     { "could not restore the face shapes", "Not turned: the rest of the paper cannot follow this turn." },
     { "a solver is needed", "Not turned: the rest of the paper cannot follow this turn." },
+    { "do not fold flat", "Not folded: the marked creases do not fold flat together (a vertex would tear). Mark the "
+                          "creases around it too." },
+    { "does not close", "Not folded: the marked creases do not fold flat together (a vertex would tear). Mark the "
+                        "creases around it too." },
+    { "fixed point lies off the sheet", "Pick the face that stays: click on it, away from the creases." },
+    { "cannot keep the faces rigid with the pulled", "The paper cannot follow the vertex there without stretching." },
     { "did not answer", "The paper model does not answer: is paper_model running?" },
     { "changed while this was computed", "The paper changed meanwhile: please try again." },
     { "kept changing while this was computed", "The paper changed meanwhile: please try again." },

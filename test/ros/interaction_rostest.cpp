@@ -16,6 +16,7 @@
 #include <geometry_msgs/PoseStamped.h>
 #include <tf2_ros/transform_broadcaster.h>
 #include <virtual_origami/Operation.h>
+#include <virtual_origami/PinVertex.h>
 
 #include "ros_test_client.h"
 #include "virtual_origami/ros/conversions.h"
@@ -246,6 +247,7 @@ protected:
   std::map<std::string, int> menu_;
   MouseGesture gesture_;
   uint64_t base_ = 0;
+  std::vector<Operation> operations_;
 };
 }  // namespace
 
@@ -567,6 +569,158 @@ TEST_F(Interaction, MenuPinsAndReleasesTheNearestVertex)
   EXPECT_EQ(creasePattern(pinned, pinned.pins[0].vertex), p3(1, 1));
   menu("Release the nearest pin", p3(0.95, 0.96));
   EXPECT_TRUE(waitFor([&] { return client_.state().pins.empty(); }));
+}
+
+/// The mark the interaction reports for a crease: π valley, −π mountain, 0 unfold; none unmarked.
+std::optional<double> markOf(const InteractionStatus& status, int edge)
+{
+  for (size_t i = 0; i < status.marked_edges.size(); ++i)
+    if (status.marked_edges[i] == edge)
+      return status.marked_angles[i];
+  return std::nullopt;
+}
+
+TEST_F(Interaction, FoldModeClicksCycleACreasesMarkAndFoldFlatFoldsOnIt)
+{
+  creaseDiagonal();
+  menu("Fold mode");
+  EXPECT_EQ(status_.mode, "fold");
+  const PaperState before = client_.state();
+  const int diagonal = creaseBetween(before, vertexAt(before, 0, 0), vertexAt(before, 1, 1));
+  const std::vector<std::optional<double>> cycle{ M_PI, -M_PI, 0.0, std::nullopt, M_PI };
+  for (const std::optional<double>& expected : cycle)
+  {
+    drag(p3(0.5, 0.5), p3(0.5, 0.5), 1);  // a click on the crease
+    EXPECT_EQ(status_.picked_edge, diagonal);
+    EXPECT_EQ(markOf(status_, diagonal), expected);
+  }
+  EXPECT_TRUE(shown_.count("marks"));
+  // A click away from the creases picks the face that stays; the other half folds over it.
+  drag(p3(0.8, 0.2), p3(0.8, 0.2), 1);
+  ASSERT_GE(status_.picked_face, 0);
+  expectUnchanged();
+  menu("Fold flat");
+  const PaperState& after = client_.stateAt(base_ + 1);
+  EXPECT_NEAR(after.edges[diagonal].fold_angle, M_PI, 1e-9);
+  for (size_t v = 0; v < after.vertices_folded.size(); ++v)
+  {
+    EXPECT_GE(after.vertices_folded[v].x - after.vertices_folded[v].y, -1e-9) << "vertex " << v;  // over the lower half
+    EXPECT_NEAR(after.vertices_folded[v].z, 0.0, 1e-9);
+  }
+  EXPECT_TRUE(folded(after, vertexAt(after, 1, 0)).isApprox(p3(1, 0)));  // the face that stays
+  EXPECT_TRUE(folded(after, vertexAt(after, 0, 1)).isApprox(p3(1, 0)));  // folded onto it
+  ASSERT_TRUE(waitFor([&] { return status_.marked_edges.empty(); }, 5));  // the marks are used up
+}
+
+TEST_F(Interaction, CreasesThatDoNotFoldFlatAreRefusedAndNothingChanges)
+{
+  ASSERT_TRUE(client_.crease(0.5, 0, 0.5, 1).response.success);
+  ASSERT_TRUE(client_.crease(0, 0.5, 1, 0.5).response.success);
+  base_ += 2;
+  client_.stateAt(base_);
+  ASSERT_TRUE(waitFor([&] { return status_.revision == base_; }, 10));
+  menu("Fold mode");
+  drag(p3(0.75, 0.5), p3(0.75, 0.5), 1);  // one half of one line: the sheet would tear
+  ASSERT_GE(status_.picked_edge, 0);
+  drag(p3(0.2, 0.2), p3(0.2, 0.2), 1);
+  ASSERT_GE(status_.picked_face, 0);
+  said_ = {};
+  menu("Fold flat");
+  expectUnchanged();
+  ASSERT_TRUE(waitFor([&] { return !said_.text.empty(); }, 5));
+  EXPECT_NE(status_.message.find("fold"), std::string::npos) << status_.message;
+  EXPECT_EQ(status_.marked_edges.size(), 1u);  // the marks stay, to be put right
+  // Nothing marked: said so.
+  menu("Clear the marks");
+  EXPECT_TRUE(status_.marked_edges.empty());
+  menu("Fold flat");
+  expectUnchanged();
+  EXPECT_NE(status_.message.find("No crease marked"), std::string::npos) << status_.message;
+}
+
+TEST_F(Interaction, NextLayerDownPicksTheLayersOfAStackInTurnAndSaysWhenThereIsNoneBelow)
+{
+  menu("Rotate mode");
+  menu("Next layer down", p3(0.3, 0.3));  // one sheet: no layer below
+  EXPECT_NE(status_.message.find("No layer below this one"), std::string::npos) << status_.message;
+  quarterFold();
+  std::set<int> faces;
+  for (uint32_t layer = 2; layer <= 4; ++layer)
+  {
+    menu("Next layer down", p3(0.25, 0.2));
+    EXPECT_EQ(status_.layers, 4u);
+    EXPECT_EQ(status_.picked_layer, layer);
+    faces.insert(status_.picked_face);
+  }
+  EXPECT_EQ(faces.size(), 3u);
+  EXPECT_TRUE(shown_.count("pick"));
+  menu("Next layer down", p3(0.25, 0.2));
+  EXPECT_NE(status_.message.find("No layer below this one"), std::string::npos) << status_.message;
+  EXPECT_EQ(status_.picked_layer, 4u);
+  expectUnchanged();
+}
+
+TEST_F(Interaction, APressOnAPickedLayerTurnsThatLayerAndTheToggleTurnsItAlone)
+{
+  quarterFold();
+  ros::Subscriber ops = client_.nh().subscribe<Operation>(
+      "operations", 10, [&](const Operation::ConstPtr& op) { operations_.push_back(*op); });
+  ASSERT_TRUE(waitFor([&] { return ops.getNumPublishers() > 0; }, 10));
+  menu("Rotate mode");
+  menu("Turn the picked layers only");
+  menu("Next layer down", p3(0.25, 0.1));
+  const int picked = status_.picked_face;
+  ASSERT_GE(picked, 0);
+  drag(p3(0.25, 0.1), p3(0.25, 0.3), 8);  // lifted about the crease y = .5
+  client_.stateAt(base_ + 1);
+  ASSERT_TRUE(waitFor([&] { return !operations_.empty(); }, 10));
+  EXPECT_EQ(operations_.back().type, "rotate");
+  EXPECT_EQ(operations_.back().face, picked);
+  EXPECT_TRUE(operations_.back().picked_layers_only);
+}
+
+TEST_F(Interaction, DragModeDragsAVertexThePinHoldsAndADragNoShapeFollowsIsRefused)
+{
+  ASSERT_TRUE(client_.call<PinVertex>("pin", [] {
+                       PinVertex::Request r;
+                       r.vertex = 0;
+                       return r;
+                     }())
+                  .response.success);
+  const PaperState before = client_.state();
+  ASSERT_EQ(before.pins.size(), 1u);
+  const int pinned = before.pins[0].vertex;
+  const core::Vec3 anchor = folded(before, pinned);
+  // The corner across the sheet from the pin, turned 10° about it in the sheet's plane.
+  int corner = -1;
+  for (size_t v = 0; v < before.vertices_folded.size(); ++v)
+    if ((folded(before, static_cast<int>(v)) - anchor).norm() > 1.4)
+      corner = static_cast<int>(v);
+  ASSERT_GE(corner, 0);
+  const core::Vec3 from = folded(before, corner);
+  const Eigen::AngleAxisd turn(10 * M_PI / 180, core::Vec3::UnitZ());
+  const core::Vec3 to = anchor + turn * (from - anchor);
+  menu("Drag mode");
+  EXPECT_EQ(status_.mode, "drag");
+  const uint64_t pinned_revision = client_.state().revision;
+  base_ = pinned_revision;
+  drag(from, to, 10);
+  const PaperState& after = client_.stateAt(base_ + 1);
+  EXPECT_LT((folded(after, corner) - to).norm(), 1e-6);
+  EXPECT_LT((folded(after, pinned) - anchor).norm(), 1e-9);
+  for (const Edge& e : after.edges)  // the sheet keeps its shape
+    EXPECT_NEAR((folded(after, e.v0) - folded(after, e.v1)).norm(),
+                (creasePattern(after, e.v0) - creasePattern(after, e.v1)).norm(), 1e-6);
+  // Towards the pin: no flat sheet of this shape reaches there.
+  ++base_;
+  said_ = {};
+  drag(to, anchor + 0.8 * (to - anchor), 6);
+  expectUnchanged();
+  ASSERT_TRUE(waitFor([&] { return !said_.text.empty(); }, 5));
+  // A press on nothing: said, nothing changed.
+  drag(p3(0.5, 0.5), p3(0.6, 0.6), 4);
+  expectUnchanged();
+  EXPECT_NE(status_.message.find("No vertex here"), std::string::npos) << status_.message;
 }
 
 TEST_F(Interaction, AFloodOfPosesIsCoalescedAndTheLatestApplied)

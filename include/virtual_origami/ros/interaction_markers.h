@@ -10,6 +10,7 @@
 #include <visualization_msgs/InteractiveMarker.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include "virtual_origami/core/chosen_creases.h"
 #include "virtual_origami/core/drag.h"
 #include "virtual_origami/core/paper.h"
 
@@ -57,6 +58,18 @@ visualization_msgs::MarkerArray rotationDragMarkers(const core::RotationRing& ri
 /// The crease named as the axis by hand, highlighted until it is released (namespace `named_axis`).
 visualization_msgs::MarkerArray namedAxisMarkers(const core::Vec3& a, const core::Vec3& b,
                                                  const InteractionStyle& style, const ros::Time& stamp);
+
+/// Fold on chosen creases: the marked creases in their colours (valley blue, mountain red, unfold
+/// grey dashed), the crease the last click picked highlighted, the face that stays outlined in
+/// green (namespace `marks`).
+visualization_msgs::MarkerArray chosenCreaseMarkers(const core::Paper& paper,
+                                                    const std::vector<std::pair<int, core::CreaseMark>>& marks,
+                                                    int picked_edge, int keep_face, const InteractionStyle& style,
+                                                    const ros::Time& stamp);
+
+/// The layer picked in a stack: the face outlined, or the vertex a drag holds (namespace `pick`).
+visualization_msgs::MarkerArray pickMarkers(const core::Paper& paper, int face, int vertex,
+                                            const InteractionStyle& style, const ros::Time& stamp);
 
 /// A short text for the user at `at` (why a drag was refused, what the menu did), one or more
 /// lines.

@@ -1,9 +1,11 @@
 // The interaction node (SPEC §5): an interactive_markers server over the paper. Mouse
-// presses and drags in rviz become crease and rotate requests to paper_model, with the
-// snapping guides, axis and ring drawn while dragging; a right-click menu switches modes and
-// asks for squash, undo, redo, reset, pins, folds by assignment and strain colours. Beside the
-// sheet a slider folds a loaded crease pattern by assignment. The services are the only way it
-// changes the paper: rotate and fold previews while dragging, one committed call on release.
+// presses and drags in rviz become crease, rotate, flat fold and vertex drag requests to
+// paper_model, with the snapping guides, axis and ring drawn while dragging, the marked creases
+// in colour and the picked layer outlined; a right-click menu switches modes and asks for
+// squash, undo, redo, reset, pins, the next layer down, folds on the marked creases, folds by
+// assignment and strain colours. Beside the sheet a slider folds a loaded crease pattern by
+// assignment. The services are the only way it changes the paper: previews while dragging or
+// animating, one committed call on release.
 #pragma once
 
 #include <array>
@@ -24,6 +26,7 @@
 #include <virtual_origami/PaperState.h>
 #include <visualization_msgs/InteractiveMarkerFeedback.h>
 
+#include "virtual_origami/core/chosen_creases.h"
 #include "virtual_origami/core/drag.h"
 #include "virtual_origami/ros/fold_slider.h"
 #include "virtual_origami/ros/interaction_markers.h"
@@ -40,6 +43,8 @@ public:
   {
     Crease,
     Rotate,
+    Fold,  // mark creases, pick the face that stays, fold flat (SPEC §3.7)
+    Drag,  // drag a vertex (SPEC §3.6)
   };
   enum class Action
   {
@@ -54,6 +59,14 @@ public:
     Release,
     FoldByAssignment,
     ColourByStrain,
+    FoldMode,
+    DragMode,
+    NextLayer,
+    KeepFace,
+    FoldFlat,
+    FoldRightAngle,
+    ClearMarks,
+    PickedLayersOnly,
   };
 
 private:
@@ -108,6 +121,67 @@ private:
   void tell(const std::string& text, const core::Vec3& at);
   void publishStatus(const ros::TimerEvent& = {});
   bool previewRotation(double angle);
+
+  // Picking in a stack, folds on chosen creases and vertex drags (interaction_pick.cpp).
+  /// What the last click picked and what lies under it, top layer first (layer_pick.h).
+  struct Pick
+  {
+    enum class Kind
+    {
+      None,
+      Crease,
+      Face,
+      Vertex,
+    };
+    Kind kind = Kind::None;
+    core::Vec3 at = core::Vec3::Zero();
+    std::vector<int> candidates;
+    size_t index = 0;
+    uint64_t revision = 0;
+    core::CreaseMark prior = core::CreaseMark::None;  // Crease: its mark before the click
+    int current() const
+    {
+      return kind == Kind::None || index >= candidates.size() ? -1 : candidates[index];
+    }
+  };
+  /// The point on the paper a click or right-click at `feedback` is on (as a press finds it).
+  core::Vec3 surfacePoint(const Feedback& feedback) const;
+  /// The last pick of `kind`, when it is of this paper and `at` is where it was made.
+  bool pickedHere(Pick::Kind kind, const core::Vec3& at) const;
+  /// Fold mode: a click near a crease marks it (again: the next mark), elsewhere it picks the
+  /// face that stays. What to tell the user.
+  std::string foldClick();
+  std::string keepFaceAt(const core::Vec3& at);
+  /// The next layer down under the last pick (or under `at`); what to tell the user.
+  std::string nextLayer(const core::Vec3& at);
+  /// The face the marks' fold keeps in place, or -1.
+  int keptFace() const;
+  /// Starts the animated fold on the marked creases to ±`angle`; what to tell the user.
+  std::string startFold(double angle);
+  /// The next frame of the animated fold; the last one commits it.
+  void animateFold();
+  bool previewFold(double fraction, std::string& message);
+  /// Drag mode: the vertex under the press (or the one picked there), and its drag.
+  void pressVertex();
+  core::Vec3 vertexTarget() const;
+  void updateVertexDrag();
+  std::string releaseVertex();
+  /// Marks, the face that stays and the picked layer, drawn.
+  void showPicks();
+
+  core::CreaseMarks marks_;
+  std::optional<core::Vec2> keep_point_;  // the face that stays: a crease-pattern point inside it
+  Pick pick_;
+  bool picked_layers_only_ = false;  // a rotation turns the picked face's own layers only
+  std::optional<core::FlatFoldRequest> folding_;  // the fold being animated
+  int fold_frame_ = 0;
+  int fold_frames_ = 8;
+  int dragged_vertex_ = -1;
+  core::Vec3 vertex_at_press_ = core::Vec3::Zero();
+  std::optional<core::Vec3> vertex_previewed_;  // the last target a preview took
+  std::string vertex_refusal_;
+  interactive_markers::MenuHandler::EntryHandle fold_entry_ = 0, drag_entry_ = 0, layers_entry_ = 0;
+  ros::ServiceClient flat_fold_, drag_vertex_;
 
   // The fold slider (fold_slider.h).
   /// The handle where the paper is folded, or no slider for a paper without driven creases.

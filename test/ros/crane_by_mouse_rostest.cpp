@@ -1,0 +1,357 @@
+// rostest crane_by_mouse: the traditional crane folded through the interaction node alone,
+// driven exactly as rviz drives it (InteractiveMarkerFeedback on the server's feedback topic:
+// presses, drags, releases, menu selections; no service calls), step by step against the crane
+// the reference script folds (test/data/crane_reference.json: creases, turns and flat folds).
+// The test plans each gesture as a person looks before clicking: where a crease or a face lies
+// on the folded model, and which layer the interaction says it picked.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <virtual_origami/InteractionStatus.h>
+#include <visualization_msgs/InteractiveMarkerInit.h>
+
+#include "ros_test_client.h"
+#include "virtual_origami/core/chosen_creases.h"
+#include "virtual_origami/core/drag.h"
+#include "virtual_origami/core/fold_sequence.h"
+#include "virtual_origami/core/geometry.h"
+#include "virtual_origami/ros/conversions.h"
+#include "virtual_origami/ros/mouse_feedback.h"
+#include "virtual_origami/solvers/solver_factory.h"
+
+using namespace virtual_origami;
+using virtual_origami::test::PaperClient;
+using virtual_origami::test::waitFor;
+using visualization_msgs::InteractiveMarkerFeedback;
+
+namespace
+{
+const core::Vec3 kFromAbove(0, 0, -1);
+
+/// Largest distance between the vertices of `a` and `b` (matched by crease-pattern position)
+/// after the rigid motion that fits `a` onto `b` best (Kabsch); infinity when they differ.
+double rigidFitDistance(const core::Paper& a, const core::Paper& b)
+{
+  if (a.vertices.size() != b.vertices.size())
+    return INFINITY;
+  std::vector<std::pair<int, int>> pairs;
+  for (size_t i = 0; i < a.vertices.size(); ++i)
+  {
+    int match = -1;
+    for (size_t j = 0; j < b.vertices.size() && match < 0; ++j)
+      if ((a.vertices[i].crease_pattern - b.vertices[j].crease_pattern).norm() < 1e-9)
+        match = static_cast<int>(j);
+    if (match < 0)
+      return INFINITY;
+    pairs.emplace_back(static_cast<int>(i), match);
+  }
+  core::Vec3 ca = core::Vec3::Zero(), cb = core::Vec3::Zero();
+  for (const auto& [i, j] : pairs)
+  {
+    ca += a.vertices[i].folded;
+    cb += b.vertices[j].folded;
+  }
+  ca /= static_cast<double>(pairs.size());
+  cb /= static_cast<double>(pairs.size());
+  Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
+  for (const auto& [i, j] : pairs)
+    h += (a.vertices[i].folded - ca) * (b.vertices[j].folded - cb).transpose();
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(h, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
+  d(2, 2) = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0 ? -1.0 : 1.0;
+  const Eigen::Matrix3d r = svd.matrixV() * d * svd.matrixU().transpose();
+  double worst = 0.0;
+  for (const auto& [i, j] : pairs)
+    worst = std::max(worst, (r * (a.vertices[i].folded - ca) + cb - b.vertices[j].folded).norm());
+  return worst;
+}
+
+/// The crease edges lying on a crease-pattern segment (as flat_fold names them).
+std::vector<int> creasesOn(const core::Paper& paper, const core::Vec2& start, const core::Vec2& end)
+{
+  std::vector<int> out;
+  const auto on = [&](int v) {
+    const core::Vec3 p(paper.vertices[v].crease_pattern.x(), paper.vertices[v].crease_pattern.y(), 0.0);
+    return core::pointSegmentDistance(p, core::Vec3(start.x(), start.y(), 0), core::Vec3(end.x(), end.y(), 0)) < 1e-9;
+  };
+  for (size_t e = 0; e < paper.edges.size(); ++e)
+    if (paper.edges[e].isCrease() && on(paper.edges[e].vertices[0]) && on(paper.edges[e].vertices[1]))
+      out.push_back(static_cast<int>(e));
+  return out;
+}
+
+class CraneByMouse : public ::testing::Test
+{
+protected:
+  void SetUp() override
+  {
+    feedback_pub_ = client_.nh().advertise<InteractiveMarkerFeedback>("interaction/feedback", 1000);
+    status_sub_ = client_.nh().subscribe<InteractionStatus>("interaction_status", 100,
+                                                            [this](const InteractionStatus::ConstPtr& s) {
+                                                              status_ = *s;
+                                                              ++statuses_;
+                                                            });
+    init_sub_ = client_.nh().subscribe<visualization_msgs::InteractiveMarkerInit>(
+        "interaction/update_full", 10,
+        [this](const visualization_msgs::InteractiveMarkerInit::ConstPtr& init) { init_ = *init; });
+    ASSERT_TRUE(client_.trigger("reset").response.success);
+    ASSERT_TRUE(waitFor([&] { return feedback_pub_.getNumSubscribers() > 0; }, 30));
+    ASSERT_TRUE(waitFor([&] { return loadMenu(); }, 30)) << "no interactive marker `paper` with a menu";
+    revision_ = client_.state().revision;
+    ASSERT_TRUE(waitFor([&] { return statuses_ > 0 && status_.revision == revision_; }, 10));
+  }
+
+  bool loadMenu()
+  {
+    for (const auto& m : init_.markers)
+      if (m.name == "paper")
+      {
+        for (const auto& entry : m.menu_entries)
+          menu_[entry.title] = entry.id;
+        return !menu_.empty();
+      }
+    return false;
+  }
+
+  core::Paper paper()
+  {
+    core::Expected<core::Paper> p = fromMessage(client_.state());
+    EXPECT_TRUE(p.ok()) << p.message();
+    return p ? *p : core::Paper::square(1.0);
+  }
+
+  /// How far above the paper rviz reports the mouse on the pickable sheet (the marker's copies
+  /// of the faces lie off them by this much; every state of the crane pressed on is flat).
+  double lift()
+  {
+    const core::Paper now = paper();
+    double top = -INFINITY, mesh_top = -INFINITY;
+    for (const core::Vertex& v : now.vertices)
+      top = std::max(top, v.folded.z());
+    for (const auto& m : init_.markers)
+      if (m.name == "paper" && !m.controls.empty() && !m.controls[0].markers.empty())
+        for (const auto& p : m.controls[0].markers[0].points)
+          mesh_top = std::max(mesh_top, p.z);
+    return mesh_top - top;
+  }
+
+  void send(const InteractiveMarkerFeedback& f)
+  {
+    feedback_pub_.publish(f);
+    ros::spinOnce();
+  }
+
+  /// The node handled everything sent so far (and any fold it animates ended).
+  void settle()
+  {
+    const int seen = statuses_;
+    ASSERT_TRUE(waitFor([&] { return statuses_ > seen + 1 && status_.pending == 0 && !status_.dragging; }, 20));
+  }
+
+  /// The node shows the paper's latest revision (its sheet marker redrawn for it).
+  void showing(uint64_t revision)
+  {
+    client_.stateAt(revision);
+    ASSERT_TRUE(waitFor([&] { return status_.revision == revision; }, 20));
+    ros::WallDuration(0.2).sleep();  // the marker's full update follows the status
+    ros::spinOnce();
+  }
+
+  void press(const core::Vec3& at)
+  {
+    gesture_.lift = lift();
+    gesture_.press = at;
+    send(gesture_.down(ros::Time::now()));
+  }
+
+  void click(const core::Vec3& at)
+  {
+    press(at);
+    send(gesture_.upAt(at, ros::Time::now()));
+    ++gestures_;
+    settle();
+  }
+
+  void drag(const core::Vec3& from, const core::Vec3& to, int steps = 12)
+  {
+    press(from);
+    for (int i = 1; i <= steps; ++i)
+    {
+      ros::WallDuration(0.02).sleep();
+      send(gesture_.moveTo(from + (to - from) * (static_cast<double>(i) / steps), ros::Time::now()));
+    }
+    send(gesture_.upAt(to, ros::Time::now()));
+    ++gestures_;
+    settle();
+  }
+
+  void menu(const std::string& title, const core::Vec3& at = core::Vec3(0.5, 0.5, 0))
+  {
+    int id = -1;  // rviz shows check marks as a prefix of the title
+    for (const auto& [t, i] : menu_)
+      if (t.size() >= title.size() && t.compare(t.size() - title.size(), title.size(), title) == 0)
+        id = i;
+    ASSERT_GE(id, 0) << "no menu entry " << title;
+    gesture_.lift = lift();
+    send(gesture_.menu(id, at, ros::Time::now()));
+    ++gestures_;
+    settle();
+  }
+
+  void mode(const std::string& name)
+  {
+    if (status_.mode == name)
+      return;
+    const std::map<std::string, std::string> entries{ { "crease", "Crease mode" },
+                                                      { "rotate", "Rotate mode" },
+                                                      { "fold", "Fold mode: mark creases" } };
+    menu(entries.at(name));
+    ASSERT_EQ(status_.mode, name);
+  }
+
+  /// Expects the gesture to have made one new revision.
+  void committed(const std::string& what)
+  {
+    ASSERT_TRUE(waitFor([&] { return client_.state().revision == revision_ + 1; }, 30))
+        << what << " was not committed: " << status_.message;
+    ++revision_;
+    showing(revision_);
+  }
+
+  void crease(const core::Vec3& start, const core::Vec3& end)
+  {
+    mode("crease");
+    drag(start, end);
+    committed("the crease");
+  }
+
+  /// Turns the face under `click` by a half turn about its automatic axis: the pointer dragged
+  /// past the press point's mirror image over the axis (seen from above, the angle follows the
+  /// pointer's distance from the axis: a half turn at the mirror image, and no further).
+  void halfTurn(const core::Vec3& click)
+  {
+    mode("rotate");
+    const core::Paper now = paper();
+    const core::Vec3 at = core::onSurface(now, click, kFromAbove);
+    const core::Expected<core::RotationRing> ring = core::rotationRing(now, at, kFromAbove);
+    ASSERT_TRUE(ring.ok()) << ring.message();
+    const core::Vec3 d = (ring->axis_b - ring->axis_a).normalized();
+    const core::Vec3 r = at - ring->axis_a;
+    const core::Vec3 foot = ring->axis_a + r.dot(d) * d;
+    drag(at, foot + 1.2 * (foot - at), 20);
+    committed("the half turn");
+  }
+
+  /// Clicks the crease until it is picked and carries `angle`'s mark.
+  void mark(int edge, double angle)
+  {
+    const core::Paper now = paper();
+    const core::Vec3 at =
+        0.5 * (now.vertices[now.edges[edge].vertices[0]].folded + now.vertices[now.edges[edge].vertices[1]].folded);
+    const double wanted = angle > 0 ? M_PI : angle < 0 ? -M_PI : 0.0;
+    const auto marked = [&]() -> std::optional<double> {
+      for (size_t i = 0; i < status_.marked_edges.size(); ++i)
+        if (status_.marked_edges[i] == edge)
+          return status_.marked_angles[i];
+      return std::nullopt;
+    };
+    if (marked() == wanted)
+      return;
+    click(at);
+    for (int down = 0; status_.picked_edge != edge && down < 32; ++down)
+      menu("Next layer down", at);
+    ASSERT_EQ(status_.picked_edge, edge) << "the crease was never picked under " << at.transpose();
+    for (int i = 0; marked() != wanted && i < 4; ++i)
+      click(at);
+    ASSERT_EQ(marked(), wanted);
+  }
+
+  /// Marks the flat fold's creases, picks the face that stays, and folds.
+  void flatFold(const core::FlatFoldRequest& request)
+  {
+    mode("fold");
+    bool right_angle = false;
+    for (const core::CreaseLineAngle& line : request.creases)
+    {
+      const std::vector<int> edges = creasesOn(paper(), line.start, line.end);
+      ASSERT_FALSE(edges.empty());
+      right_angle = std::abs(std::abs(line.angle) - M_PI / 2) < 1e-9;
+      for (int e : edges)
+        mark(e, line.angle);
+    }
+    const core::Paper now = paper();
+    const int face = core::faceContaining(now, request.fixed_point);
+    ASSERT_GE(face, 0);
+    const core::Vec3 at = now.faceCentroid(face);
+    menu("Keep the face here", at);
+    for (int down = 0; status_.picked_face != face && down < 32; ++down)
+      menu("Next layer down", at);
+    ASSERT_EQ(status_.picked_face, face);
+    menu(right_angle ? "Fold to a right angle" : "Fold flat");
+    committed("the fold on the marked creases");
+  }
+
+  PaperClient client_;
+  ros::Publisher feedback_pub_;
+  ros::Subscriber status_sub_, init_sub_;
+  visualization_msgs::InteractiveMarkerInit init_;
+  InteractionStatus status_;
+  int statuses_ = 0;
+  std::map<std::string, int> menu_;
+  MouseGesture gesture_;
+  uint64_t revision_ = 0;
+  int gestures_ = 0;
+};
+}  // namespace
+
+TEST_F(CraneByMouse, TheCraneFoldsByMouseAloneAsTheScriptFoldsIt)
+{
+  std::string path;
+  ASSERT_TRUE(ros::param::get("~reference", path));
+  std::ifstream file(path);
+  ASSERT_TRUE(file) << path;
+  std::stringstream text;
+  text << file.rdbuf();
+  const core::Expected<core::FoldSequence> sequence = core::parseFoldSequence(text.str());
+  ASSERT_TRUE(sequence.ok()) << sequence.message();
+  core::Session reference_session;
+  const core::Expected<std::vector<core::Paper>> reference =
+      core::foldSequence(*sequence, reference_session, core::makeSolver(sequence->solver));
+  ASSERT_TRUE(reference.ok()) << reference.message();
+  ASSERT_EQ(reference->size(), sequence->steps.size() + 1);
+
+  for (size_t i = 0; i < sequence->steps.size(); ++i)
+  {
+    const core::FoldStep& step = sequence->steps[i];
+    SCOPED_TRACE("step " + std::to_string(i + 1) + ": " + step.note);
+    if (step.flat_fold)
+      flatFold(*step.flat_fold);
+    else if (step.operation.kind == core::Operation::Kind::Crease)
+      crease(step.operation.crease.start, step.operation.crease.end);
+    else if (step.operation.kind == core::Operation::Kind::Rotate)
+    {
+      ASSERT_NEAR(std::abs(step.operation.rotate.angle), M_PI, 1e-12) << "the crane turns by half turns";
+      halfTurn(step.operation.rotate.click);
+    }
+    else
+      FAIL() << "the reference has a step the test cannot make by mouse";
+    if (HasFatalFailure())
+      return;
+    const double off = rigidFitDistance(paper(), (*reference)[i + 1]);
+    ASSERT_LE(off, 1e-6) << "the mouse's paper left the script's";
+  }
+  std::printf("crane by mouse: %zu steps, %d gestures (clicks, drags, menu selections)\n", sequence->steps.size(),
+              gestures_);
+  RecordProperty("gestures", gestures_);
+}
+
+int main(int argc, char** argv)
+{
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "crane_by_mouse_rostest");
+  ros::NodeHandle nh;
+  return RUN_ALL_TESTS();
+}
