@@ -145,6 +145,20 @@ Operation toMessage(const core::Operation& op)
       msg.axis_edge = op.rotate.axis_edge;
       msg.click = toPoint(op.rotate.click);
       msg.angle = op.rotate.angle;
+      msg.picked_layers_only = !op.rotate.carry_stack;
+      break;
+    case core::Operation::Kind::FlatFold:
+      for (const core::CreaseLineAngle& line : op.flat_fold.creases)
+      {
+        msg.crease_starts.push_back(toPoint(core::Vec3(line.start.x(), line.start.y(), 0.0)));
+        msg.crease_ends.push_back(toPoint(core::Vec3(line.end.x(), line.end.y(), 0.0)));
+        msg.crease_angles.push_back(line.angle);
+      }
+      msg.fixed = toPoint(core::Vec3(op.flat_fold.fixed_point.x(), op.flat_fold.fixed_point.y(), 0.0));
+      break;
+    case core::Operation::Kind::DragVertex:
+      msg.vertex = op.drag.vertex;
+      msg.position = toPoint(op.drag.position);
       break;
     case core::Operation::Kind::Load:
       msg.path = op.path;
@@ -166,6 +180,92 @@ Operation toMessage(const core::Operation& op)
       break;
   }
   return msg;
+}
+
+core::Expected<core::FlatFoldRequest> flatFoldRequest(const std::vector<geometry_msgs::Point>& starts,
+                                                     const std::vector<geometry_msgs::Point>& ends,
+                                                     const std::vector<double>& angles,
+                                                     const geometry_msgs::Point& fixed)
+{
+  using Failure = core::Expected<core::FlatFoldRequest>;
+  if (starts.size() != ends.size() || starts.size() != angles.size())
+    return Failure::failure("a fold on chosen creases needs one end and one angle per start (" +
+                            std::to_string(starts.size()) + " starts, " + std::to_string(ends.size()) + " ends, " +
+                            std::to_string(angles.size()) + " angles)");
+  if (starts.empty())
+    return Failure::failure("no creases are chosen: mark at least one crease to fold");
+  core::FlatFoldRequest request;
+  for (size_t k = 0; k < starts.size(); ++k)
+    request.creases.push_back({ toVec3(starts[k]).head<2>(), toVec3(ends[k]).head<2>(), angles[k] });
+  request.fixed_point = toVec3(fixed).head<2>();
+  return request;
+}
+
+core::Expected<core::Operation> fromMessage(const Operation& msg)
+{
+  using Failure = core::Expected<core::Operation>;
+  core::Operation op;
+  op.revision = msg.revision;
+  bool known = false;
+  for (core::Operation::Kind kind :
+       { core::Operation::Kind::Crease, core::Operation::Kind::Rotate, core::Operation::Kind::Squash,
+         core::Operation::Kind::Undo, core::Operation::Kind::Redo, core::Operation::Kind::Reset,
+         core::Operation::Kind::Load, core::Operation::Kind::Pull, core::Operation::Kind::AssignmentFold,
+         core::Operation::Kind::FlatFold, core::Operation::Kind::DragVertex })
+    if (msg.type == core::kindName(kind))
+    {
+      op.kind = kind;
+      known = true;
+    }
+  if (!known)
+    return Failure::failure("\"" + msg.type + "\" is not an operation of the model's history");
+  switch (op.kind)
+  {
+    case core::Operation::Kind::Crease:
+      op.crease.start = toVec3(msg.start);
+      op.crease.end = toVec3(msg.end);
+      if (msg.has_eye)
+        op.crease.eye = toVec3(msg.eye);
+      op.crease.snap = msg.snap;
+      break;
+    case core::Operation::Kind::Rotate:
+      op.rotate.face = msg.face;
+      op.rotate.axis_edge = msg.axis_edge;
+      op.rotate.click = toVec3(msg.click);
+      op.rotate.angle = msg.angle;
+      op.rotate.carry_stack = !msg.picked_layers_only;
+      break;
+    case core::Operation::Kind::Load:
+      op.path = msg.path;
+      break;
+    case core::Operation::Kind::Reset:
+      op.size = msg.size;
+      break;
+    case core::Operation::Kind::AssignmentFold:
+      op.fraction = msg.fraction;
+      break;
+    case core::Operation::Kind::Pull:
+      if (msg.vertices.size() != msg.positions.size())
+        return Failure::failure("a pull needs one position per vertex");
+      for (size_t i = 0; i < msg.vertices.size(); ++i)
+        op.pull.push_back({ msg.vertices[i], toVec3(msg.positions[i]) });
+      break;
+    case core::Operation::Kind::FlatFold:
+    {
+      core::Expected<core::FlatFoldRequest> request =
+          flatFoldRequest(msg.crease_starts, msg.crease_ends, msg.crease_angles, msg.fixed);
+      if (!request)
+        return Failure::failure(request.message());
+      op.flat_fold = std::move(*request);
+      break;
+    }
+    case core::Operation::Kind::DragVertex:
+      op.drag = { msg.vertex, toVec3(msg.position) };
+      break;
+    default:
+      break;
+  }
+  return op;
 }
 
 }  // namespace virtual_origami

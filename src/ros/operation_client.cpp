@@ -3,6 +3,8 @@
 #include <ros/service.h>
 #include <std_srvs/Trigger.h>
 #include <virtual_origami/Crease.h>
+#include <virtual_origami/DragVertex.h>
+#include <virtual_origami/FlatFold.h>
 #include <virtual_origami/FoldByAssignment.h>
 #include <virtual_origami/Load.h>
 #include <virtual_origami/PinVertex.h>
@@ -29,7 +31,7 @@ OperationClient::OperationClient(const std::string& ns) : nh_(ns) {}
 bool OperationClient::waitForServices(double seconds)
 {
   for (const char* name : { "crease", "rotate", "squash", "undo", "redo", "reset", "pin", "pull", "load",
-                            "fold_by_assignment" })
+                            "fold_by_assignment", "flat_fold", "drag_vertex" })
     if (!ros::service::waitForService(nh_.resolveName(name), ros::Duration(seconds)))
       return false;
   return true;
@@ -61,6 +63,7 @@ core::Status OperationClient::apply(const Operation& op, int animation_steps, do
     srv.request.face = op.face;
     srv.request.axis_edge = op.axis_edge;
     srv.request.click = op.click;
+    srv.request.picked_layers_only = op.picked_layers_only;
     for (int i = 1; i < animation_steps; ++i)
     {
       srv.request.angle = op.angle * i / animation_steps;
@@ -103,6 +106,33 @@ core::Status OperationClient::apply(const Operation& op, int animation_steps, do
     srv.request.fraction = op.fraction;
     srv.request.preview = false;
     return call(nh_, "fold_by_assignment", srv);
+  }
+  if (op.type == "flat_fold")
+  {
+    // Shown folding from the paper as it is: the previews are frames of the same fold.
+    FlatFold srv;
+    srv.request.starts = op.crease_starts;
+    srv.request.ends = op.crease_ends;
+    srv.request.angles = op.crease_angles;
+    srv.request.fixed = op.fixed;
+    for (int i = 1; i < animation_steps; ++i)
+    {
+      srv.request.fraction = static_cast<double>(i) / animation_steps;
+      srv.request.commit = false;
+      ros::service::call(nh_.resolveName("flat_fold"), srv);  // a preview that fails only shows less
+      ros::WallDuration(animation_seconds / animation_steps).sleep();
+    }
+    srv.request.fraction = 1.0;
+    srv.request.commit = true;
+    return call(nh_, "flat_fold", srv);
+  }
+  if (op.type == "drag_vertex")
+  {
+    DragVertex srv;
+    srv.request.vertex = op.vertex;
+    srv.request.position = op.position;
+    srv.request.commit = true;
+    return call(nh_, "drag_vertex", srv);
   }
   if (op.type == "load")
     return load(op.path);

@@ -150,6 +150,8 @@ PaperModelNode::PaperModelNode(ros::NodeHandle nh, ros::NodeHandle private_nh) :
   services_.push_back(nh_.advertiseService("pin", &PaperModelNode::pin, this));
   services_.push_back(nh_.advertiseService("pull", &PaperModelNode::pull, this));
   services_.push_back(nh_.advertiseService("fold_by_assignment", &PaperModelNode::foldByAssignment, this));
+  services_.push_back(nh_.advertiseService("flat_fold", &PaperModelNode::flatFold, this));
+  services_.push_back(nh_.advertiseService("drag_vertex", &PaperModelNode::dragVertex, this));
   services_.push_back(nh_.advertiseService("load", &PaperModelNode::load, this));
   services_.push_back(nh_.advertiseService("save", &PaperModelNode::save, this));
   // Calls reconfigure() at once with the parameters (or their defaults).
@@ -466,6 +468,7 @@ bool PaperModelNode::rotate(Rotate::Request& req, Rotate::Response& res)
   request.axis_edge = req.axis_edge;
   request.click = toVec3(req.click);
   request.angle = req.angle;
+  request.carry_stack = !req.picked_layers_only;
   const auto result = computeAndCommit<core::RotateResult>(
       [&](core::Workspace workspace) { return core::computeRotate(std::move(workspace), request); }, req.commit,
       "rotated", res.revision);
@@ -636,6 +639,64 @@ bool PaperModelNode::foldByAssignment(FoldByAssignment::Request& req, FoldByAssi
   std::snprintf(text, sizeof text, "%s %.1f %% by assignment (strain %.2g, %s)", commit_it ? "folded" : "preview at",
                 100.0 * req.fraction, folded.max_strain, folded.rigid ? "rigid" : "not rigid");
   res.message = text;
+  return true;
+}
+
+bool PaperModelNode::flatFold(FlatFold::Request& req, FlatFold::Response& res)
+{
+  res.success = false;
+  const core::Expected<core::FlatFoldRequest> request = flatFoldRequest(req.starts, req.ends, req.angles, req.fixed);
+  if (!request)
+  {
+    res.message = request.message();
+    std::lock_guard<std::mutex> lock(mutex_);
+    res.revision = session_.revision();
+    return true;
+  }
+  const bool commit_it = req.commit;
+  const double fraction = req.fraction;
+  const auto result = computeAndCommit<core::FlatFoldResult>(
+      [&](core::Workspace workspace) {
+        return commit_it ? core::computeFlatFold(std::move(workspace), *request) :
+                           core::computeFlatFoldPreview(std::move(workspace), *request, fraction);
+      },
+      commit_it, "folded on chosen creases", res.revision);
+  res.success = result.ok();
+  if (!result)
+  {
+    res.message = result.message();
+    return true;
+  }
+  res.changed_edges.assign(result->result.changed_edges.begin(), result->result.changed_edges.end());
+  res.moved_faces.assign(result->result.moved_faces.begin(), result->result.moved_faces.end());
+  char text[160];
+  if (commit_it)
+    std::snprintf(text, sizeof text, "folded on %zu chosen creases: %zu creases set, %zu faces moved",
+                  request->creases.size(), result->result.changed_edges.size(), result->result.moved_faces.size());
+  else
+    std::snprintf(text, sizeof text, "preview at %.0f %% of the fold (%zu faces move)", 100.0 * fraction,
+                  result->result.moved_faces.size());
+  res.message = text;
+  return true;
+}
+
+bool PaperModelNode::dragVertex(DragVertex::Request& req, DragVertex::Response& res)
+{
+  const core::PullTarget target{ req.vertex, toVec3(req.position) };
+  const bool commit_it = req.commit;
+  const auto result = computeAndCommit<core::PullResult>(
+      [&](core::Workspace workspace) { return core::computeDragVertex(std::move(workspace), target); }, commit_it,
+      "dragged a vertex", res.revision);
+  res.success = result.ok();
+  if (!result)
+  {
+    res.message = result.message();
+    return true;
+  }
+  res.residual = result->result.residual;
+  res.max_strain = result->result.solve.max_strain;
+  res.message = (commit_it ? "dragged vertex " : "preview: vertex ") + std::to_string(req.vertex) +
+                (commit_it ? "" : " dragged");
   return true;
 }
 

@@ -2,8 +2,13 @@
 // the recording survives kill -9 of the recorder.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+
+#include <virtual_origami/DragVertex.h>
+#include <virtual_origami/FlatFold.h>
+#include <virtual_origami/PinVertex.h>
 
 #include "ros_test_client.h"
 #include "virtual_origami/ros/recording.h"
@@ -14,6 +19,25 @@ using virtual_origami::test::PaperClient;
 using virtual_origami::test::crash;
 using virtual_origami::test::waitFor;
 
+namespace
+{
+geometry_msgs::Point point(double x, double y, double z = 0.0)
+{
+  geometry_msgs::Point p;
+  p.x = x;
+  p.y = y;
+  p.z = z;
+  return p;
+}
+
+int vertexAt(const PaperState& state, double x, double y)
+{
+  for (size_t v = 0; v < state.vertices_crease_pattern.size(); ++v)
+    if (std::abs(state.vertices_crease_pattern[v].x - x) < 1e-12 && std::abs(state.vertices_crease_pattern[v].y - y) < 1e-12)
+      return static_cast<int>(v);
+  return -1;
+}
+}  // namespace
 
 TEST(RecordReplay, AReplayEndsInTheRecordedState)
 {
@@ -36,7 +60,66 @@ TEST(RecordReplay, AReplayEndsInTheRecordedState)
   const Rotate folded = recorded.rotate(-1, -1, 0.3, 0.1, M_PI);
   ASSERT_TRUE(folded.response.success) << folded.response.message;
   ASSERT_TRUE(recorded.trigger("squash").response.success);
-  const uint64_t last = folded.response.revision + 1;
+
+  // Then afresh: a fold on a chosen crease (previewed half way first), pins, a vertex dragged
+  // (previewed first), a rotation of the picked layers only.
+  ASSERT_TRUE(recorded.trigger("reset").response.success);
+  ASSERT_TRUE(recorded.crease(0, 0, 1, 1).response.success);
+  FlatFold::Request fold;
+  fold.starts = { point(0, 0) };
+  fold.ends = { point(1, 1) };
+  fold.angles = { M_PI };
+  fold.fixed = point(0.9, 0.1);
+  fold.commit = false;
+  fold.fraction = 0.5;
+  const FlatFold previewed = recorded.call<FlatFold>("flat_fold", fold);
+  ASSERT_TRUE(previewed.response.success) << previewed.response.message;
+  fold.commit = true;
+  const FlatFold flat = recorded.call<FlatFold>("flat_fold", fold);
+  ASSERT_TRUE(flat.response.success) << flat.response.message;
+  const PaperState halved = recorded.stateAt(flat.response.revision);
+  // The half that stays is pinned: its three corners.
+  for (const auto& [x, y] : { std::pair<double, double>{ 0, 0 }, { 1, 0 }, { 1, 1 } })
+  {
+    PinVertex::Request pin;
+    pin.vertex = vertexAt(halved, x, y);
+    ASSERT_GE(pin.vertex, 0);
+    ASSERT_TRUE(recorded.call<PinVertex>("pin", pin).response.success);
+  }
+  // The corner (0, 1), folded onto (1, 0), dragged back up to a right angle.
+  DragVertex::Request drag;
+  drag.vertex = vertexAt(halved, 0, 1);
+  drag.position = point(0.5, 0.5, std::sqrt(0.5));
+  drag.commit = false;
+  const DragVertex preview_drag = recorded.call<DragVertex>("drag_vertex", drag);
+  ASSERT_TRUE(preview_drag.response.success) << preview_drag.response.message;
+  EXPECT_EQ(preview_drag.response.revision, flat.response.revision);
+  drag.commit = true;
+  const DragVertex dragged = recorded.call<DragVertex>("drag_vertex", drag);
+  ASSERT_TRUE(dragged.response.success) << dragged.response.message;
+  EXPECT_EQ(dragged.response.revision, flat.response.revision + 1);
+  EXPECT_LE(dragged.response.residual, 1e-6);
+  EXPECT_LE(dragged.response.max_strain, 1e-6);
+  const PaperState upright = recorded.stateAt(dragged.response.revision);
+  EXPECT_NEAR(upright.vertices_folded[drag.vertex].z, std::sqrt(0.5), 1e-6);
+  Rotate::Request turn;
+  turn.face = -1;
+  turn.axis_edge = -1;
+  for (size_t e = 0; e < upright.edges.size(); ++e)
+    if (upright.edges[e].face_left >= 0 && upright.edges[e].face_right >= 0)
+      turn.axis_edge = static_cast<int>(e);
+  ASSERT_GE(turn.axis_edge, 0);
+  for (size_t f = 0; f < upright.faces.size(); ++f)  // the flap: the face with the corner (0, 1)
+    for (const auto v : upright.faces[f].vertices)
+      if (static_cast<int>(v) == drag.vertex)
+        turn.face = static_cast<int>(f);
+  ASSERT_GE(turn.face, 0);
+  turn.angle = -0.25;
+  turn.commit = true;
+  turn.picked_layers_only = true;
+  const Rotate turned = recorded.call<Rotate>("rotate", turn);
+  ASSERT_TRUE(turned.response.success) << turned.response.message;
+  const uint64_t last = turned.response.revision;
   const PaperState expected = recorded.stateAt(last);
 
   // Killed as a crash would: what it wrote stays readable, every operation in it.
@@ -44,8 +127,21 @@ TEST(RecordReplay, AReplayEndsInTheRecordedState)
   crash("recorder", false);
   const core::Expected<Recording> recording = readRecording(bag);
   ASSERT_TRUE(recording.ok()) << recording.message();
-  ASSERT_EQ(recording->operations.size(), 10u);
-  EXPECT_EQ(recording->operations.back().type, "squash");
+  // 10 before the reset; then reset, crease, flat_fold, three pins, drag_vertex, rotate (the
+  // previews are not recorded).
+  ASSERT_EQ(recording->operations.size(), 18u);
+  EXPECT_EQ(recording->operations[9].type, "squash");
+  const Operation& flat_op = recording->operations[12];
+  EXPECT_EQ(flat_op.type, "flat_fold");
+  ASSERT_EQ(flat_op.crease_angles.size(), 1u);
+  EXPECT_EQ(flat_op.crease_angles[0], M_PI);
+  EXPECT_EQ(flat_op.fixed.x, 0.9);
+  const Operation& drag_op = recording->operations[16];
+  EXPECT_EQ(drag_op.type, "drag_vertex");
+  EXPECT_EQ(drag_op.vertex, drag.vertex);
+  EXPECT_EQ(drag_op.position.z, std::sqrt(0.5));
+  EXPECT_EQ(recording->operations.back().type, "rotate");
+  EXPECT_TRUE(recording->operations.back().picked_layers_only);
   EXPECT_EQ(recording->operations.back().revision, last);
   ASSERT_TRUE(recording->initial_state.has_value());
 
@@ -57,8 +153,21 @@ TEST(RecordReplay, AReplayEndsInTheRecordedState)
   ASSERT_TRUE(done.ok()) << done.message();
 
   // Same topology, same positions (the replay starts from a loaded copy of the first state).
+  // The replay's last state may still be on its way (the topology is the same for its last
+  // operations): wait for the positions, then check everything.
   ASSERT_TRUE(waitFor([&] { return replayed.state().edges.size() == expected.edges.size() &&
                                    replayed.state().faces.size() == expected.faces.size(); }));
+  waitFor([&] {
+    const PaperState& s = replayed.state();
+    if (s.vertices_folded.size() != expected.vertices_folded.size())
+      return false;
+    for (size_t v = 0; v < s.vertices_folded.size(); ++v)
+      if (std::abs(s.vertices_folded[v].x - expected.vertices_folded[v].x) > 1e-9 ||
+          std::abs(s.vertices_folded[v].y - expected.vertices_folded[v].y) > 1e-9 ||
+          std::abs(s.vertices_folded[v].z - expected.vertices_folded[v].z) > 1e-9)
+        return false;
+    return true;
+  });
   const PaperState& got = replayed.state();
   EXPECT_EQ(got.faces, expected.faces);
   ASSERT_EQ(got.edges.size(), expected.edges.size());

@@ -7,9 +7,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
+#include <virtual_origami/DragVertex.h>
+#include <virtual_origami/FlatFold.h>
 #include <virtual_origami/Load.h>
 #include <virtual_origami/Operation.h>
 #include <virtual_origami/PinVertex.h>
@@ -64,6 +67,30 @@ protected:
     ros::WallDuration(0.2).sleep();
     ros::spinOnce();
     expectSameState(client_.state(), before);
+  }
+
+  /// The highest point the markers draw of the faces (ns "front").
+  double markerTop()
+  {
+    double top = -INFINITY;
+    for (const auto& m : markers_.markers)
+      if (m.ns == "front" && m.action == visualization_msgs::Marker::ADD)
+        for (const auto& p : m.points)
+          top = std::max(top, p.z);
+    return top;
+  }
+
+  /// The operation announced with this revision, once it came (none if it did not).
+  std::optional<Operation> announced(uint64_t revision)
+  {
+    std::optional<Operation> found;
+    waitFor([&] {
+      for (const Operation& op : operations_)
+        if (op.revision == revision && op.type != "pin")
+          found = op;
+      return found.has_value();
+    });
+    return found;
   }
 
   int markerPoints(const std::string& ns)
@@ -390,6 +417,216 @@ TEST_F(Services, MarkersFollowEveryOperation)
   EXPECT_EQ(markerPoints("crease"), 0);
   for (const auto& m : markers_.markers)
     EXPECT_EQ(m.header.frame_id, "paper");
+}
+
+namespace
+{
+geometry_msgs::Point point(double x, double y, double z = 0.0)
+{
+  geometry_msgs::Point p;
+  p.x = x;
+  p.y = y;
+  p.z = z;
+  return p;
+}
+
+/// The diagonal (0, 0)–(1, 1) folded to `angle`, the lower-right half staying.
+FlatFold::Request diagonalFold(double angle, bool commit, double fraction = 1.0)
+{
+  FlatFold::Request r;
+  r.starts = { point(0, 0) };
+  r.ends = { point(1, 1) };
+  r.angles = { angle };
+  r.fixed = point(0.9, 0.1);
+  r.commit = commit;
+  r.fraction = fraction;
+  return r;
+}
+
+int vertexAt(const PaperState& state, double x, double y)
+{
+  for (size_t v = 0; v < state.vertices_crease_pattern.size(); ++v)
+    if (std::abs(state.vertices_crease_pattern[v].x - x) < 1e-12 && std::abs(state.vertices_crease_pattern[v].y - y) < 1e-12)
+      return static_cast<int>(v);
+  return -1;
+}
+}  // namespace
+
+TEST_F(Services, FlatFoldPreviewsCommitsAndRefuses)
+{
+  ASSERT_TRUE(client_.crease(0, 0, 1, 1).response.success);
+  const PaperState creased = client_.stateAt(base_ + 1);
+  // A preview half way: drawn (the corner (0, 1) straight above the diagonal), not recorded.
+  const FlatFold preview = client_.call<FlatFold>("flat_fold", diagonalFold(M_PI, false, 0.5));
+  ASSERT_TRUE(preview.response.success) << preview.response.message;
+  EXPECT_EQ(preview.response.revision, base_ + 1);
+  EXPECT_EQ(preview.response.moved_faces.size(), 1u);
+  EXPECT_TRUE(waitFor([&] { return markerTop() > 0.7; })) << markerTop();
+  ros::WallDuration(0.2).sleep();
+  ros::spinOnce();
+  expectSameState(client_.state(), creased);
+
+  const FlatFold folded = client_.call<FlatFold>("flat_fold", diagonalFold(M_PI, true));
+  ASSERT_TRUE(folded.response.success) << folded.response.message;
+  EXPECT_EQ(folded.response.revision, base_ + 2);
+  EXPECT_EQ(folded.response.changed_edges.size(), 1u);
+  EXPECT_EQ(folded.response.moved_faces.size(), 1u);
+  const PaperState state = client_.stateAt(base_ + 2);
+  const geometry_msgs::Point corner = state.vertices_folded[vertexAt(state, 0, 1)];
+  EXPECT_NEAR(corner.x, 1.0, 1e-12);
+  EXPECT_NEAR(corner.y, 0.0, 1e-12);
+  EXPECT_NEAR(corner.z, 0.0, 1e-12);
+  EXPECT_NEAR(state.edges[folded.response.changed_edges[0]].fold_angle, M_PI, 1e-12);
+  EXPECT_EQ(state.edges[folded.response.changed_edges[0]].assignment, "V");
+  EXPECT_TRUE(waitFor([&] { return markerTop() < 0.1; })) << markerTop();
+  // Announced on `operations` with every parameter (the preview was not: nothing else came).
+  const std::optional<Operation> announced_fold = announced(base_ + 2);
+  ASSERT_TRUE(announced_fold.has_value());
+  const Operation op = *announced_fold;
+  for (const Operation& o : operations_)
+    EXPECT_TRUE(o.revision != base_ + 1 || o.type == "crease") << o.type;
+  EXPECT_EQ(op.type, "flat_fold");
+  EXPECT_EQ(op.revision, base_ + 2);
+  ASSERT_EQ(op.crease_starts.size(), 1u);
+  ASSERT_EQ(op.crease_ends.size(), 1u);
+  ASSERT_EQ(op.crease_angles.size(), 1u);
+  EXPECT_EQ(op.crease_ends[0].x, 1.0);
+  EXPECT_EQ(op.crease_ends[0].y, 1.0);
+  EXPECT_EQ(op.crease_angles[0], M_PI);
+  EXPECT_EQ(op.fixed.x, 0.9);
+  EXPECT_EQ(op.fixed.y, 0.1);
+  const core::Expected<core::Operation> back = fromMessage(op);
+  ASSERT_TRUE(back.ok()) << back.message();
+  EXPECT_EQ(back->kind, core::Operation::Kind::FlatFold);
+  EXPECT_EQ(back->flat_fold.fixed_point, core::Vec2(0.9, 0.1));
+
+  // Refusals: success false, a message that says why, the revision and the paper as they were.
+  const auto refused = [&](FlatFold::Request r, const std::string& words) {
+    for (bool commit : { true, false })
+    {
+      r.commit = commit;
+      const FlatFold answer = client_.call<FlatFold>("flat_fold", r);
+      EXPECT_EQ(answer.response.revision, base_ + 2);
+      EXPECT_NE(answer.response.message.find(words), std::string::npos) << answer.response.message;
+      expectRefused(answer.response, state);
+    }
+  };
+  FlatFold::Request r = diagonalFold(0.0, true, 0.5);
+  r.ends.clear();
+  refused(r, "one end and one angle per start");
+  r = diagonalFold(0.0, true, 0.5);
+  r.angles.push_back(0.0);
+  refused(r, "one end and one angle per start");
+  r = diagonalFold(0.0, true, 0.5);
+  r.starts.clear();
+  r.ends.clear();
+  r.angles.clear();
+  refused(r, "no creases");
+  refused(diagonalFold(NAN, true, 0.5), "non-finite");
+  r = diagonalFold(0.0, true, 0.5);
+  r.fixed = point(3, 3);
+  refused(r, "off the sheet");
+  refused(diagonalFold(M_PI, true, 0.5), "moves nothing");
+  // Half the diagonal alone cannot fold: the other half would tear from it.
+  ASSERT_TRUE(client_.crease(0, 1, 1, 0).response.success);
+  const PaperState crossed = client_.stateAt(base_ + 3);
+  r = diagonalFold(0.0, true, 0.5);
+  r.ends = { point(0.5, 0.5) };
+  for (bool commit : { true, false })
+  {
+    r.commit = commit;
+    const FlatFold answer = client_.call<FlatFold>("flat_fold", r);
+    EXPECT_NE(answer.response.message.find("the chosen creases do not fold flat"), std::string::npos)
+        << answer.response.message;
+    expectRefused(answer.response, crossed);
+  }
+  // A preview fraction beyond the fold.
+  const FlatFold beyond = client_.call<FlatFold>("flat_fold", diagonalFold(0.0, false, 1.5));
+  EXPECT_NE(beyond.response.message.find("from 0 to 1"), std::string::npos) << beyond.response.message;
+  expectRefused(beyond.response, crossed);
+
+  // Undone like any other operation.
+  ASSERT_TRUE(client_.trigger("undo").response.success);
+  ASSERT_TRUE(client_.trigger("undo").response.success);
+  EXPECT_EQ(client_.stateAt(base_ + 5).vertices_folded, creased.vertices_folded);
+}
+
+TEST_F(Services, DragVertexRefusesWhatItCannotDo)
+{
+  // paper_model runs here without a solver: only what is refused before a solve is asked.
+  ASSERT_TRUE(client_.crease(0.5, -0.1, 0.5, 1.1).response.success);
+  const PaperState state = client_.stateAt(base_ + 1);
+  ASSERT_TRUE(announced(base_ + 1).has_value());
+  const size_t published = operations_.size();
+  DragVertex::Request r;
+  r.vertex = 99;
+  r.position = point(0.5, 0.5, 0.5);
+  for (bool commit : { true, false })
+  {
+    r.commit = commit;
+    r.vertex = 99;
+    r.position = point(0.5, 0.5, 0.5);
+    DragVertex answer = client_.call<DragVertex>("drag_vertex", r);
+    EXPECT_NE(answer.response.message.find("vertex 99 does not exist"), std::string::npos) << answer.response.message;
+    EXPECT_EQ(answer.response.revision, base_ + 1);
+    expectRefused(answer.response, state);
+    r.vertex = -1;
+    expectRefused(client_.call<DragVertex>("drag_vertex", r).response, state);
+    r.vertex = vertexAt(state, 1, 0);
+    r.position = point(NAN, 0, 0);
+    answer = client_.call<DragVertex>("drag_vertex", r);
+    EXPECT_NE(answer.response.message.find("not a finite point"), std::string::npos) << answer.response.message;
+    expectRefused(answer.response, state);
+  }
+  // A pinned vertex stays where its pin holds it.
+  PinVertex::Request pin;
+  pin.vertex = vertexAt(state, 1, 0);
+  ASSERT_TRUE(client_.call<PinVertex>("pin", pin).response.success);
+  ASSERT_TRUE(waitFor([&] { return client_.state().pins.size() == 1u; }));
+  const PaperState with_pin = client_.state();
+  r.vertex = pin.vertex;
+  r.position = point(0.9, 0.0, 0.3);
+  r.commit = true;
+  const DragVertex held = client_.call<DragVertex>("drag_vertex", r);
+  EXPECT_NE(held.response.message.find("pinned"), std::string::npos) << held.response.message;
+  expectRefused(held.response, with_pin);
+  pin.release = true;
+  ASSERT_TRUE(client_.call<PinVertex>("pin", pin).response.success);
+  // Nothing refused was announced (the pin and its release were).
+  ros::WallDuration(0.2).sleep();
+  ros::spinOnce();
+  for (size_t i = published; i < operations_.size(); ++i)
+    EXPECT_EQ(operations_[i].type, "pin");
+}
+
+TEST_F(Services, RotateCarriesPickedLayersOnlyToItsOperation)
+{
+  ASSERT_TRUE(client_.crease(0.5, -0.1, 0.5, 1.1).response.success);
+  Rotate::Request r;
+  r.face = -1;
+  r.axis_edge = -1;
+  r.click = point(0.8, 0.5);
+  r.angle = 0.5;
+  r.commit = true;
+  r.picked_layers_only = true;
+  const Rotate turned = client_.call<Rotate>("rotate", r);
+  ASSERT_TRUE(turned.response.success) << turned.response.message;
+  r.picked_layers_only = false;
+  r.face = turned.response.face;  // the click is off the face once it turned
+  r.axis_edge = turned.response.axis_edge;
+  const Rotate again = client_.call<Rotate>("rotate", r);
+  ASSERT_TRUE(again.response.success) << again.response.message;
+  const std::optional<Operation> first = announced(base_ + 2);
+  const std::optional<Operation> second = announced(base_ + 3);
+  ASSERT_TRUE(first.has_value());
+  ASSERT_TRUE(second.has_value());
+  EXPECT_EQ(first->type, "rotate");
+  EXPECT_TRUE(first->picked_layers_only);
+  EXPECT_FALSE(second->picked_layers_only);
+  const core::Expected<core::Operation> back = fromMessage(*first);
+  ASSERT_TRUE(back.ok()) << back.message();
+  EXPECT_FALSE(back->rotate.carry_stack);
+  EXPECT_NEAR(client_.stateAt(base_ + 3).edges[turned.response.axis_edge].fold_angle, 1.0, 1e-12);
 }
 
 int main(int argc, char** argv)

@@ -3,6 +3,7 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 #include <geometry_msgs/Point.h>
 #include <virtual_origami/Operation.h>
@@ -29,6 +30,18 @@ PaperState toMessage(const core::Paper& paper, uint64_t revision, const Pins& pi
 /// Fails with a message on inconsistent input (lengths, indices, assignments, topology).
 core::Expected<core::Paper> fromMessage(const PaperState& state);
 
+/// Every parameter of the operation (rotate's carry_stack as picked_layers_only = !carry_stack;
+/// a flat fold's segments at z = 0).
 Operation toMessage(const core::Operation& operation);
+/// The operation a message names, for applying it to a session again; fails on a type that is
+/// not in a session's history (pin) or unknown, and on arrays of different lengths.
+core::Expected<core::Operation> fromMessage(const Operation& operation);
+
+/// A fold on chosen creases from the arrays of FlatFold.srv / Operation.msg (z ignored): fails
+/// on arrays of different lengths or none.
+core::Expected<core::FlatFoldRequest> flatFoldRequest(const std::vector<geometry_msgs::Point>& starts,
+                                                     const std::vector<geometry_msgs::Point>& ends,
+                                                     const std::vector<double>& angles,
+                                                     const geometry_msgs::Point& fixed);
 
 }  // namespace virtual_origami

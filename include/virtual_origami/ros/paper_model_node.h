@@ -18,6 +18,8 @@
 #include <tf2_ros/transform_broadcaster.h>
 #include <tf2_ros/transform_listener.h>
 #include <virtual_origami/Crease.h>
+#include <virtual_origami/DragVertex.h>
+#include <virtual_origami/FlatFold.h>
 #include <virtual_origami/FoldByAssignment.h>
 #include <virtual_origami/Load.h>
 #include <virtual_origami/PaperModelConfig.h>
@@ -53,6 +55,11 @@ private:
   bool pin(PinVertex::Request& req, PinVertex::Response& res);
   bool pull(Pull::Request& req, Pull::Response& res);
   bool foldByAssignment(FoldByAssignment::Request& req, FoldByAssignment::Response& res);
+  /// Fold on chosen creases (SPEC §3.7); a preview (commit false) shows the fold `fraction` of
+  /// the way from the paper now (core::flatFoldFrame).
+  bool flatFold(FlatFold::Request& req, FlatFold::Response& res);
+  /// Drag a vertex (SPEC §3.6): the faces follow through the solver, the pins hold.
+  bool dragVertex(DragVertex::Request& req, DragVertex::Response& res);
   /// Strain colours and the preview budget, live (cfg/PaperModel.cfg).
   void reconfigure(PaperModelConfig& config, uint32_t level);
   bool load(Load::Request& req, Load::Response& res);
