@@ -51,6 +51,8 @@ step curved_bench "$bin/curved_bench" "$out/curved_solvers.csv"
 step curved_speed_bench env OMP_THREAD_LIMIT=1 "$bin/curved_speed_bench" "$out"
 # One core, as curved_speed_bench (CHOLMOD's OpenMP loops capped to one thread).
 step fold_bench env OMP_THREAD_LIMIT=1 "$bin/fold_bench" "$out"
+# One core, as fold_bench: the crane's gestures, each pointer event to its serialized markers.
+step gesture_bench env OMP_THREAD_LIMIT=1 "$bin/gesture_bench" "$out/gesture_latency.csv" test/data/crane_reference.json
 step replay_bench "$bin/replay_bench" "$out/replay.csv" sequences/crane.json sequences/penguin.json sequences/miura_ori.json
 step mesh_bench "$bin/mesh_bench" "$out"
 # Journal and memory: their temporary files in the build folder, on disk (not a tmpfs /tmp).
