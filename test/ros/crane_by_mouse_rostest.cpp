@@ -10,6 +10,9 @@
 #include <map>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+#include <virtual_origami/Operation.h>
+
 #include <virtual_origami/InteractionStatus.h>
 #include <visualization_msgs/InteractiveMarkerInit.h>
 
@@ -83,6 +86,81 @@ std::vector<int> creasesOn(const core::Paper& paper, const core::Vec2& start, co
   return out;
 }
 
+std::string readFile(const std::string& path)
+{
+  std::ifstream file(path);
+  EXPECT_TRUE(file) << path;
+  std::stringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+/// The operations as a fold sequence (sequences/*.json), each with its note.
+std::string sequenceJson(const std::vector<core::Operation>& operations, const core::FoldSequence& reference)
+{
+  using nlohmann::json;
+  const auto xy = [](const core::Vec2& p) { return json::array({ p.x(), p.y() }); };
+  const auto xyz = [](const core::Vec3& p) { return json::array({ p.x(), p.y(), p.z() }); };
+  json steps = json::array();
+  for (size_t i = 0; i < operations.size(); ++i)
+  {
+    const core::Operation& op = operations[i];
+    json step;
+    if (op.kind == core::Operation::Kind::Crease)
+      step["crease"] = { { "start", xyz(op.crease.start) }, { "end", xyz(op.crease.end) } };
+    else if (op.kind == core::Operation::Kind::Rotate)
+      step["rotate"] = { { "face", op.rotate.face },
+                         { "axis_edge", op.rotate.axis_edge },
+                         { "click", xyz(op.rotate.click) },
+                         { "angle_deg", op.rotate.angle * 180.0 / M_PI } };
+    else if (op.kind == core::Operation::Kind::FlatFold)
+    {
+      json creases = json::array();
+      for (const core::CreaseLineAngle& line : op.flat_fold.creases)
+        creases.push_back({ { "start", xy(line.start) }, { "end", xy(line.end) }, { "angle_deg", line.angle * 180.0 / M_PI } });
+      step["flat_fold"] = { { "creases", creases }, { "fixed", xy(op.flat_fold.fixed_point) } };
+    }
+    if (i < reference.steps.size())
+      step["note"] = reference.steps[i].note;
+    steps.push_back(step);
+  }
+  json sequence = { { "title", reference.title }, { "size", reference.size }, { "solver", reference.solver },
+                    { "steps", steps } };
+  return sequence.dump(1);
+}
+
+/// Whether a shipped sequence's steps are these operations (to 1e-9).
+bool sameOperations(const core::FoldSequence& shipped, const std::vector<core::Operation>& operations)
+{
+  if (shipped.steps.size() != operations.size())
+    return false;
+  const auto near = [](const auto& a, const auto& b) { return (a - b).norm() < 1e-9; };
+  for (size_t i = 0; i < operations.size(); ++i)
+  {
+    const core::Operation& a = shipped.steps[i].operation;
+    const core::Operation& b = operations[i];
+    if (a.kind != b.kind)
+      return false;
+    if (a.kind == core::Operation::Kind::Crease && !(near(a.crease.start, b.crease.start) && near(a.crease.end, b.crease.end)))
+      return false;
+    if (a.kind == core::Operation::Kind::Rotate &&
+        !(a.rotate.face == b.rotate.face && a.rotate.axis_edge == b.rotate.axis_edge &&
+          near(a.rotate.click, b.rotate.click) && std::abs(a.rotate.angle - b.rotate.angle) < 1e-9))
+      return false;
+    if (a.kind == core::Operation::Kind::FlatFold)
+    {
+      if (a.flat_fold.creases.size() != b.flat_fold.creases.size() || !near(a.flat_fold.fixed_point, b.flat_fold.fixed_point))
+        return false;
+      for (size_t k = 0; k < a.flat_fold.creases.size(); ++k)
+        if (!near(a.flat_fold.creases[k].start, b.flat_fold.creases[k].start) ||
+            !near(a.flat_fold.creases[k].end, b.flat_fold.creases[k].end) ||
+            std::abs(a.flat_fold.creases[k].angle - b.flat_fold.creases[k].angle) > 1e-9)
+          return false;
+    }
+  }
+  return true;
+}
+
 class CraneByMouse : public ::testing::Test
 {
 protected:
@@ -97,7 +175,12 @@ protected:
     init_sub_ = client_.nh().subscribe<visualization_msgs::InteractiveMarkerInit>(
         "interaction/update_full", 10,
         [this](const visualization_msgs::InteractiveMarkerInit::ConstPtr& init) { init_ = *init; });
+    operations_sub_ = client_.nh().subscribe<Operation>(
+        "operations", 100, [this](const Operation::ConstPtr& op) { operations_.push_back(*op); });
+    ASSERT_TRUE(waitFor([&] { return operations_sub_.getNumPublishers() > 0; }, 30));
     ASSERT_TRUE(client_.trigger("reset").response.success);
+    ASSERT_TRUE(waitFor([&] { return !operations_.empty(); }, 10));
+    operations_.clear();  // the reset
     ASSERT_TRUE(waitFor([&] { return feedback_pub_.getNumSubscribers() > 0; }, 30));
     ASSERT_TRUE(waitFor([&] { return loadMenu(); }, 30)) << "no interactive marker `paper` with a menu";
     revision_ = client_.state().revision;
@@ -345,7 +428,8 @@ protected:
 
   PaperClient client_;
   ros::Publisher feedback_pub_;
-  ros::Subscriber status_sub_, init_sub_;
+  ros::Subscriber status_sub_, init_sub_, operations_sub_;
+  std::vector<Operation> operations_;
   visualization_msgs::InteractiveMarkerInit init_;
   InteractionStatus status_;
   int statuses_ = 0;
@@ -359,13 +443,10 @@ protected:
 
 TEST_F(CraneByMouse, TheCraneFoldsByMouseAloneAsTheScriptFoldsIt)
 {
-  std::string path;
+  std::string path, shipped_path;
   ASSERT_TRUE(ros::param::get("~reference", path));
-  std::ifstream file(path);
-  ASSERT_TRUE(file) << path;
-  std::stringstream text;
-  text << file.rdbuf();
-  const core::Expected<core::FoldSequence> sequence = core::parseFoldSequence(text.str());
+  ASSERT_TRUE(ros::param::get("~shipped", shipped_path));
+  const core::Expected<core::FoldSequence> sequence = core::parseFoldSequence(readFile(path));
   ASSERT_TRUE(sequence.ok()) << sequence.message();
   core::Session reference_session;
   const core::Expected<std::vector<core::Paper>> reference =
@@ -395,6 +476,21 @@ TEST_F(CraneByMouse, TheCraneFoldsByMouseAloneAsTheScriptFoldsIt)
   }
   std::printf("crane by mouse: %zu steps, %d gestures (clicks, drags, menu selections)\n", sequence->steps.size(),
               gestures_);
+  // The shipped crane (sequences/crane.json) is written in the operations the mouse issued.
+  ASSERT_TRUE(waitFor([&] { return operations_.size() >= sequence->steps.size(); }, 10));
+  std::vector<core::Operation> issued;
+  for (const Operation& msg : operations_)
+  {
+    const core::Expected<core::Operation> op = fromMessage(msg);
+    ASSERT_TRUE(op.ok()) << op.message();
+    if (op->kind != core::Operation::Kind::Reset)
+      issued.push_back(*op);
+  }
+  const core::Expected<core::FoldSequence> shipped = core::parseFoldSequence(readFile(shipped_path));
+  ASSERT_TRUE(shipped.ok()) << shipped.message();
+  EXPECT_TRUE(sameOperations(*shipped, issued))
+      << shipped_path << " is not what the mouse issued; the mouse's sequence:\n"
+      << sequenceJson(issued, *sequence);
   RecordProperty("gestures", gestures_);
 }
 

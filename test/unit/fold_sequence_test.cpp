@@ -155,11 +155,15 @@ TEST(FoldSequence, AFlatFoldIsCommittedAsTheFlatFoldOperation)
                 "flat_fold.fixed");
 }
 
-// The crane folds to where it folded when a flat fold was committed as the pull of every vertex
-// it moved (before the flat_fold operation): the same vertices in the same places.
+// The crane of the script written before the mouse could fold it (test/data/crane_reference.json:
+// one flat fold names whole crease lines) folds to where it folded when a flat fold was committed
+// as the pull of every vertex it moved (before the flat_fold operation): the same vertices in the
+// same places. sequences/crane.json, the mouse's operations, folds the same crane (rostest
+// crane_by_mouse).
 TEST(FoldSequence, TheCraneFoldsAsItDidWhenFlatFoldsWerePulls)
 {
-  const Expected<FoldSequence> sequence = parseFoldSequence(readFile(std::string(VO_SOURCE_DIR) + "/sequences/crane.json"));
+  const Expected<FoldSequence> sequence =
+      parseFoldSequence(readFile(std::string(VO_SOURCE_DIR) + "/test/data/crane_reference.json"));
   ASSERT_TRUE(sequence.ok()) << sequence.message();
   Session session;
   const auto states = foldSequence(*sequence, session, makeSolver(sequence->solver));
