@@ -106,7 +106,7 @@ CreaseDrag creaseDrag(const Paper& paper, const Vec3& press, const Vec3& pointer
 }
 
 Expected<RotationRing> rotationRing(const Paper& paper, const Vec3& press, const Vec3& view_direction, int face,
-                                    int axis_edge)
+                                    int axis_edge, bool carry_stack)
 {
   using Failure = Expected<RotationRing>;
   if (!press.allFinite() || !view_direction.allFinite() || view_direction.norm() < 1e-12)
@@ -159,7 +159,13 @@ Expected<RotationRing> rotationRing(const Paper& paper, const Vec3& press, const
   // rotate() turns the left face of the hinge (or its side) by +angle about a→b.
   const double side = moving[hinge.faces[0]] ? 1.0 : -1.0;
   ring.turn_sign = side * (ring.u.cross(ring.w).dot(d) > 0 ? 1.0 : -1.0);
-  limitAngles(paper, ring, moving, side);
+  // Each way the turn carries the layers in its way along (rotate()'s carry_stack): the hinges
+  // that limit it are those between the faces it turns and the rest.
+  RotationRing up = ring, down = ring;
+  limitAngles(paper, up, mask(paper.faces.size(), turnedFaces(paper, ring.face, axis_edge, 1.0, carry_stack)), side);
+  limitAngles(paper, down, mask(paper.faces.size(), turnedFaces(paper, ring.face, axis_edge, -1.0, carry_stack)), side);
+  ring.max_angle = up.max_angle;
+  ring.min_angle = down.min_angle;
   return ring;
 }
 

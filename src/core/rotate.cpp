@@ -301,7 +301,50 @@ Expected<Paper> solveInStages(const Paper& paper, double turn,
   report.seconds = seconds;
   return current;
 }
+/// The faces a turn of `face` about `axis_edge` by the request angle `angle` turns rigidly, and
+/// whether they part from the rest exactly (`rigid`; else the face turns with the layers in its
+/// way and a solver moves the rest).
+std::vector<char> turning(const Paper& paper, int face, int axis_edge, double angle, bool carry_stack, bool& rigid)
+{
+  const Edge& hinge = paper.edges[axis_edge];
+  const Axis axis = axisOf(paper, axis_edge);
+  const double tolerance = 1e-7 * paper.scale();
+  const int across = hinge.otherFace(face);
+  const size_t face_count = paper.faces.size();
+  // Left face turning by +θ about vertices[0]→vertices[1] raises the fold angle by θ.
+  const double turn = hinge.faces[0] == face ? angle : -angle;
+  const Stack stack = stackOf(paper, face, axis, tolerance);
+  // The pressed face's points start moving along turn·(direction × across): the way its
+  // layers swing, measured along the stack's normal.
+  const int swing = turn * stack.normal.dot(axis.direction.cross(stack.across)) > 0 ? 1 : -1;
+
+  // Rigid when the axis parts the face's side from the rest, carrying the layers in the way.
+  std::vector<char> moving = sideOf(paper, face, axis, tolerance);
+  rigid = !moving[across];
+  if (rigid && carry_stack)
+    carryStack(paper, stack, swing, axis, sideOf(paper, across, axis, tolerance), true, moving);
+  rigid = rigid && !moving[across] && separable(paper, moving, axis, onAxisTolerance(paper));
+  if (!rigid)
+  {
+    // The face turns alone, with the layers it would pass through; the solver moves the rest.
+    moving.assign(face_count, 0);
+    moving[face] = 1;
+    if (carry_stack)
+    {
+      std::vector<char> blocked(face_count, 0);
+      blocked[across] = 1;
+      carryStack(paper, stack, swing, axis, blocked, false, moving);
+    }
+  }
+  return moving;
+}
 }  // namespace
+
+std::vector<int> turnedFaces(const Paper& paper, int face, int axis_edge, double angle, bool carry_stack)
+{
+  bool rigid = false;
+  return facesIn(turning(paper, face, axis_edge, angle, carry_stack, rigid));
+}
 
 std::vector<int> flapOf(const Paper& paper, int face, int axis_edge)
 {
@@ -329,32 +372,10 @@ Expected<RotateResult> rotate(Paper& paper, const RotateRequest& request, ShapeS
   const Axis axis = axisOf(paper, result.axis_edge);
   const double tolerance = 1e-7 * paper.scale();
   const int across = hinge.otherFace(result.face);
-  const size_t face_count = paper.faces.size();
   // Left face turning by +θ about vertices[0]→vertices[1] raises the fold angle by θ.
   const double turn = hinge.faces[0] == result.face ? request.angle : -request.angle;
-  const Stack stack = stackOf(paper, result.face, axis, tolerance);
-  // The pressed face's points start moving along turn·(direction × across): the way its
-  // layers swing, measured along the stack's normal.
-  const int swing = turn * stack.normal.dot(axis.direction.cross(stack.across)) > 0 ? 1 : -1;
-
-  // Rigid when the axis parts the face's side from the rest, carrying the layers in the way.
-  std::vector<char> moving = sideOf(paper, result.face, axis, tolerance);
-  bool rigid = !moving[across];
-  if (rigid && request.carry_stack)
-    carryStack(paper, stack, swing, axis, sideOf(paper, across, axis, tolerance), true, moving);
-  rigid = rigid && !moving[across] && separable(paper, moving, axis, onAxisTolerance(paper));
-  if (!rigid)
-  {
-    // The face turns alone, with the layers it would pass through; the solver moves the rest.
-    moving.assign(face_count, 0);
-    moving[result.face] = 1;
-    if (request.carry_stack)
-    {
-      std::vector<char> blocked(face_count, 0);
-      blocked[across] = 1;
-      carryStack(paper, stack, swing, axis, blocked, false, moving);
-    }
-  }
+  bool rigid = false;
+  const std::vector<char> moving = turning(paper, result.face, result.axis_edge, request.angle, request.carry_stack, rigid);
   result.moved_faces = facesIn(moving);
 
   // Hinge creases change by the turn exactly; telling updateFoldAngles so keeps ±180° on

@@ -377,7 +377,7 @@ void InteractionNode::press(const Feedback& feedback)
     // A layer picked here (Next layer down) turns instead of the top one.
     const int face = pickedHere(Pick::Kind::Face, press_) ? pick_.current() : -1;
     core::Expected<core::RotationRing> ring =
-        core::rotationRing(*paper_, press_, sight(press_camera_, press_), face, namedAxis());
+        core::rotationRing(*paper_, press_, sight(press_camera_, press_), face, namedAxis(), !picked_layers_only_);
     if (!ring)
     {
       ring_refusal_ = ring.message();

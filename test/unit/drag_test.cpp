@@ -1,9 +1,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <sstream>
 
 #include "test_models.h"
 #include "virtual_origami/core/drag.h"
+#include "virtual_origami/core/fold_sequence.h"
+#include "virtual_origami/solvers/solver_factory.h"
 
 using namespace virtual_origami::core;
 using namespace virtual_origami::core::test;
@@ -180,4 +184,64 @@ TEST(RotationRing, RefusesWithAMessage)
   EXPECT_FALSE(rotationRing(paper, p3(1.5, 0.4), kFromAbove).ok());    // off the sheet
   EXPECT_FALSE(rotationRing(paper, p3(0.5, 0.5), kFromAbove).ok());    // on the axis
   EXPECT_FALSE(rotationRing(paper, p3(0.8, 0.3), Vec3::Zero()).ok());  // no view
+}
+
+namespace
+{
+/// Every face pressed at its centroid and turned about each of its creases by a small angle
+/// each way: the ring allows the turn exactly when rotate() makes it (a turn refused only for
+/// want of a solver says nothing about the ring's limits).
+void expectRingLimitsAsRotateTurns(const Paper& paper, bool carry_stack, int& checked)
+{
+  for (size_t f = 0; f < paper.faces.size(); ++f)
+    for (int e : paper.faces[f].edges)
+    {
+      if (!paper.edges[e].isCrease())
+        continue;
+      const int face = static_cast<int>(f);
+      const Vec3 press = paper.faceCentroid(face);
+      const Expected<RotationRing> ring = rotationRing(paper, press, kFromAbove, face, e, carry_stack);
+      if (!ring)
+        continue;
+      for (double angle : { 0.1, -0.1 })
+      {
+        Paper turned = paper;
+        RotateRequest request;
+        request.face = face;
+        request.axis_edge = e;
+        request.click = press;
+        request.angle = angle;
+        request.carry_stack = carry_stack;
+        const Expected<RotateResult> result = rotate(turned, request);
+        if (!result && result.message().find("past 180") == std::string::npos)
+          continue;
+        const bool allowed = angle >= ring->min_angle && angle <= ring->max_angle;
+        EXPECT_EQ(allowed, result.ok()) << "face " << face << " about edge " << e << " by " << angle << ": "
+                                        << (result ? "turned" : result.message()) << "; ring limits ["
+                                        << ring->min_angle << ", " << ring->max_angle << "]";
+        ++checked;
+      }
+    }
+}
+}  // namespace
+
+TEST(RotationRing, ItsLimitsAreThoseOfTheLayersTheTurnCarries)
+{
+  int checked = 0;
+  for (int times : { 1, 2, 3 })
+    for (bool carry : { true, false })
+      expectRingLimitsAsRotateTurns(stackOfLayers(times), carry, checked);
+  // The crane's flat states, up to eight layers (the script folds them).
+  std::ifstream file(std::string(VO_SOURCE_DIR) + "/test/data/crane_reference.json");
+  std::stringstream text;
+  text << file.rdbuf();
+  const Expected<FoldSequence> sequence = parseFoldSequence(text.str());
+  ASSERT_TRUE(sequence.ok()) << sequence.message();
+  Session session;
+  const Expected<std::vector<Paper>> states = foldSequence(*sequence, session, makeSolver(sequence->solver));
+  ASSERT_TRUE(states.ok()) << states.message();
+  for (size_t i : { size_t(8), size_t(13), size_t(19) })  // the square base, the bird base, the crane before its wings
+    for (bool carry : { true, false })
+      expectRingLimitsAsRotateTurns((*states)[i], carry, checked);
+  EXPECT_GT(checked, 200);
 }

@@ -63,8 +63,10 @@ struct RotationRing
 /// The face under the press (or `face`), its automatic axis (or `axis_edge`) and the ring.
 /// `view_direction` points from the eye into the scene. Fails when nothing is under the
 /// press, the face has no crease to turn about, or the press lies on the axis.
+/// The ring's limits are those of the faces the turn carries each way (`carry_stack` as in
+/// RotateRequest).
 Expected<RotationRing> rotationRing(const Paper& paper, const Vec3& press, const Vec3& view_direction, int face = -1,
-                                    int axis_edge = -1);
+                                    int axis_edge = -1, bool carry_stack = true);
 
 /// The request angle for the pointer, within the ring's limits. Seen from the side, the
 /// pointer's ray meets the ring's plane and the angle follows it around (unwrapped next to

@@ -61,6 +61,11 @@ struct TurnGuide
 Expected<RotateResult> rotate(Paper& paper, const RotateRequest& request, ShapeSolver* solver = nullptr,
                               const std::vector<int>& held = {}, const TurnGuide& guide = {});
 
+/// The faces rotate() turns with `face` about `axis_edge` by the request angle `angle` (its sign
+/// decides which layers a turn carries): its side with the layers carried where the axis parts it
+/// from the rest, else the face with the layers in its way.
+std::vector<int> turnedFaces(const Paper& paper, int face, int axis_edge, double angle, bool carry_stack = true);
+
 /// The faces that turn rigidly with `face` about `axis_edge`, or empty when the axis does
 /// not separate them from the rest.
 std::vector<int> flapOf(const Paper& paper, int face, int axis_edge);
