@@ -22,8 +22,8 @@
 //   markers (rotationDragMarkers), then paper_model's rotate preview of a flap carrying its stack
 //   (Session::rotate, commit false, carry_stack) and the paper's markers, 0.45° further each event.
 //   The stack: the most faces any right-angle turn about a crease carries rigidly (on the crane
-//   before its wings open, the body's eight layers about a wing's hinge). The ring's own limits
-//   (core::rotationRing, from the flap alone) leave that turn no room; the bench widens them.
+//   before its wings open, the body's eight layers about a wing's hinge), within the ring's limits
+//   (core::rotationRing: those of the layers the turn carries).
 // - pick_vertex, pick_face, mark_crease: the interaction's own work on a press in drag mode, on a
 //   face, and a click on a crease in fold mode: core::verticesUnder / facesUnder / creasesUnder on
 //   the state and the markers that show the pick (pickMarkers, chosenCreaseMarkers), serialized.
@@ -402,15 +402,14 @@ int main(int argc, char** argv)
       return 1;
     }
     ring->edge_on = false;
-    // The ring's limits come from the flap alone (flapOf), not from the stack the turn carries:
-    // about this axis they may leave no turn at all. The bench widens them to the turn it times
-    // (a right angle, which rotate() takes), so the preview turns as the pointer asks.
-    std::printf("ring: face %d, axis %d, its own limits %.1f° to %.1f° (%zu moving faces); widened to %.1f° to %.1f°\n",
-                ring->face, ring->axis_edge, ring->min_angle * 180 / M_PI, ring->max_angle * 180 / M_PI,
-                ring->moving_faces.size(), std::min(0.0, full_turn) * 180 / M_PI,
-                std::max(0.0, full_turn) * 180 / M_PI);
-    ring->min_angle = std::min(ring->min_angle, std::min(0.0, full_turn));
-    ring->max_angle = std::max(ring->max_angle, std::max(0.0, full_turn));
+    // The ring's limits are those of the stack the turn carries: the turn timed must lie within.
+    std::printf("ring: face %d, axis %d, limits %.1f° to %.1f°\n", ring->face, ring->axis_edge,
+                ring->min_angle * 180 / M_PI, ring->max_angle * 180 / M_PI);
+    if (full_turn < ring->min_angle - 1e-12 || full_turn > ring->max_angle + 1e-12)
+    {
+      std::cerr << "gesture_bench: the ring does not allow the turn rotate() makes\n";
+      return 1;
+    }
     int off_path = 0;
     double previous = 0.0;
     size_t carried = paper.faces.size();
