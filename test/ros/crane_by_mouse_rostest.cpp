@@ -185,6 +185,7 @@ protected:
     ASSERT_TRUE(waitFor([&] { return loadMenu(); }, 30)) << "no interactive marker `paper` with a menu";
     revision_ = client_.state().revision;
     ASSERT_TRUE(waitFor([&] { return statuses_ > 0 && status_.revision == revision_; }, 10));
+    received_at_start_ = status_.feedback_received;
   }
 
   bool loadMenu()
@@ -224,14 +225,19 @@ protected:
   void send(const InteractiveMarkerFeedback& f)
   {
     feedback_pub_.publish(f);
+    ++sent_;
     ros::spinOnce();
   }
 
-  /// The node handled everything sent so far (and any fold it animates ended).
+  /// The node handled everything sent so far (and any fold it animates ended): it received as
+  /// much feedback as was sent, and nothing waits in its queue.
   void settle()
   {
-    const int seen = statuses_;
-    ASSERT_TRUE(waitFor([&] { return statuses_ > seen + 1 && status_.pending == 0 && !status_.dragging; }, 20));
+    ASSERT_TRUE(waitFor(
+        [&] {
+          return status_.feedback_received >= received_at_start_ + sent_ && status_.pending == 0 && !status_.dragging;
+        },
+        20));
   }
 
   /// The node shows the paper's latest revision (its sheet marker redrawn for it).
@@ -437,6 +443,7 @@ protected:
   MouseGesture gesture_;
   uint64_t revision_ = 0;
   int gestures_ = 0;
+  uint64_t sent_ = 0, received_at_start_ = 0;
   core::Vec3 last_pick_ = core::Vec3::Constant(NAN);
 };
 }  // namespace
@@ -473,6 +480,8 @@ TEST_F(CraneByMouse, TheCraneFoldsByMouseAloneAsTheScriptFoldsIt)
       return;
     const double off = rigidFitDistance(paper(), (*reference)[i + 1]);
     ASSERT_LE(off, 1e-6) << "the mouse's paper left the script's";
+    std::printf("step %zu: %d gestures so far, %.1e from the script's paper (%s)\n", i + 1, gestures_, off,
+                step.note.c_str());
   }
   std::printf("crane by mouse: %zu steps, %d gestures (clicks, drags, menu selections)\n", sequence->steps.size(),
               gestures_);
