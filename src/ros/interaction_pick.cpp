@@ -121,10 +121,12 @@ std::string InteractionNode::nextLayer(const core::Vec3& at)
   if (!pickedHere(pick_.kind, at) || pick_.kind == Pick::Kind::None)
   {
     // Nothing picked here yet: the layers under the right-click, top first.
+    const std::vector<int> creases =
+        mode_ == Mode::Fold ? core::creasesUnder(*paper_, at, view, snap_.radius) : std::vector<int>{};
     if (mode_ == Mode::Drag)
       pick_ = Pick{ Pick::Kind::Vertex, at, core::verticesUnder(*paper_, at, view, snap_.radius), 0, revision_ };
-    else if (mode_ == Mode::Fold && !core::creasesUnder(*paper_, at, view, snap_.radius).empty())
-      pick_ = Pick{ Pick::Kind::Crease, at, core::creasesUnder(*paper_, at, view, snap_.radius), 0, revision_ };
+    else if (!creases.empty())
+      pick_ = Pick{ Pick::Kind::Crease, at, creases, 0, revision_ };
     else
       pick_ = Pick{ Pick::Kind::Face, at, core::facesUnder(*paper_, at, view), 0, revision_ };
     if (pick_.candidates.empty())
