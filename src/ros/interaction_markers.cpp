@@ -212,6 +212,13 @@ visualization_msgs::MarkerArray namedAxisMarkers(const core::Vec3& a, const core
 
 namespace
 {
+/// Marks that stay on show while the user clicks lie between the paper's drawn layers and the
+/// pickable copy over them: rviz gives a click on a marker in front of the copy to the marker.
+double underPickable(const InteractionStyle& style)
+{
+  return style.pick_lift - 0.4 * (style.pick_lift - style.drawn_top);
+}
+
 /// A face's outline as a LINE_LIST, a little inside it (so that it shows beside its neighbours').
 void addOutline(Marker& m, const core::Paper& paper, int face)
 {
@@ -270,6 +277,7 @@ visualization_msgs::MarkerArray chosenCreaseMarkers(const core::Paper& paper,
     addOutline(keep, paper, keep_face);
   for (Marker* m : { &valley, &mountain, &unfold, &picked, &keep })
   {
+    m->pose.position.z = underPickable(style);
     if (m->points.empty())
       m->action = Marker::DELETE;  // what is no longer marked goes
     array.markers.push_back(*m);
@@ -294,6 +302,7 @@ visualization_msgs::MarkerArray pickMarkers(const core::Paper& paper, int face, 
   point.id = 1;
   for (Marker* m : { &outline, &point })
   {
+    m->pose.position.z = underPickable(style);
     if (m->points.empty())
       m->action = Marker::DELETE;
     array.markers.push_back(*m);
@@ -345,6 +354,20 @@ core::Vec3 messageAnchor(const core::Paper& paper, const core::Vec3& at, const s
     anchor[i] = hi[i] - lo[i] <= 2 * half ? 0.5 * (lo[i] + hi[i]) : std::clamp(anchor[i], lo[i] + half, hi[i] - half);
   anchor.z() = hi.z() + style.text_size * (0.5 * static_cast<double>(lines) + 1.0);
   return anchor;
+}
+
+core::Vec3 besideAnchor(const core::Paper& paper, const std::string& text, const InteractionStyle& style)
+{
+  if (paper.vertices.empty())
+    return core::Vec3::Zero();
+  core::Vec3 lo = paper.vertices[0].folded, hi = lo;
+  for (const core::Vertex& v : paper.vertices)
+  {
+    lo = lo.cwiseMin(v.folded);
+    hi = hi.cwiseMax(v.folded);
+  }
+  const double lines = 1.0 + static_cast<double>(std::count(text.begin(), text.end(), '\n'));
+  return core::Vec3(0.5 * (lo.x() + hi.x()), hi.y() + style.text_size * (0.5 * lines + 1.0), hi.z() + style.text_size);
 }
 
 visualization_msgs::MarkerArray clearedMarkers(const InteractionStyle& style, const ros::Time& stamp)

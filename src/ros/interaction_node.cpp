@@ -203,6 +203,7 @@ void InteractionNode::stateReceived(const PaperState::ConstPtr& state)
   const std::vector<int> levels = core::stackLevels(*paper_);
   const int top = levels.empty() ? 0 : *std::max_element(levels.begin(), levels.end());
   pick_lift_ = (top + 1) * layer_gap_ + 0.002 * paper_->scale();
+  style_.drawn_top = top * layer_gap_;
   if (dragging_ || slider_dragging_)
   {
     paper_changed_ = true;  // re-sending a marker now would end the drag in rviz
@@ -467,8 +468,12 @@ void InteractionNode::release()
   showMarkers(clearedMarkers(style_, ros::Time::now()));
   std::string message;
   const bool clicked = reach_ < min_crease_length_ * paper_->scale();
+  bool beside = false;  // what a click picked is said beside the paper, clear of the next click
   if (mode_ == Mode::Fold)
+  {
     message = clicked ? foldClick() : "In fold mode click on creases to mark them; drag in the other modes.";
+    beside = clicked;
+  }
   else if (mode_ == Mode::Drag)
     message = releaseVertex();
   else if (mode_ == Mode::Rotate && clicked)
@@ -514,7 +519,9 @@ void InteractionNode::release()
     else if (previewed_ && previewed_angle_ != 0.0)
       previewRotation(0.0);
   }
-  if (!message.empty())
+  if (!message.empty() && beside)
+    tellBeside(message);
+  else if (!message.empty())
     tell(message, pointer_);
   else
     message_.clear();  // done, or nothing to do: an earlier refusal no longer applies
@@ -700,7 +707,9 @@ void InteractionNode::menu(Action action, const Feedback& feedback)
     case Action::None:
       break;
   }
-  if (!message.empty())
+  if (!message.empty() && (action == Action::NextLayer || action == Action::KeepFace))
+    tellBeside(message);
+  else if (!message.empty())
     tell(message, at);
 }
 
@@ -720,6 +729,15 @@ void InteractionNode::setMode(Mode mode)
   showPaper();
   showMarkers(clearedMarkers(style_, ros::Time::now()));
   showPicks();
+}
+
+void InteractionNode::tellBeside(const std::string& text)
+{
+  ROS_INFO("interaction: %s", text.c_str());
+  message_ = forTheUser(text);
+  const std::string lines = wrapLines(message_, kMessageWidth);
+  if (paper_)
+    markers_pub_.publish(messageMarker(lines, besideAnchor(*paper_, lines, style_), style_, ros::Time::now()));
 }
 
 void InteractionNode::tell(const std::string& text, const core::Vec3& at)

@@ -31,6 +31,9 @@ struct InteractionStyle
   /// picks the nearest surface, and the sheet's own markers (layers drawn apart) must not hide
   /// them from the mouse, from any view.
   double pick_lift = 0.005;
+  /// How high paper_model draws the top layer of the paper (its layers drawn apart), below
+  /// `pick_lift`.
+  double drawn_top = 0.0;
   /// The drag plane through the grab point faces the view (the pointer stays on the mouse's
   /// sight line from any view); otherwise it lies along the sheet (z of `frame_id`).
   bool view_facing_drag = false;
@@ -81,6 +84,10 @@ visualization_msgs::MarkerArray messageMarker(const std::string& text, const cor
 /// over its highest point.
 core::Vec3 messageAnchor(const core::Paper& paper, const core::Vec3& at, const std::string& text,
                          const InteractionStyle& style);
+
+/// Where a text about the pick stays: beside the paper, past the far edge of its extent along y,
+/// so that it covers no place the user clicks on next (rviz gives a click on a text to the text).
+core::Vec3 besideAnchor(const core::Paper& paper, const std::string& text, const InteractionStyle& style);
 
 /// Removes every marker of the interaction (a DELETEALL).
 visualization_msgs::MarkerArray clearedMarkers(const InteractionStyle& style, const ros::Time& stamp);

@@ -120,6 +120,9 @@ private:
   void setMode(Mode mode);
   void showPaper();
   void tell(const std::string& text, const core::Vec3& at);
+  /// Says what a click or the menu picked, beside the paper (a text over the paper would take
+  /// the next click there).
+  void tellBeside(const std::string& text);
   void publishStatus(const ros::TimerEvent& = {});
   bool previewRotation(double angle);
 
