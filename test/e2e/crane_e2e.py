@@ -10,9 +10,10 @@ test/ros/crane_by_mouse_rostest.cpp does with synthesized feedback:
   - crease (steps 1-4, 9-11): a drag along the line, its ends on the paper; the line snaps;
   - half turn (steps 5-6): rotate mode, a press on the flap and a drag over its axis to past the
     pressed point's mirror image;
-  - squash (7-8) and petal folds (12-13): fold mode, clicks on each crease of the fold (a click
-    picks the top crease, "Next layer down" picks the one below, clicks cycle valley, mountain,
-    unfold), "Keep the face here" (and "Next layer down") on the face that stays, "Fold flat".
+  - squash (7-8) and petal folds (12-13): fold mode, clicks just beside each crease of the fold
+    (a click picks the top crease, "Next layer down" picks the one below, clicks cycle valley,
+    mountain, unfold), "Keep the face here" (and "Next layer down") on the face that stays,
+    "Fold flat".
 Each step is checked on `state`: exactly one new revision, the crease pattern the reference
 folding has after that step (fold_sequence runs the same steps in core), and every folded vertex
 where that folding puts it, within 1e-6 m after a rigid fit (proper rotation and translation); the
@@ -379,7 +380,9 @@ class Folder:
     a drag leaves as it is). So each gesture has places to try, best first, as a person moves the
     pointer beside a highlight: a click counts when rviz sends its press, a menu when it opens.
     The message of the last gesture floats over the paper near where it was made for 4 s: where
-    it hides a place, the gesture there waits for it to go, as a person would."""
+    it hides every place to try, the gesture waits for it to go, as a person would. Two clicks
+    at one place within Qt's double-click interval make a double click, which rviz does not pass
+    on: the second waits."""
 
     def __init__(self, check, mouse):
         self.check, self.mouse = check, mouse
