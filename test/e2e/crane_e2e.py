@@ -1,0 +1,951 @@
+#!/usr/bin/env python3
+"""End-to-end: the crane from the flat square to the bird base by mouse in real rviz.
+
+Like interaction_e2e.py (whose helpers it uses: Xvfb on a free display, origami.launch with rviz
+on a free master port, screen pixels from the camera rviz broadcasts as the tf frame
+rviz_camera, the mouse driven by xdotool, menu entries picked with the keyboard), it folds the
+first 13 steps of test/data/crane_reference.json as a person would, planning each gesture from
+the paper it sees (`state`) and the highlight the interaction shows (`interaction_status`), as
+test/ros/crane_by_mouse_rostest.cpp does with synthesized feedback:
+  - crease (steps 1-4, 9-11): a drag along the line, its ends on the paper; the line snaps;
+  - half turn (steps 5-6): rotate mode, a press on the flap and a drag over its axis to past the
+    pressed point's mirror image;
+  - squash (7-8) and petal folds (12-13): fold mode, clicks just beside each crease of the fold
+    (a click picks the top crease, "Next layer down" picks the one below, clicks cycle valley,
+    mountain, unfold), "Keep the face here" (and "Next layer down") on the face that stays,
+    "Fold flat".
+Each step is checked on `state`: exactly one new revision, the crease pattern the reference
+folding has after that step (fold_sequence runs the same steps in core), and every folded vertex
+where that folding puts it, within 1e-6 m after a rigid fit (proper rotation and translation); the
+creases a step folds carry the angle it asks for. Screenshots of every step in the output folder.
+
+Usage: crane_e2e.py OUTPUT_DIR   (with the devel space's environment, e.g. devel/env.sh)
+"""
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import interaction_e2e as e2e  # noqa: E402  (its Xvfb, launch, camera and mouse helpers)
+from interaction_e2e import Failure, add, dot, mul, norm, sub, wait_for, xdotool  # noqa: E402
+
+import rosbag  # noqa: E402
+import roslib.packages  # noqa: E402
+import rospy  # noqa: E402
+from visualization_msgs.msg import InteractiveMarkerFeedback, MarkerArray  # noqa: E402
+
+REFERENCE = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'data', 'crane_reference.json')
+STEPS = 13           # the square base after step 8, the bird base after step 13
+TIME_LIMIT = 220     # seconds for the whole test (about 110 on two cores)
+EXACT = 1e-6         # metres: the mouse's paper against the reference folding, after a rigid fit
+SNAP_RADIUS = 0.03   # the interaction node's snap radius on a 1 m sheet (core::SnapSettings)
+SHEET = 'paper'       # the interaction's interactive marker of the sheet (InteractionStyle::marker_name)
+DOUBLE_CLICK = 0.5    # seconds: Qt's double-click interval (400 ms) and a little
+MESSAGE_LIFETIME = 4.3  # seconds the interaction's message shows (its marker's lifetime, 4 s)
+
+# The interaction node's menu as rviz shows it (InteractionNode's constructor), from 1.
+CREASE_MODE, ROTATE_MODE, FOLD_MODE = 1, 2, 11
+FOLD_ON_MARKED = 13  # a submenu: Fold flat, Fold to a right angle, Keep the face here, Clear the marks
+FOLD_FLAT, KEEP_FACE = 1, 3
+NEXT_LAYER = 14
+MODES = {'crease': CREASE_MODE, 'rotate': ROTATE_MODE, 'fold': FOLD_MODE}
+
+
+# ---------------------------------------------------------------------------------------------
+# The paper as `state` gives it, and the geometry the plan needs.
+
+class Paper:
+    def __init__(self, msg):
+        self.revision = msg.revision
+        self.cp = [(p.x, p.y) for p in msg.vertices_crease_pattern]
+        self.at = [(p.x, p.y, p.z) for p in msg.vertices_folded]
+        self.edges = [(e.v0, e.v1, e.face_left, e.face_right, e.fold_angle) for e in msg.edges]
+        self.faces = [list(f.vertices) for f in msg.faces]
+
+    def is_crease(self, e):
+        return self.edges[e][2] >= 0 and self.edges[e][3] >= 0
+
+    def midpoint(self, e):
+        return mul(0.5, add(self.at[self.edges[e][0]], self.at[self.edges[e][1]]))
+
+    def centroid(self, f):
+        return mul(1.0 / len(self.faces[f]), sum_points([self.at[v] for v in self.faces[f]]))
+
+    def normal(self, f):
+        vs = self.faces[f]
+        n = (0.0, 0.0, 0.0)
+        for i, v in enumerate(vs):
+            n = add(n, cross(self.at[v], self.at[vs[(i + 1) % len(vs)]]))
+        return mul(1.0 / norm(n), n) if norm(n) > 0 else (0.0, 0.0, 1.0)
+
+    def vertex_at(self, q):
+        for i, p in enumerate(self.cp):
+            if math.hypot(p[0] - q[0], p[1] - q[1]) < 1e-9:
+                return i
+        return -1
+
+    def face_containing(self, q):
+        """The face whose crease-pattern polygon holds q (core::faceContaining)."""
+        for f, vs in enumerate(self.faces):
+            pts = [self.cp[v] for v in vs]
+            if all((b[0] - a[0]) * (q[1] - a[1]) - (b[1] - a[1]) * (q[0] - a[0]) >= -1e-12
+                   for a, b in zip(pts, pts[1:] + pts[:1])):
+                return f
+        return -1
+
+    def creases_on(self, start, end):
+        """The crease edges lying on a crease-pattern segment (as flat_fold names them)."""
+        def on(v):
+            return segment_distance(self.cp[v], start, end) < 1e-9
+        return [e for e, (a, b, _, _, _) in enumerate(self.edges) if self.is_crease(e) and on(a) and on(b)]
+
+
+def sum_points(points):
+    s = (0.0, 0.0, 0.0)
+    for p in points:
+        s = add(s, p)
+    return s
+
+
+def cross(a, b):
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def unit(a):
+    return mul(1.0 / norm(a), a)
+
+
+def segment_distance(q, a, b):
+    """Distance of 2D point q from the segment a-b."""
+    d = (b[0] - a[0], b[1] - a[1])
+    length2 = d[0] * d[0] + d[1] * d[1]
+    t = 0.0 if length2 == 0 else max(0.0, min(1.0, ((q[0] - a[0]) * d[0] + (q[1] - a[1]) * d[1]) / length2))
+    return math.hypot(q[0] - a[0] - t * d[0], q[1] - a[1] - t * d[1])
+
+
+def pairs(a, b, tolerance=1e-7):
+    """Vertices of paper a and b with the same crease-pattern position; None when the sets differ."""
+    if len(a.cp) != len(b.cp):
+        return None
+    out = []
+    for i, p in enumerate(a.cp):
+        match = [j for j, q in enumerate(b.cp) if math.hypot(p[0] - q[0], p[1] - q[1]) < tolerance]
+        if len(match) != 1:
+            return None
+        out.append((i, match[0]))
+    return out
+
+
+def jacobi_top_eigenvector(m):
+    """The eigenvector of the symmetric matrix m (lists) with the largest eigenvalue."""
+    n = len(m)
+    a = [row[:] for row in m]
+    v = [[float(i == j) for j in range(n)] for i in range(n)]
+    for _ in range(100):
+        off = sum(a[i][j] ** 2 for i in range(n) for j in range(n) if i != j)
+        if off < 1e-30:
+            break
+        for p in range(n):
+            for q in range(p + 1, n):
+                if abs(a[p][q]) < 1e-300:
+                    continue
+                theta = (a[q][q] - a[p][p]) / (2 * a[p][q])
+                t = (1.0 if theta >= 0 else -1.0) / (abs(theta) + math.sqrt(theta * theta + 1))
+                c = 1 / math.sqrt(t * t + 1)
+                s = t * c
+                for k in range(n):  # a <- a J (columns p, q)
+                    akp, akq = a[k][p], a[k][q]
+                    a[k][p], a[k][q] = c * akp - s * akq, s * akp + c * akq
+                for k in range(n):  # a <- J^T a (rows p, q)
+                    apk, aqk = a[p][k], a[q][k]
+                    a[p][k], a[q][k] = c * apk - s * aqk, s * apk + c * aqk
+                for k in range(n):
+                    vkp, vkq = v[k][p], v[k][q]
+                    v[k][p], v[k][q] = c * vkp - s * vkq, s * vkp + c * vkq
+    best = max(range(n), key=lambda i: a[i][i])
+    return [v[k][best] for k in range(n)]
+
+
+class Rigid:
+    """x -> r x + t."""
+
+    def __init__(self, r=((1, 0, 0), (0, 1, 0), (0, 0, 1)), t=(0.0, 0.0, 0.0)):
+        self.r, self.t = r, t
+
+    def __call__(self, p):
+        return add(tuple(dot(row, p) for row in self.r), self.t)
+
+
+def rigid_fit(src, dst):
+    """The proper rigid motion that maps the points src onto dst best (Horn's quaternions), and
+    the largest distance left."""
+    cs, cd = mul(1.0 / len(src), sum_points(src)), mul(1.0 / len(dst), sum_points(dst))
+    s = [[0.0] * 3 for _ in range(3)]
+    for p, q in zip(src, dst):
+        a, b = sub(p, cs), sub(q, cd)
+        for i in range(3):
+            for j in range(3):
+                s[i][j] += a[i] * b[j]
+    (xx, xy, xz), (yx, yy, yz), (zx, zy, zz) = s
+    n = [[xx + yy + zz, yz - zy, zx - xz, xy - yx],
+         [yz - zy, xx - yy - zz, xy + yx, zx + xz],
+         [zx - xz, xy + yx, -xx + yy - zz, yz + zy],
+         [xy - yx, zx + xz, yz + zy, -xx - yy + zz]]
+    w, x, y, z = jacobi_top_eigenvector(n)
+    r = ((w * w + x * x - y * y - z * z, 2 * (x * y - w * z), 2 * (x * z + w * y)),
+         (2 * (x * y + w * z), w * w - x * x + y * y - z * z, 2 * (y * z - w * x)),
+         (2 * (x * z - w * y), 2 * (y * z + w * x), w * w - x * x - y * y + z * z))
+    motion = Rigid(r, (0.0, 0.0, 0.0))
+    motion.t = sub(cd, motion(cs))
+    return motion, max(norm(sub(motion(p), q)) for p, q in zip(src, dst))
+
+
+def compare(paper, reference):
+    """How far the paper's folded vertices lie from the reference's after the best rigid fit
+    (infinity when their crease patterns differ), and that fit (reference -> paper)."""
+    matched = pairs(reference, paper)
+    if matched is None:
+        return float('inf'), None
+    return rigid_fit([reference.at[i] for i, _ in matched], [paper.at[j] for _, j in matched])[::-1]
+
+
+# Snapping as the interaction node does it (core/snap.cpp), to plan lines that snap exactly.
+def snap_point(paper, cursor, start_vertex=-1, radius=SNAP_RADIUS):
+    """(point, kind, vertex) the node snaps the cursor to."""
+    best, found = radius, None
+    for v, p in enumerate(paper.at):
+        d = norm(sub(p, cursor))
+        if d <= best:
+            best, found = d, (p, 'vertex', v)
+    if found:
+        return found
+    best, edge, divisions = radius, -1, 0
+    for e, (a, b, _, _, _) in enumerate(paper.edges):
+        pa, pb = paper.at[a], paper.at[b]
+        for n in (2, 4):
+            for k in range(1, n):
+                p = add(pa, mul(k / n, sub(pb, pa)))
+                d = norm(sub(p, cursor))
+                if d < best - 1e-12 or (edge == e and d <= best and n < divisions):
+                    best, edge, divisions, found = d, e, n, (p, 'edge division', -1)
+    if found or start_vertex < 0:
+        return found or (cursor, 'none', -1)
+    p = paper.at[start_vertex]
+    if norm(sub(cursor, p)) <= radius:
+        return cursor, 'none', -1
+    best, face, divisions = radius, -1, 0
+    for f, vs in enumerate(paper.faces):
+        if start_vertex not in vs:
+            continue
+        i = vs.index(start_vertex)
+        to_next = unit(sub(paper.at[vs[(i + 1) % len(vs)]], p))
+        to_prev = unit(sub(paper.at[vs[i - 1]], p))
+        angle = math.acos(max(-1.0, min(1.0, dot(to_next, to_prev))))
+        axis = unit(cross(to_next, to_prev))
+        for n in (2, 4):
+            for k in range(1, n):
+                a = angle * k / n  # to_next turned by a about axis (Rodrigues; axis is normal to it)
+                direction = add(mul(math.cos(a), to_next), mul(math.sin(a), cross(axis, to_next)))
+                t = dot(sub(cursor, p), direction)
+                if t <= 0:
+                    continue
+                d = norm(sub(add(p, mul(t, direction)), cursor))
+                if d < best - 1e-12 or (face == f and d <= best and n < divisions):
+                    best, face, divisions = d, f, n
+                    found = (add(p, mul(max(t, exit_along(paper, f, p, direction)), direction)), 'angle division', -1)
+    return found or (cursor, 'none', -1)
+
+
+def exit_along(paper, f, p, direction):
+    vs, n, out = paper.faces[f], paper.normal(f), 0.0
+    for i, v in enumerate(vs):
+        a, b = paper.at[v], paper.at[vs[(i + 1) % len(vs)]]
+        across = dot(cross(direction, sub(b, a)), n)
+        if abs(across) < 1e-12:
+            continue
+        t = dot(cross(sub(a, p), sub(b, a)), n) / across
+        s = dot(sub(add(p, mul(t, direction)), a), sub(b, a)) / dot(sub(b, a), sub(b, a))
+        if t > 1e-12 and -1e-9 <= s <= 1 + 1e-9:
+            out = max(out, t)
+    return out
+
+
+MOUSE_OFF = 0.003  # metres: where a pixel of the default view lands, at worst, from where it is aimed
+
+
+def plan_line(paper, a, b):
+    """Where to press and where to release so that the line snaps to exactly a-b (or a longer
+    piece of the same line), wherever within MOUSE_OFF of those points the mouse lands: the
+    press points to try, best first, and the release point."""
+    d = sub(b, a)
+
+    def along(p):  # position along the line (0 at a, 1 at b), and distance from it
+        t = dot(sub(p, a), d) / dot(d, d)
+        return t, norm(sub(p, add(a, mul(t, d))))
+
+    def steady(cursor, good, start_vertices=(-1,)):
+        """Where the cursor snaps wherever within MOUSE_OFF the mouse lands: (point, the vertices
+        there it may snap to), None unless always at the same point and `good`."""
+        point, vertices = None, set()
+        for v in start_vertices:
+            for dx in (-MOUSE_OFF, 0.0, MOUSE_OFF):
+                for dy in (-MOUSE_OFF, 0.0, MOUSE_OFF):
+                    s = snap_point(paper, add(cursor, (dx, dy, 0.0)), v)
+                    if s[1] == 'none' or not good(*along(s[0])) or (point and norm(sub(point, s[0])) > 1e-9):
+                        return None
+                    point = point or s[0]
+                    if s[1] == 'vertex':
+                        vertices.add(s[2])  # coincident vertices of the layers: any of them
+        return point, vertices
+
+    fractions = [0.0, 0.05, 0.1, 0.15, 0.2, 0.3]  # of the way in from the end
+    presses = []
+    for f in fractions:
+        start = steady(add(a, mul(f, d)), lambda t, off: t <= 1e-9 and off < 1e-9)
+        if start and (not presses or norm(sub(start[0], presses[0][1][0])) < 1e-9):
+            presses.append((add(a, mul(f, d)), start))  # the same start whichever is pressed
+    if not presses:
+        raise Failure('no press point snaps the line (%.4f, %.4f)-(%.4f, %.4f) onto itself' % (a[:2] + b[:2]))
+    # Where the layers' corners coincide, the press snaps to any of their vertices; the angle
+    # divisions at it are those of its own faces. The release is planned for one of them; the
+    # drag checks its guide (Folder.crease).
+    vertices = set().union(*[s[1] for _, s in presses]) or {-1}
+    presses = [p for p, _ in presses]
+    for f in fractions:
+        release = add(b, mul(-f, d))
+        if any(steady(release, lambda t, off: t >= 1 - 1e-9 and off < 1e-9, (v,)) for v in sorted(vertices)):
+            return presses, release
+    raise Failure('no release point snaps the line (%.4f, %.4f)-(%.4f, %.4f) onto itself' % (a[:2] + b[:2]))
+
+
+def on_paper(paper, start, end):
+    """The part of the line start-end over the paper (the flat folded paper seen from above)."""
+    d = sub(end, start)
+    inside = []
+    for f in range(len(paper.faces)):
+        pts = [paper.at[v] for v in paper.faces[f]]
+        lo, hi = -math.inf, math.inf
+        sign = 1.0 if paper.normal(f)[2] >= 0 else -1.0
+        for a, b in zip(pts, pts[1:] + pts[:1]):
+            # inside: sign * cross2(b - a, x - a) >= 0, with x = start + s d
+            c0 = sign * ((b[0] - a[0]) * (start[1] - a[1]) - (b[1] - a[1]) * (start[0] - a[0]))
+            c1 = sign * ((b[0] - a[0]) * d[1] - (b[1] - a[1]) * d[0])
+            if abs(c1) < 1e-15:
+                if c0 < -1e-12:
+                    lo, hi = 1, 0
+            elif c1 > 0:
+                lo = max(lo, -c0 / c1)
+            else:
+                hi = min(hi, -c0 / c1)
+        if lo <= hi:
+            inside.append((lo, hi))
+    lo, hi = max(0.0, min(i[0] for i in inside)), min(1.0, max(i[1] for i in inside))
+    return add(start, mul(lo, d)), add(start, mul(hi, d))
+
+
+# ---------------------------------------------------------------------------------------------
+# The reference folding: fold_sequence runs the same steps in core.
+
+def reference_states(out):
+    """The reference's paper before its first step and after each step (Paper objects)."""
+    folder = os.path.join(out, 'reference')
+    os.makedirs(folder, exist_ok=True)
+    with open(REFERENCE) as f:
+        sequence = json.load(f)
+    sequence['steps'] = sequence['steps'][:STEPS]
+    path = os.path.join(folder, 'crane_to_bird_base.json')
+    with open(path, 'w') as f:
+        json.dump(sequence, f)
+    tools = roslib.packages.find_node('virtual_origami', 'fold_sequence')
+    if not tools:
+        raise Failure('fold_sequence is not built (the reference folding)')
+    subprocess.run([tools[0], path, '--out', folder], check=True, capture_output=True)
+    with rosbag.Bag(os.path.join(folder, 'crane_to_bird_base.bag')) as bag:
+        states = [Paper(m) for _, m, _ in bag.read_messages(topics=['/origami/state'])]
+    return sequence['steps'], states[-(STEPS + 1):]
+
+
+# ---------------------------------------------------------------------------------------------
+# The mouse, as a person folds: look, click, look at the highlight.
+
+class Folder:
+    """Gestures in rviz, and the operations of the crane made of them.
+
+    rviz gives a press to what it draws nearest the eye under the pointer: where the
+    interaction's guides (the picked crease's highlight, the marks, the message) lie over the
+    sheet, a press there reaches no interactive marker (it goes to the view, which a press without
+    a drag leaves as it is). So each gesture has places to try, best first, as a person moves the
+    pointer beside a highlight: a click counts when rviz sends its press, a menu when it opens.
+    The message of the last gesture floats over the paper near where it was made for 4 s: where
+    it hides every place to try, the gesture waits for it to go, as a person would. Two clicks
+    at one place within Qt's double-click interval make a double click, which rviz does not pass
+    on: the second waits."""
+
+    def __init__(self, check, mouse):
+        self.check, self.mouse = check, mouse
+        self.events = []  # feedback event types rviz sent, in order
+        self.gestures = 0
+        self.missed = {}  # presses rviz gave to something drawn over the sheet, by gesture
+        self.waited = 0.0  # seconds waited for a message to go
+        self.last_click = None  # (time, pixel)
+        self.told = 0.0
+        self.pick = None  # where the last crease pick was clicked
+        self.sheet_presses = 0  # presses rviz gave to the sheet (not to the fold slider's handle)
+        rospy.Subscriber('/origami/interaction/feedback', InteractiveMarkerFeedback, self._feedback)
+        self.guide = None  # the crease drag's line as the interaction draws it (snapped)
+        rospy.Subscriber('/origami/interaction_markers', MarkerArray, self._guides)
+
+    def _feedback(self, msg):
+        if msg.event_type == InteractiveMarkerFeedback.MOUSE_DOWN and msg.marker_name == SHEET:
+            self.sheet_presses += 1
+        self.events.append(msg.event_type)
+
+    def _guides(self, msg):
+        for m in msg.markers:
+            if m.ns == 'line' and m.action == m.ADD and len(m.points) == 2:
+                self.guide = tuple((p.x, p.y, p.z) for p in m.points)
+            elif m.action == 3:  # DELETEALL
+                self.guide = None
+
+    # --- what the user sees
+    def paper(self):
+        return Paper(self.check.state)
+
+    @property
+    def status(self):
+        return self.check.status
+
+    def marked(self, edge):
+        for e, a in zip(self.status.marked_edges, self.status.marked_angles):
+            if e == edge:
+                return a
+        return None
+
+    def on_table(self, pixel, z):
+        """The point at height z under a pixel (the pixel's sight line onto that plane)."""
+        eye, (right, down, forward) = self.check.camera()
+        m = self.mouse
+        ray = add(forward, add(mul((pixel[0] - m.cx) / m.focal, right), mul((pixel[1] - m.cy) / m.focal, down)))
+        return add(eye, mul((z - eye[2]) / ray[2], ray))
+
+    def beside(self, a, b, at, offsets):
+        """Points on the paper's plane near `at` (on the line a-b), moved on the screen by
+        (along, across) pixels of the line's image."""
+        pa, pb, pm = self.mouse.pixel(a), self.mouse.pixel(b), self.mouse.pixel(at)
+        length = math.hypot(pb[0] - pa[0], pb[1] - pa[1])
+        t = ((pb[0] - pa[0]) / length, (pb[1] - pa[1]) / length)
+        n = (-t[1], t[0]) if t[0] >= 0 else (t[1], -t[0])  # across, down the screen: away from the message
+        return [self.on_table((pm[0] + u * t[0] + v * n[0], pm[1] + u * t[1] + v * n[1]), at[2]) for u, v in offsets]
+
+    # --- gestures
+    def settle(self, before, last_event, what):
+        """The gesture's last event went out, and the interaction node handled all rviz sent."""
+        try:
+            wait_for(lambda: last_event in self.events[before:], 10, '')
+        except Failure:
+            raise Failure('%s: rviz sent no event %d (it sent %s)' % (what, last_event, self.events[before:]))
+        count = len(self.events)
+        wait_for(lambda: self.status.feedback_received >= count and self.status.pending == 0 and
+                 not self.status.dragging, 30, what + ': the interaction node did not handle it')
+        self.gestures += 1
+        self.told = time.time()  # the node's message about it shows for MESSAGE_LIFETIME
+
+    def attempts(self, points, wait=True):
+        """Each point, then the first once more after the message went (when one may be shown)."""
+        for p in points:
+            yield p
+        left = self.told + MESSAGE_LIFETIME - time.time()
+        if wait and left > 0:
+            time.sleep(left)
+            self.waited += left
+            yield points[0]
+
+    def miss(self, what):
+        what = what.split(' (')[0].split(' beside')[0].split(' marking')[0]
+        self.missed[what] = self.missed.get(what, 0) + 1
+
+    def not_a_double_click(self, pixel):
+        """Two clicks at one place within Qt's double-click interval make a double click, which
+        rviz does not give to the marker: the second waits."""
+        if self.last_click and math.hypot(pixel[0] - self.last_click[1][0], pixel[1] - self.last_click[1][1]) < 10:
+            left = self.last_click[0] + DOUBLE_CLICK - time.time()
+            if left > 0:
+                time.sleep(left)
+        self.last_click = (time.time(), pixel)
+
+    def pressed(self, before, sheet_presses, what, patience=1.0):
+        try:
+            wait_for(lambda: InteractiveMarkerFeedback.MOUSE_DOWN in self.events[before:], patience, '')
+        except Failure:
+            self.miss(what)
+            return False
+        if self.sheet_presses == sheet_presses:
+            raise Failure('a press meant for the sheet went to another interactive marker (the fold slider?)')
+        return True
+
+    def click(self, points, what, must=True):
+        """A click at the first of `points` where rviz gives it to the sheet; that point (None,
+        unless it `must`, when rviz gave it to none)."""
+        for p in self.attempts(points):
+            before, sheet_presses = len(self.events), self.sheet_presses
+            self.mouse.move(self.mouse.pixel(p))
+            time.sleep(0.12)
+            self.not_a_double_click(self.mouse.pixel(p))
+            xdotool('click', 1)
+            if self.pressed(before, sheet_presses, what):
+                self.settle(before, InteractiveMarkerFeedback.MOUSE_UP, what)
+                return p
+        if must:
+            raise Failure('%s: rviz gave no click to the sheet at (%.3f, %.3f, %.3f) or %d places beside it' %
+                          ((what,) + points[0] + (len(points) - 1,)))
+        return None
+
+    def press(self, points, what, must=True, wait=True, patience=1.0):
+        """Holds the button down at the first of `points` where rviz gives the press to the sheet:
+        (the events before it, the point); None, unless it `must`, where rviz gave it to none."""
+        for p in self.attempts(points, wait):
+            before, sheet_presses = len(self.events), self.sheet_presses
+            self.mouse.move(self.mouse.pixel(p))
+            time.sleep(0.12)
+            xdotool('mousedown', 1)
+            if self.pressed(before, sheet_presses, what, patience):
+                return before, p
+            xdotool('mouseup', 1)  # the view took it: a press without a drag leaves it as it is
+            time.sleep(0.1)
+        if not must:
+            return None
+        raise Failure('%s: rviz gave no press to the sheet at (%.3f, %.3f, %.3f) or %d places beside it' %
+                      ((what,) + points[0] + (len(points) - 1,)))
+
+    def glide(self, pixels, pause=0.03):
+        for p in pixels:
+            self.mouse.move(p)
+            time.sleep(pause)
+
+    def release(self, before, what):
+        time.sleep(0.15)
+        xdotool('mouseup', 1)
+        self.settle(before, InteractiveMarkerFeedback.MOUSE_UP, what)
+
+    @staticmethod
+    def popups():
+        r = subprocess.run(['xdotool', 'search', '--onlyvisible', '--class', 'rviz'], capture_output=True, text=True)
+        return len(r.stdout.split())
+
+    def menu(self, points, entry, sub_entry=None, what='menu', shot=None, must=True):
+        """Right-click at the first of `points` where the menu opens; the `entry`-th item (from 1)
+        with the keyboard, in a submenu the `sub_entry`-th (Right opens it on its first item).
+        That point (None, unless it `must`, when the menu opened at none)."""
+        for p in self.attempts(points):
+            before, windows = len(self.events), self.popups()
+            self.mouse.move(self.mouse.pixel(p))
+            time.sleep(0.12)
+            xdotool('click', 3)
+            try:
+                wait_for(lambda: self.popups() > windows, 1.0, '')
+            except Failure:
+                self.miss(what)
+                continue
+            xdotool('key', '--delay', 20, *(['Down'] * entry))
+            if sub_entry:
+                xdotool('key', 'Right')
+                wait_for(lambda: self.popups() > windows + 1, 2.0, what + ': the submenu did not open')
+                if sub_entry > 1:
+                    xdotool('key', '--delay', 20, *(['Down'] * (sub_entry - 1)))
+            if shot:
+                time.sleep(0.3)
+                shot()
+            xdotool('key', 'Return')
+            self.settle(before, InteractiveMarkerFeedback.MENU_SELECT, what)
+            return p
+        if must:
+            raise Failure('%s: the menu did not open at (%.3f, %.3f, %.3f) or %d places beside it' %
+                          ((what,) + points[0] + (len(points) - 1,)))
+        return None
+
+    def off_paper(self):
+        """Points on the margin around the paper, off it: the corners of its box, pushed out."""
+        at = self.paper().at
+        lo, hi = [min(p[i] for p in at) for i in range(3)], [max(p[i] for p in at) for i in range(3)]
+        corners = [(x, y, lo[2]) for x, y in ((lo[0] - 0.05, lo[1] - 0.05), (hi[0] + 0.05, lo[1] - 0.05),
+                                              (lo[0] - 0.05, hi[1] + 0.05), (hi[0] + 0.05, hi[1] + 0.05))]
+        px, py, w, h = e2e.PANEL
+        x0, y0 = self.mouse.cx - w / 2.0, self.mouse.cy - h / 2.0
+
+        def seen(p):  # in the render panel
+            x, y = self.mouse.pixel(p)
+            return x0 + 10 < x < x0 + w - 10 and y0 + 10 < y < y0 + h - 10
+        return [p for p in corners if seen(p)]
+
+    def mode(self, name):
+        if self.status.mode != name:
+            self.menu(self.off_paper(), MODES[name], what=name + ' mode')
+            wait_for(lambda: self.status.mode == name, 5, 'the menu did not switch to %s mode' % name)
+
+    def committed(self, revision, what):
+        state = self.check.wait_revision(revision, what)
+        time.sleep(0.3)  # rviz takes the sheet marker the node sent for it
+        return Paper(state)
+
+    # --- operations, planned from the paper now
+    def crease(self, start, end, revision):
+        """A drag along the line, from where it enters the paper to where it leaves it; the ends
+        pressed where the line snaps onto itself (a vertex, an edge's division, the division of
+        the angle at the start vertex), whichever pixel the mouse lands on. Released where the
+        guide shows the line snapped onto itself; else taken back to the press (no crease) and
+        pressed again a pixel aside."""
+        self.mode('crease')
+        now = self.paper()
+        a, b = on_paper(now, start, end)
+        presses, release = plan_line(now, a, b)
+        d = sub(b, a)
+
+        def on_line(p, ahead):
+            t = dot(sub(p, a), d) / dot(d, d)
+            return norm(sub(p, add(a, mul(t, d)))) < 1e-9 and (t >= 1 - 1e-9 if ahead else t <= 1e-9)
+
+        shown = None
+        # Pixels around the press point: where the corners of the layers coincide, the vertex it
+        # snaps to (and so the angle divisions offered) depends on the side it is pressed from.
+        ring = [(0, 0)] + [(round(r * math.cos(k * math.pi / 4)), round(r * math.sin(k * math.pi / 4)))
+                           for r in (6, 10) for k in range(8)]
+        for dx, dy in ring:
+            aside = [self.on_table(add(self.mouse.pixel(p), (dx, dy)), p[2]) for p in presses]
+            # (a press rviz gives late makes a click: in crease mode nothing)
+            held = self.press(aside, 'the crease', must=False, wait=False, patience=0.5)
+            if not held:
+                continue
+            before, pressed = held
+            self.glide([self.mouse.pixel(add(pressed, mul(i / 8.0, sub(release, pressed)))) for i in range(1, 9)])
+            time.sleep(0.3)  # the node draws the guide for the pointer's last place
+            shown = self.guide
+            if shown and on_line(shown[0], False) and on_line(shown[1], True):
+                self.release(before, 'the crease')
+                return self.committed(revision, 'the crease')
+            self.glide([self.mouse.pixel(pressed)])  # back: too short a line creases nothing
+            self.release(before, 'the crease taken back')
+            self.miss('the crease, its guide off the line')
+        raise Failure('the crease (%.4f, %.4f)-(%.4f, %.4f): the guide never snapped onto it (last %s)' %
+                      (a[:2] + b[:2] + (shown,)))
+
+    def half_turn(self, click, foot, revision, shot=None):
+        """Rotate mode; press at `click` and drag over the axis (through `foot`) to past the
+        pressed point's mirror image, on the half circle the pressed point goes."""
+        self.mode('rotate')
+        around = [add(click, (dx, dy, 0.0)) for dx, dy in ((0, 0), (0.01, 0), (-0.01, 0), (0, 0.01), (0, -0.01))]
+        before, click = self.press(around, 'the half turn')
+        out = sub(click, foot)
+        radius = norm(out)
+        # Across the line of sight the view turns for the drag (seed Fig. 11): the path on the turned view.
+        camera = self.check.camera()
+        for _ in range(20):
+            time.sleep(0.1)
+            turned = self.check.camera()
+            if norm(sub(turned[0], camera[0])) < 1e-4:
+                break
+            camera = turned
+        path = []
+        for i in range(1, 19):
+            angle = math.pi * 1.15 * i / 18  # past the mirror image (below the table there): a half turn
+            path.append(add(foot, add(mul(math.cos(angle), out), (0.0, 0.0, radius * math.sin(angle)))))
+        self.glide([self.mouse.pixel(p, camera) for p in path])
+        if shot:
+            time.sleep(0.3)
+            shot()
+        self.release(before, 'the half turn')
+        return self.committed(revision, 'the half turn')
+
+    def let_go(self):
+        """A click on the margin off the paper lets go of the pick."""
+        self.click(self.off_paper(), 'a click off the paper')
+        self.pick = None
+
+    def down_to(self, picked, spots, what):
+        """'Next layer down' at the first of `spots` where the menu opens, until `picked()` or the
+        bottom; False when the menu opened at none."""
+        while not picked() and self.status.picked_layer < self.status.layers:
+            if not self.menu(spots, NEXT_LAYER, what='Next layer down (%s)' % what, must=False):
+                return False
+        return True
+
+    def mark(self, edge, angle):
+        """Picks the crease and clicks it until it carries the angle's mark (crane_by_mouse's
+        mark): 8 pixels beside it (its highlight lies on it), at its middle, or where the
+        interaction's message does not hide it, further along."""
+        now = self.paper()
+        a, b = [now.at[v] for v in now.edges[edge][:2]]
+        wanted = math.pi if angle > 0 else -math.pi if angle < 0 else 0.0
+
+        def picked():
+            return self.status.picked_edge == edge
+
+        def at_spot(spot):
+            # the spot, and a few pixels along the crease from it: within the pick's reach
+            spot = [spot] + self.beside(a, b, spot, [(5, 0), (-5, 0)])
+            if self.marked(edge) == wanted:
+                return True
+            if not (self.pick is not None and self.pick == spot[0] and self.status.picked_edge >= 0):
+                # A click near the pick would mark the crease picked there: let go of it first.
+                if self.pick is not None and self.status.picked_edge >= 0 and \
+                        norm(sub(spot[0], self.pick)) <= 1.5 * SNAP_RADIUS:
+                    self.let_go()
+                if not self.click(spot, 'a click beside crease %d' % edge, must=False):
+                    return False
+                self.pick = spot[0]
+            if not self.down_to(picked, spot, 'crease %d' % edge):
+                return False
+            if not picked():  # the pick went past it: from the top again
+                self.let_go()
+                if not self.click(spot, 'a click beside crease %d' % edge, must=False):
+                    return False
+                self.pick = spot[0]
+                if not self.down_to(picked, spot, 'crease %d' % edge) or not picked():
+                    raise Failure('crease %d is not among the creases under (%.3f, %.3f, %.3f): %s' %
+                                  ((edge,) + spot[0] + (self.status.message,)))
+            for _ in range(4):
+                if self.marked(edge) == wanted:
+                    return True
+                if not self.click(spot, 'a click marking crease %d' % edge, must=False):
+                    return False
+            return self.marked(edge) == wanted
+
+        spots = []
+        for f in (0.5, 0.35, 0.65, 0.2, 0.8):
+            spots += self.beside(a, b, add(a, mul(f, sub(b, a))), [(0, 8), (0, -8)])
+        if self.pick is not None and self.status.picked_edge == edge:
+            spots.insert(0, self.pick)
+        for spot in spots:
+            if at_spot(spot):
+                return
+        raise Failure('crease %d does not carry the mark %.2f after clicks all along it: %s' %
+                      (edge, wanted, self.status.message))
+
+    def keep(self, now, face):
+        """'Keep the face here' inside the face (its centroid, or towards its corners), and
+        'Next layer down' there until the face is the one picked."""
+        c = now.centroid(face)
+        for spot in [c] + [add(c, mul(0.4, sub(now.at[v], c))) for v in now.faces[face]]:
+            if self.menu([spot], FOLD_ON_MARKED, KEEP_FACE, what='Keep the face here', must=False) and \
+                    self.down_to(lambda: self.status.picked_face == face, [spot], 'the face that stays') and \
+                    self.status.picked_face == face:
+                return spot
+        raise Failure('the face that stays (%d) was never picked: %s' % (face, self.status.message))
+
+    def flat_fold(self, request, before, after, revision, shot=None):
+        """Marks the fold's creases, picks the face that stays, and folds (crane_by_mouse's flatFold)."""
+        self.mode('fold')
+        for line in request['creases']:
+            edges = self.paper().creases_on(line['start'], line['end'])
+            if not edges:
+                raise Failure('no crease on (%.3f, %.3f)-(%.3f, %.3f)' % tuple(line['start'] + line['end']))
+            for e in edges:
+                self.mark(e, math.radians(line['angle_deg']))
+        now = self.paper()
+        face = face_that_stays(now, request, before, after)
+        if face < 0:
+            raise Failure('no face seen from above stays in this fold')
+        at = self.keep(now, face)
+        self.pick = None
+        if shot:
+            self.mouse.away()
+            time.sleep(0.3)
+            shot()
+        self.menu([at] + self.off_paper(), FOLD_ON_MARKED, FOLD_FLAT, what='Fold flat')
+        return self.committed(revision, 'the fold on the marked creases')
+
+
+def face_that_stays(now, request, before, after):
+    """The script's face that stays, or, where that one stands edge-on to the view from above, a
+    face seen from there that the script's fold leaves in place too (crane_by_mouse's faceThatStays)."""
+    def stays(f):
+        for v in now.faces[f]:
+            r = before.vertex_at(now.cp[v])
+            if r >= 0 and norm(sub(before.at[r], after.at[after.vertex_at(now.cp[v])])) > 1e-9:
+                return False
+        return True
+
+    def seen(f):
+        return abs(now.normal(f)[2]) > 0.5
+    scripts = now.face_containing(request['fixed'])
+    if scripts >= 0 and seen(scripts):
+        return scripts
+    return next((f for f in range(len(now.faces)) if seen(f) and stays(f)), -1)
+
+
+def mirror_foot(before, after, click):
+    """A half turn of a flat flap: its axis is where a moved vertex and its mirror image meet
+    halfway; the foot of `click` on it."""
+    moved = []
+    for i, p in enumerate(before.cp):
+        j = after.vertex_at(p)
+        if j >= 0 and norm(sub(before.at[i], after.at[j])) > 1e-6:
+            moved.append((before.at[i], after.at[j]))
+    if not moved:
+        raise Failure('the reference half turn moves nothing')
+    a, b = max(moved, key=lambda m: norm(sub(m[0], m[1])))
+    middle = mul(0.5, add(a, b))
+    n = unit((b[0] - a[0], b[1] - a[1], 0.0))
+    d = (-n[1], n[0], 0.0)
+    return add(middle, mul(dot(sub(click, middle), d), d))
+
+
+# ---------------------------------------------------------------------------------------------
+
+def run(out):
+    started = time.time()
+    steps, reference = reference_states(out)
+    shots = []
+    window = []
+
+    def shot(name, crop=None):
+        path = os.path.join(out, name)
+        box = crop or (window[2], window[3], window[0], window[1])
+        subprocess.run(['import', '-window', 'root', '-crop', '%dx%d+%d+%d' % box, '+repage', path], check=True)
+        shots.append(path)
+        return path
+
+    def view_shot(name):
+        """The render panel only."""
+        px, py, w, h = e2e.PANEL
+        return shot(name, (w, h, window[0] + px, window[1] + py))
+
+    check = e2e.Checker()
+    wait_for(lambda: check.state is not None, 60, 'no state from paper_model')
+    revision = check.revision()
+    wait_for(lambda: check.status is not None and check.status.revision == revision, 30,
+             'the interaction node is not up')
+
+    def find_window():
+        r = subprocess.run(['xdotool', 'search', '--name', 'RViz'], capture_output=True, text=True)
+        for wid in r.stdout.split():
+            g = subprocess.run(['xdotool', 'getwindowgeometry', '--shell', wid], capture_output=True, text=True)
+            values = dict(line.split('=') for line in g.stdout.split() if '=' in line)
+            if int(values.get('WIDTH', 0)) >= 800:
+                window[:] = [int(values['X']), int(values['Y']), int(values['WIDTH']), int(values['HEIGHT'])]
+                return True
+        return False
+
+    wait_for(find_window, 60, 'no rviz window')
+    try:
+        run_steps(out, check, window, shot, view_shot, steps, reference, started)
+    except Failure:
+        shot('failure.png')
+        raise
+    print('screenshots:\n  ' + '\n  '.join(shots))
+
+
+def run_steps(out, check, window, shot, view_shot, steps, reference, started):
+    revision = check.revision()
+    mouse = e2e.Mouse(window, check)
+    try:
+        check.camera()
+    except Exception as e:
+        raise Failure('rviz does not broadcast its camera (the ViewCamera display): %s' % e)
+    folder = Folder(check, mouse)
+    # rviz draws the sheet and takes the interactive marker: a click on it reaches the node.
+    for _ in range(15):
+        mouse.click((0.5, 0.5, 0.0))  # in crease mode a click creases nothing
+        try:
+            wait_for(lambda: check.presses, 2, '')
+            break
+        except Failure:
+            pass
+    if not check.presses:
+        raise Failure('a click on the sheet does not reach the interaction node')
+    mouse.away()
+    first = Paper(check.state)
+    if compare(first, reference[0])[0] > EXACT:
+        raise Failure('the sheet at the start is not the reference\'s flat square')
+    view_shot('00_flat.png')
+    print('ready after %.0f s' % (time.time() - started))
+
+    to_paper = compare(first, reference[0])[1]  # reference -> the mouse's paper
+    for i, step in enumerate(steps):
+        number = i + 1
+        began, gestures = time.time(), folder.gestures
+        before, after = reference[i], reference[i + 1]
+        revision += 1
+        if 'crease' in step:
+            start, end = [to_paper(tuple(step['crease'][k]) + (0.0,)) for k in ('start', 'end')]
+            paper = folder.crease(start, end, revision)
+            kind = 'crease'
+        elif 'rotate' in step:
+            if abs(abs(step['rotate']['angle_deg']) - 180) > 1e-9:
+                raise Failure('step %d: the crane turns by half turns' % number)
+            click = tuple(step['rotate']['click']) + (0.0,)
+            paper = folder.half_turn(to_paper(click), to_paper(mirror_foot(before, after, click)), revision,
+                                     shot=(lambda: view_shot('half_turn_drag.png')) if number == 5 else None)
+            kind = 'half turn'
+        else:
+            request = step['flat_fold']
+            marks = {7: lambda: view_shot('squash_marks.png'), 12: lambda: view_shot('petal_marks.png')}
+            paper = folder.flat_fold(request, before, after, revision, shot=marks.get(number))
+            kind = 'squash' if number in (7, 8) else 'petal fold' if number in (12, 13) else 'flat fold'
+        # The step's state: one new revision, the reference's crease pattern and folded form.
+        if check.revision() != revision:
+            raise Failure('step %d made revision %s, expected %d' % (number, check.revision(), revision))
+        off, fit = compare(paper, after)
+        if fit is None:
+            raise Failure('step %d (%s): the crease pattern differs from the reference\'s (%d vertices, %d expected)'
+                      % (number, step['note'], len(paper.cp), len(after.cp)))
+        if off > EXACT:
+            raise Failure('step %d (%s): a vertex lies %.2g m from where the reference folding puts it'
+                          % (number, step['note'], off))
+        to_paper = fit
+        folded = ''
+        if 'flat_fold' in step:
+            worst = 0.0
+            for line in step['flat_fold']['creases']:
+                for e in paper.creases_on(line['start'], line['end']):
+                    worst = max(worst, abs(abs(paper.edges[e][4]) - abs(math.radians(line['angle_deg']))))
+            if worst > 1e-6:
+                raise Failure('step %d: a crease of the fold is %.2g rad off the angle asked for' % (number, worst))
+            flat = max(abs(p[2] - paper.at[0][2]) for p in paper.at)
+            if flat > 1e-6:
+                raise Failure('step %d: the folded paper is not flat (%.2g m)' % (number, flat))
+            folded = ', its creases at the angles asked, flat'
+        mouse.away()
+        time.sleep(0.2)
+        view_shot('%02d_%s.png' % (number, kind.replace(' ', '_')))
+        print('step %2d %-10s %3d gestures %5.1f s: revision %d, %d vertices, %.1g m from the reference%s  (%s)' %
+              (number, kind, folder.gestures - gestures, time.time() - began, revision, len(paper.cp), off, folded,
+               step['note']))
+        if number == 8:
+            view_shot('square_base.png')
+    view_shot('bird_base.png')
+    print('the bird base by mouse: %d steps, %d gestures, %.0f s' % (STEPS, folder.gestures, time.time() - started))
+    print('made again beside a guide or message rviz gave the press to, or after the message went (%.0f s waited): %s'
+          % (folder.waited, ', '.join('%s %d' % m for m in sorted(folder.missed.items())) or 'none'))
+
+
+def main():
+    out = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else 'e2e_crane_output')
+    os.makedirs(out, exist_ok=True)
+    system = e2e.System(out)
+
+    def out_of_time(*_):
+        raise Failure('over the time limit of %d s' % TIME_LIMIT)
+
+    import signal
+    signal.signal(signal.SIGALRM, out_of_time)
+    signal.alarm(TIME_LIMIT)
+    status = 0
+    try:
+        system.start()
+        run(out)
+        print('PASSED')
+    except Failure as e:
+        print('FAILED: %s (logs and screenshots in %s)' % (e, out))
+        status = 1
+    finally:
+        signal.alarm(0)
+        rospy.signal_shutdown('done')
+        system.stop()
+    sys.exit(status)
+
+
+if __name__ == '__main__':
+    main()
