@@ -92,24 +92,6 @@ Vec2 creasePatternPoint(const Paper& paper, int face)
   return centroid / static_cast<double>(paper.faces[face].vertices.size());
 }
 
-int faceContaining(const Paper& paper, const Vec2& point)
-{
-  for (size_t f = 0; f < paper.faces.size(); ++f)
-  {
-    const std::vector<int>& vs = paper.faces[f].vertices;
-    bool inside = true;
-    for (size_t i = 0; i < vs.size() && inside; ++i)
-    {
-      const Vec2 a = paper.vertices[vs[i]].crease_pattern, b = paper.vertices[vs[(i + 1) % vs.size()]].crease_pattern;
-      const Vec2 ab = b - a, ap = point - a;
-      inside = ab.x() * ap.y() - ab.y() * ap.x() >= -1e-12 * paper.scale();  // counter-clockwise faces
-    }
-    if (inside)
-      return static_cast<int>(f);
-  }
-  return -1;
-}
-
 std::optional<FlatFoldRequest> chosenCreasesFold(const Paper& paper, const CreaseMarks& marks, int fixed_face,
                                                  double fold)
 {

@@ -6,7 +6,7 @@
 
 #include "virtual_origami/core/axis.h"
 #include "virtual_origami/core/geometry.h"
-#include "virtual_origami/core/layers.h"
+#include "virtual_origami/core/layer_pick.h"
 
 namespace virtual_origami::core
 {
@@ -17,31 +17,15 @@ namespace
 /// `hit` is where the line meets it.
 int faceUnder(const Paper& paper, const Vec3& press, const Vec3& view, Vec3* hit = nullptr)
 {
-  const std::vector<int> levels = stackLevels(paper);
-  const double tolerance = 1e-6 * paper.scale();
-  int best = -1;
-  double best_t = std::numeric_limits<double>::infinity();
-  for (size_t f = 0; f < paper.faces.size(); ++f)
+  const std::vector<int> faces = facesUnder(paper, press, view);
+  if (faces.empty())
+    return -1;
+  const int best = faces.front();
+  if (hit)
   {
-    const int face = static_cast<int>(f);
-    const Vec3 n = paper.faceNormal(face);
-    if (std::abs(n.dot(view)) < 1e-9)
-      continue;  // seen edge-on
-    const double t = n.dot(paper.faceCentroid(face) - press) / n.dot(view);
-    const FaceProjection hit = projectOntoFace(paper, face, press + t * view);
-    if (!hit.inside || hit.distance > tolerance)
-      continue;
-    // Stack levels count upwards along +z: from above the highest level is nearest.
-    const double order = view.z() <= 0 ? -levels[f] : levels[f];
-    const double best_order = best < 0 ? 0 : (view.z() <= 0 ? -levels[best] : levels[best]);
-    if (t < best_t - tolerance || (t <= best_t + tolerance && (best < 0 || order < best_order)))
-    {
-      best = face;
-      best_t = std::min(t, best_t);
-    }
+    const Vec3 n = paper.faceNormal(best);
+    *hit = press + (n.dot(paper.faceCentroid(best) - press) / n.dot(view)) * view;
   }
-  if (best >= 0 && hit)
-    *hit = press + best_t * view;
   return best;
 }
 

@@ -34,6 +34,14 @@ bool insideFace(const Paper& paper, int face, const Vec2& p)
 }
 }  // namespace
 
+int faceContaining(const Paper& paper, const Vec2& point)
+{
+  for (size_t f = 0; f < paper.faces.size(); ++f)
+    if (insideFace(paper, static_cast<int>(f), point))
+      return static_cast<int>(f);
+  return -1;
+}
+
 namespace
 {
 /// What a request asks of this paper: every edge's angle after the fold, the face that stays.
@@ -83,28 +91,12 @@ Expected<FoldPlan> planFold(const Paper& paper, const FlatFoldRequest& request)
     if (found == 0)
       return Failure::failure(which + " runs along no crease (crease it first)");
   }
-  for (size_t f = 0; f < paper.faces.size() && plan.root < 0; ++f)
-    if (insideFace(paper, static_cast<int>(f), request.fixed_point))
-      plan.root = static_cast<int>(f);
+  plan.root = faceContaining(paper, request.fixed_point);
   if (plan.root < 0)
     return Failure::failure("the fixed point lies off the sheet");
   return plan;
 }
 
-/// The turn of the face across `edge` from `face` in crease-pattern coordinates (as
-/// kinematics.cpp's foldedPositionsFromAngles turns it).
-Eigen::Isometry3d hinge(const Paper& paper, int edge, int face, double fold_angle)
-{
-  const Edge& e = paper.edges[edge];
-  const Vec2& a2 = paper.vertices[e.vertices[0]].crease_pattern;
-  const Vec2& b2 = paper.vertices[e.vertices[1]].crease_pattern;
-  const Vec3 a(a2.x(), a2.y(), 0.0);
-  const Vec3 dir = Vec3(b2.x() - a2.x(), b2.y() - a2.y(), 0.0).normalized();
-  const double turn = e.faces[0] == face ? -fold_angle : fold_angle;
-  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  t.translate(a).rotate(Eigen::AngleAxisd(turn, dir)).translate(-a);
-  return t;
-}
 }  // namespace
 
 Expected<FlatFoldResult> flatFold(Paper& paper, const FlatFoldRequest& request)
@@ -182,8 +174,8 @@ Expected<Paper> flatFoldFrame(const Paper& paper, const FlatFoldRequest& request
   std::vector<int> depth(faces, -1);
   depth[root] = 0;
   walkFaces(paper, root, [&](int f, int e, int g) {
-    pose0[g] = pose0[f] * hinge(paper, e, f, now[e]);
-    pose_t[g] = pose_t[f] * hinge(paper, e, f, then[e]);
+    pose0[g] = pose0[f] * hingeTransform(paper, e, f, now[e]);
+    pose_t[g] = pose_t[f] * hingeTransform(paper, e, f, then[e]);
     depth[g] = depth[f] + 1;
   });
   // The motion of each face from its current place (the fixed face: none).

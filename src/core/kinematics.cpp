@@ -35,9 +35,6 @@ Eigen::Isometry3d facePose(const Paper& paper, int face)
   return pose;
 }
 
-namespace
-{
-/// The turn of the face across `edge` from `face`, in crease-pattern coordinates.
 Eigen::Isometry3d hingeTransform(const Paper& paper, int edge, int face, double fold_angle)
 {
   const Edge& e = paper.edges[edge];
@@ -52,6 +49,8 @@ Eigen::Isometry3d hingeTransform(const Paper& paper, int edge, int face, double 
   return hinge;
 }
 
+namespace
+{
 /// Largest distance between where two poses put the face's vertices.
 double poseGap(const Paper& paper, int face, const Eigen::Isometry3d& p, const Eigen::Isometry3d& q)
 {

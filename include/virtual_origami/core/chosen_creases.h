@@ -54,9 +54,6 @@ double markAngle(CreaseMark mark, double fold = M_PI);
 /// a point, as the flat fold's face that stays is.
 Vec2 creasePatternPoint(const Paper& paper, int face);
 
-/// The face whose crease-pattern polygon holds `point`, or -1.
-int faceContaining(const Paper& paper, const Vec2& point);
-
 /// The flat fold the marks ask for, the face under `fixed_face`'s crease-pattern centroid
 /// staying. Empty when nothing is marked.
 std::optional<FlatFoldRequest> chosenCreasesFold(const Paper& paper, const CreaseMarks& marks, int fixed_face,

@@ -34,6 +34,9 @@ struct FlatFoldResult
   std::vector<int> moved_faces;    // faces whose folded place changed
 };
 
+/// The face whose crease-pattern polygon holds `point` (the face that stays is named so), or -1.
+int faceContaining(const Paper& paper, const Vec2& point);
+
 /// Sets the named creases' angles and re-places every face rigidly from the fixed face (whose
 /// vertices keep their positions bit for bit). Fails,
 /// leaving `paper` untouched, when no crease is named, a segment names no crease, a value is

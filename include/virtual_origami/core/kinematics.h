@@ -14,6 +14,11 @@ namespace virtual_origami::core
 /// fitted to its current folded vertices (least squares, Kabsch).
 Eigen::Isometry3d facePose(const Paper& paper, int face);
 
+/// The turn of the face across `edge` from `face` by `fold_angle` (radians, FOLD sign), in
+/// crease-pattern coordinates: with the edge's left face held, the right face turns by
+/// −fold_angle about its first vertex → its second.
+Eigen::Isometry3d hingeTransform(const Paper& paper, int edge, int face, double fold_angle);
+
 /// Places every face by composing rigid turns about the creases along a spanning tree of
 /// faces from `root_face` (which gets `root_pose`), each crease turned by its entry of
 /// `fold_angles` (radians, FOLD sign). Fails, naming the vertex, when the angles do not
