@@ -32,14 +32,6 @@ core::Vec3 pathAt(const ros::Time& stamp, const ros::Time& start)
   return { 0.5 + 0.5 * std::cos(angle), 0.0, 0.5 * std::sin(angle) };
 }
 
-int vertexAt(const PaperState& s, double x, double y)
-{
-  for (size_t v = 0; v < s.vertices_crease_pattern.size(); ++v)
-    if (std::abs(s.vertices_crease_pattern[v].x - x) < 1e-9 && std::abs(s.vertices_crease_pattern[v].y - y) < 1e-9)
-      return static_cast<int>(v);
-  return -1;
-}
-
 PinVertex pin(PaperClient& client, int vertex, const std::string& frame, bool release = false)
 {
   PinVertex::Request r;

@@ -17,27 +17,9 @@
 using namespace virtual_origami;
 using virtual_origami::test::PaperClient;
 using virtual_origami::test::crash;
+using virtual_origami::test::point;
+using virtual_origami::test::vertexAt;
 using virtual_origami::test::waitFor;
-
-namespace
-{
-geometry_msgs::Point point(double x, double y, double z = 0.0)
-{
-  geometry_msgs::Point p;
-  p.x = x;
-  p.y = y;
-  p.z = z;
-  return p;
-}
-
-int vertexAt(const PaperState& state, double x, double y)
-{
-  for (size_t v = 0; v < state.vertices_crease_pattern.size(); ++v)
-    if (std::abs(state.vertices_crease_pattern[v].x - x) < 1e-12 && std::abs(state.vertices_crease_pattern[v].y - y) < 1e-12)
-      return static_cast<int>(v);
-  return -1;
-}
-}  // namespace
 
 TEST(RecordReplay, AReplayEndsInTheRecordedState)
 {

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <csignal>
 #include <functional>
 #include <string>
@@ -70,6 +71,25 @@ inline void crash(const std::string& node, bool respawned = true)
     ASSERT_TRUE(waitFor([&] { const int now = pidOf(node); return now > 0 && now != pid; }, 30.0))
         << node << " was not restarted";
   }
+}
+
+/// A point of the `paper` frame as a message.
+inline geometry_msgs::Point point(double x, double y, double z = 0.0)
+{
+  geometry_msgs::Point p;
+  p.x = x;
+  p.y = y;
+  p.z = z;
+  return p;
+}
+
+/// The vertex of a state at a crease-pattern point, or -1.
+inline int vertexAt(const PaperState& state, double x, double y)
+{
+  for (size_t v = 0; v < state.vertices_crease_pattern.size(); ++v)
+    if (std::abs(state.vertices_crease_pattern[v].x - x) < 1e-12 && std::abs(state.vertices_crease_pattern[v].y - y) < 1e-12)
+      return static_cast<int>(v);
+  return -1;
 }
 
 class PaperClient

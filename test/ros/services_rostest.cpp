@@ -26,6 +26,8 @@
 
 using namespace virtual_origami;
 using virtual_origami::test::PaperClient;
+using virtual_origami::test::point;
+using virtual_origami::test::vertexAt;
 using virtual_origami::test::waitFor;
 
 namespace
@@ -421,15 +423,6 @@ TEST_F(Services, MarkersFollowEveryOperation)
 
 namespace
 {
-geometry_msgs::Point point(double x, double y, double z = 0.0)
-{
-  geometry_msgs::Point p;
-  p.x = x;
-  p.y = y;
-  p.z = z;
-  return p;
-}
-
 /// The diagonal (0, 0)–(1, 1) folded to `angle`, the lower-right half staying.
 FlatFold::Request diagonalFold(double angle, bool commit, double fraction = 1.0)
 {
@@ -443,13 +436,6 @@ FlatFold::Request diagonalFold(double angle, bool commit, double fraction = 1.0)
   return r;
 }
 
-int vertexAt(const PaperState& state, double x, double y)
-{
-  for (size_t v = 0; v < state.vertices_crease_pattern.size(); ++v)
-    if (std::abs(state.vertices_crease_pattern[v].x - x) < 1e-12 && std::abs(state.vertices_crease_pattern[v].y - y) < 1e-12)
-      return static_cast<int>(v);
-  return -1;
-}
 }  // namespace
 
 TEST_F(Services, FlatFoldPreviewsCommitsAndRefuses)

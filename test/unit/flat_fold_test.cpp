@@ -12,19 +12,6 @@ using namespace virtual_origami::core::test;
 
 namespace
 {
-Vec2 v2(double x, double y) { return Vec2(x, y); }
-
-/// The unit square creased along both diagonals and both midlines.
-Paper creasedSquare()
-{
-  Paper paper = Paper::square(1.0);
-  creaseLine(paper, p3(0, 0), p3(1, 1));
-  creaseLine(paper, p3(1, 0), p3(0, 1));
-  creaseLine(paper, p3(0.5, -0.1), p3(0.5, 1.1));
-  creaseLine(paper, p3(-0.1, 0.5), p3(1.1, 0.5));
-  return paper;
-}
-
 const Vec2 kCentre(0.5, 0.5);
 
 Vec3 foldedAt(const Paper& paper, const Vec2& crease_pattern_point)

@@ -21,19 +21,7 @@ using namespace virtual_origami::core::test;
 
 namespace
 {
-Vec2 v2(double x, double y) { return Vec2(x, y); }
 const Vec2 kCentre(0.5, 0.5);
-
-/// The unit square creased along both diagonals and both midlines.
-Paper creasedSquare()
-{
-  Paper paper = Paper::square(1.0);
-  creaseLine(paper, p3(0, 0), p3(1, 1));
-  creaseLine(paper, p3(1, 0), p3(0, 1));
-  creaseLine(paper, p3(0.5, -0.1), p3(0.5, 1.1));
-  creaseLine(paper, p3(-0.1, 0.5), p3(1.1, 0.5));
-  return paper;
-}
 
 FlatFoldRequest diagonalFold(double angle = M_PI)
 {
@@ -81,18 +69,6 @@ double largestMove(const Paper& a, const Paper& b)
   for (size_t v = 0; v < a.vertices.size(); ++v)
     d = std::max(d, (a.vertices[v].folded - b.vertices[v].folded).norm());
   return d;
-}
-
-/// The unit square creased at x = 0.5, and the vertices of its half x ≤ 0.5.
-Paper creasedInHalf(std::vector<int>& left_half)
-{
-  Paper paper = Paper::square(1.0);
-  creaseLine(paper, p3(0.5, -0.1), p3(0.5, 1.1));
-  left_half.clear();
-  for (size_t v = 0; v < paper.vertices.size(); ++v)
-    if (paper.vertices[v].crease_pattern.x() < 0.5 + 1e-12)
-      left_half.push_back(static_cast<int>(v));
-  return paper;
 }
 
 /// The corner (1, 0) swung by `angle` about the crease x = 0.5 (valley: up through +z).

@@ -20,18 +20,6 @@ using namespace virtual_origami::core::test;
 
 namespace
 {
-/// The unit square creased at x = 0.5, and the vertices of its half x ≤ 0.5.
-Paper creasedInHalf(std::vector<int>& left_half)
-{
-  Paper paper = Paper::square(1.0);
-  creaseLine(paper, p3(0.5, -0.1), p3(0.5, 1.1));
-  left_half.clear();
-  for (size_t v = 0; v < paper.vertices.size(); ++v)
-    if (paper.vertices[v].crease_pattern.x() < 0.5 + 1e-12)
-      left_half.push_back(static_cast<int>(v));
-  return paper;
-}
-
 /// The corner (1, 0) swung by `angle` about the crease x = 0.5 (valley: up through +z).
 Vec3 swung(double angle)
 {

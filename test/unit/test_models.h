@@ -55,6 +55,31 @@ inline void foldStack(Paper& paper, const Vec3& a, const Vec3& b, const Vec3& si
   }
 }
 
+inline Vec2 v2(double x, double y) { return Vec2(x, y); }
+
+/// The unit square creased along both diagonals and both midlines.
+inline Paper creasedSquare()
+{
+  Paper paper = Paper::square(1.0);
+  creaseLine(paper, p3(0, 0), p3(1, 1));
+  creaseLine(paper, p3(1, 0), p3(0, 1));
+  creaseLine(paper, p3(0.5, -0.1), p3(0.5, 1.1));
+  creaseLine(paper, p3(-0.1, 0.5), p3(1.1, 0.5));
+  return paper;
+}
+
+/// The unit square creased at x = 0.5, and the vertices of its half x ≤ 0.5.
+inline Paper creasedInHalf(std::vector<int>& left_half)
+{
+  Paper paper = Paper::square(1.0);
+  creaseLine(paper, p3(0.5, -0.1), p3(0.5, 1.1));
+  left_half.clear();
+  for (size_t v = 0; v < paper.vertices.size(); ++v)
+    if (paper.vertices[v].crease_pattern.x() < 0.5 + 1e-12)
+      left_half.push_back(static_cast<int>(v));
+  return paper;
+}
+
 /// Unit square folded in half `times` times (valley folds of 180°): 2^times layers.
 inline Paper stackOfLayers(int times)
 {
