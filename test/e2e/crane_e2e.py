@@ -922,30 +922,7 @@ def run_steps(out, check, window, shot, view_shot, steps, reference, started):
 
 
 def main():
-    out = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else 'e2e_crane_output')
-    os.makedirs(out, exist_ok=True)
-    system = e2e.System(out)
-
-    def out_of_time(*_):
-        raise Failure('over the time limit of %d s' % TIME_LIMIT)
-
-    import signal
-    signal.signal(signal.SIGALRM, out_of_time)
-    signal.alarm(TIME_LIMIT)
-    status = 0
-    try:
-        system.start()
-        run(out)
-        print('PASSED')
-    except Failure as e:
-        print('FAILED: %s (logs and screenshots in %s)' % (e, out))
-        status = 1
-    finally:
-        signal.alarm(0)
-        rospy.signal_shutdown('done')
-        system.stop()
-    sys.exit(status)
-
+    e2e.run_system(run, 'e2e_crane_output', TIME_LIMIT)
 
 if __name__ == '__main__':
     main()

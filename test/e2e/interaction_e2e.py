@@ -553,16 +553,18 @@ def rospy_point(x, y, z=0.0):
     return Point(x=x, y=y, z=z)
 
 
-def main():
-    out = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else 'e2e_output')
+def run_system(run, default_out, time_limit):
+    """Starts the system, calls run(out) within `time_limit` seconds, stops the system, exits
+    non-zero on a Failure. The output folder is the first argument (else `default_out`)."""
+    out = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else default_out)
     os.makedirs(out, exist_ok=True)
     system = System(out)
 
     def out_of_time(*_):
-        raise Failure('over the time limit of %d s' % TIME_LIMIT)
+        raise Failure('over the time limit of %d s' % time_limit)
 
     signal.signal(signal.SIGALRM, out_of_time)
-    signal.alarm(TIME_LIMIT)
+    signal.alarm(time_limit)
     status = 0
     try:
         system.start()
@@ -577,6 +579,9 @@ def main():
         system.stop()
     sys.exit(status)
 
+
+def main():
+    run_system(run, 'e2e_output', TIME_LIMIT)
 
 if __name__ == '__main__':
     main()
