@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "virtual_origami/core/bend_reach.h"
 #include "virtual_origami/core/validity.h"
 
 namespace virtual_origami::core
@@ -228,8 +229,12 @@ Expected<Computed<PullResult>> computeDragVertex(Workspace workspace, const Pull
   const Paper before = workspace.paper;
   Expected<PullResult> result = core::pull(workspace.paper, { target }, workspace.solver.get(), workspace.held);
   if (!result)
-    return Answer::failure("no shape of the faces follows vertex " + std::to_string(target.vertex) +
-                           " there: " + result.message());
+  {
+    // Said too when bent paper (the curved model, which could take the drag over) cannot get there.
+    const Status bends = bendingReaches(before, target, workspace.held);
+    return Answer::failure("no shape of the faces follows vertex " + std::to_string(target.vertex) + " there: " +
+                           result.message() + (bends ? "" : "; bent, " + bends.message()));
+  }
   const int pinned = movedHeldVertex(before, workspace.paper, workspace.held);
   if (pinned >= 0)
     return Answer::failure("vertex " + std::to_string(pinned) + " is pinned and the drag would move it");

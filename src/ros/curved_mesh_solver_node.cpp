@@ -1,5 +1,7 @@
 #include "virtual_origami/ros/curved_mesh_solver_node.h"
 
+#include <algorithm>
+
 #include <visualization_msgs/MarkerArray.h>
 
 #include "virtual_origami/curved/bubble_mesh.h"
@@ -162,6 +164,7 @@ CurvedMeshSolverNode::CurvedMeshSolverNode(ros::NodeHandle nh, ros::NodeHandle p
   reconfigure_server_.setCallback([this](CurvedMeshSolverConfig& c, uint32_t level) { reconfigure(c, level); });
   // Only the newest state matters: a slow solve skips the states that came meanwhile.
   state_sub_ = nh.subscribe<PaperState>("state", 1, [this](const PaperState::ConstPtr& s) { onState(s); });
+  drag_sub_ = nh.subscribe<VertexTarget>("curved_drag", 1, [this](const VertexTarget::ConstPtr& d) { onDrag(d); });
   const double pin_rate = private_nh.param("pin_rate", 30.0);
   if (pin_rate > 0)
     follow_timer_ = nh.createTimer(ros::Duration(1.0 / pin_rate), &CurvedMeshSolverNode::followFrames, this);
@@ -205,6 +208,26 @@ void CurvedMeshSolverNode::onState(const PaperState::ConstPtr& state)
   solveAndPublish();
 }
 
+void CurvedMeshSolverNode::onDrag(const VertexTarget::ConstPtr& drag)
+{
+  if (drag->vertex < 0)
+  {
+    let_go_ = let_go_ || drag_.has_value();
+    drag_.reset();
+    return;
+  }
+  const core::Vec3 position = toVec3(drag->position);
+  if (!position.allFinite() || (last_state_ && !drag->header.frame_id.empty() &&
+                                drag->header.frame_id != last_state_->header.frame_id))
+  {
+    ROS_WARN_THROTTLE(5.0, "curved_mesh_solver: a drag of vertex %d to a point that is not finite or not in the "
+                      "paper's frame (%s) is ignored", drag->vertex, drag->header.frame_id.c_str());
+    return;
+  }
+  drag_ = core::PullTarget{ drag->vertex, position };
+  drag_stamp_ = drag->header.stamp;
+}
+
 bool CurvedMeshSolverNode::currentPins(std::vector<core::PullTarget>& pins, ros::Time& stamp, std::string& error,
                                        const ros::Duration& wait)
 {
@@ -235,6 +258,13 @@ bool CurvedMeshSolverNode::currentPins(std::vector<core::PullTarget>& pins, ros:
           "vertex " + std::to_string(pin.vertex) + " follows " + pin.frame_id + ", which tf cannot place: " + e.what();
       return false;
     }
+  }
+  // The dragged vertex, unless the state does not have it or pins it itself (a pin holds).
+  if (drag_ && drag_->vertex < static_cast<int>(last_state_->vertices_folded.size()) &&
+      std::none_of(pins.begin(), pins.end(), [&](const core::PullTarget& p) { return p.vertex == drag_->vertex; }))
+  {
+    pins.push_back(*drag_);
+    stamp = std::max(stamp, drag_stamp_);
   }
   return true;
 }
@@ -282,7 +312,7 @@ void CurvedMeshSolverNode::followFrames(const ros::TimerEvent&)
 {
   if (!config_.enabled || !follower_ || !follower_->hasSheet() || !last_state_)
     return;
-  bool on_frames = false;
+  bool on_frames = drag_.has_value() || let_go_;
   for (const Pin& pin : last_state_->pins)
     on_frames = on_frames || !pin.frame_id.empty();
   if (!on_frames)
@@ -309,13 +339,16 @@ void CurvedMeshSolverNode::followFrames(const ros::TimerEvent&)
   const core::Expected<core::CurvedReport> report = follower_->follow(pins);
   if (!report)
   {
-    ROS_WARN_THROTTLE(5.0, "curved_mesh_solver: following the pins' frames: %s", report.message().c_str());
+    ROS_WARN_THROTTLE(5.0, "curved_mesh_solver: following the pins' frames%s: %s", drag_ ? " and the mouse" : "",
+                      report.message().c_str());
     return;
   }
+  if (!drag_)
+    let_go_ = false;  // back on the state's own pins
   // Only balanced sheets are shown while frames move: an unbalanced one is solved on next cycle.
   if (!report->converged && resumed_ < kResumes)
     return;
-  publish(stamp, *report, "frames");
+  publish(stamp, *report, drag_ ? "mouse" : "frames");
 }
 
 void CurvedMeshSolverNode::publish(const ros::Time& stamp, const core::CurvedReport& report, const char* what)

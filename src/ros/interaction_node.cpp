@@ -7,6 +7,7 @@
 #include <std_srvs/Trigger.h>
 #include <virtual_origami/Crease.h>
 #include <virtual_origami/DragVertex.h>
+#include <virtual_origami/VertexTarget.h>
 #include <virtual_origami/FlatFold.h>
 #include <virtual_origami/FoldByAssignment.h>
 #include <virtual_origami/InteractionStatus.h>
@@ -116,6 +117,8 @@ InteractionNode::InteractionNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
 
   markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("interaction_markers", 10);
   status_pub_ = nh_.advertise<InteractionStatus>("interaction_status", 10);
+  curved_drag_pub_ = nh_.advertise<VertexTarget>("curved_drag", 1);
+  curved_sheet_sub_ = nh_.subscribe("curved_mesh", 1, &InteractionNode::curvedSheetReceived, this);
   view_turn_pub_ = nh_.advertise<geometry_msgs::PoseStamped>("view_turn", 1);
   slider_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("fold_slider_markers", 10, true);
   state_sub_ = nh_.subscribe("state", 1, &InteractionNode::stateReceived, this);
@@ -725,6 +728,7 @@ void InteractionNode::setMode(Mode mode)
 {
   mode_ = mode;
   dragging_ = false;
+  stopBending();
   turnViewBack();
   showPaper();
   showMarkers(clearedMarkers(style_, ros::Time::now()));
@@ -760,6 +764,7 @@ void InteractionNode::publishStatus(const ros::TimerEvent&)
   status.picked_edge = fresh && pick_.kind == Pick::Kind::Crease ? pick_.current() : -1;
   status.picked_face = mode_ == Mode::Fold ? keptFace() : fresh && pick_.kind == Pick::Kind::Face ? pick_.current() : -1;
   status.picked_vertex = fresh && pick_.kind == Pick::Kind::Vertex ? pick_.current() : -1;
+  status.bending = bending_;
   status.picked_layer = fresh && pick_.kind != Pick::Kind::None ? static_cast<uint32_t>(pick_.index + 1) : 0;
   status.layers = fresh ? static_cast<uint32_t>(pick_.candidates.size()) : 0;
   if (paper_)

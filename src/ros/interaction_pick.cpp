@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <virtual_origami/DragVertex.h>
+#include <virtual_origami/VertexTarget.h>
 #include <virtual_origami/FlatFold.h>
 
 #include "virtual_origami/core/layer_pick.h"
@@ -264,11 +265,64 @@ void InteractionNode::updateVertexDrag()
   std::string message;
   if (!reach(drag_vertex_, srv, message) || !srv.response.success)
   {
+    // Rigid faces first; where they cannot follow, the curved model, when one is running.
+    if (message.empty() && srv.response.curved_reaches && curved_drag_pub_.getNumSubscribers() > 0)
+      return bend(target);
+    stopBending();
     vertex_refusal_ = message.empty() ? srv.response.message : message;
     return;
   }
+  stopBending();
   vertex_refusal_.clear();
   vertex_previewed_ = target;
+}
+
+void InteractionNode::bend(const core::Vec3& target)
+{
+  VertexTarget held;
+  held.header.frame_id = style_.frame_id;
+  held.header.stamp = ros::Time::now();
+  held.vertex = dragged_vertex_;
+  held.position = toPoint(target);
+  curved_drag_pub_.publish(held);
+  vertex_refusal_.clear();
+  if (bending_)
+    return;
+  bending_ = true;
+  bent_since_ = held.header.stamp;
+  tell("The faces cannot stay flat there: the paper bends. Let go and it springs back.", target);
+}
+
+void InteractionNode::stopBending()
+{
+  if (!bending_)
+    return;
+  bending_ = false;
+  VertexTarget let_go;
+  let_go.header.frame_id = style_.frame_id;
+  let_go.header.stamp = ros::Time::now();
+  let_go.vertex = -1;
+  curved_drag_pub_.publish(let_go);
+  visualization_msgs::MarkerArray hide;
+  for (const char* ns : { "bent_sheet", "bent_sheet_back", "bent_sheet_edges" })
+  {
+    visualization_msgs::Marker m;
+    m.header = let_go.header;
+    m.ns = ns;
+    m.action = visualization_msgs::Marker::DELETE;
+    hide.markers.push_back(m);
+  }
+  markers_pub_.publish(hide);
+}
+
+void InteractionNode::curvedSheetReceived(const visualization_msgs::MarkerArray::ConstPtr& sheet)
+{
+  if (!bending_ || sheet->markers.empty() || sheet->markers.front().header.stamp < bent_since_)
+    return;  // only the sheet bent after the mouse: the state's own sheet is the Curved sheet display's
+  visualization_msgs::MarkerArray shown = *sheet;
+  for (visualization_msgs::Marker& m : shown.markers)
+    m.ns = "bent_sheet" + m.ns.substr(std::string("curved_mesh").size());
+  markers_pub_.publish(shown);
 }
 
 std::string InteractionNode::releaseVertex()
@@ -281,8 +335,20 @@ std::string InteractionNode::releaseVertex()
     showPicks();
     return "Picked a vertex (" + layerOf(pick_.index, pick_.candidates.size()) + "); drag it.";
   }
-  if (!vertex_previewed_ || !vertex_refusal_.empty())  // where the pointer ended no shape follows
-    return vertex_refusal_.empty() ? "The paper cannot follow the vertex there." : vertex_refusal_;
+  const bool bent = bending_;
+  stopBending();
+  // The press's own preview (the vertex where it lies) moves nothing: no history entry for it.
+  const bool moved = vertex_previewed_ && (*vertex_previewed_ - vertex_at_press_).norm() > 1e-9 * paper_->scale();
+  if (!moved || !vertex_refusal_.empty())  // where the pointer ended no shape follows
+  {
+    dragged_vertex_ = -1;
+    if (bent)
+      return "Let go: the bent paper springs back, as it was.";
+    if (!vertex_refusal_.empty())
+      return vertex_refusal_;
+    return vertex_previewed_ ? "The vertex is back where it was: nothing changed." :
+                               "The paper cannot follow the vertex there.";
+  }
   DragVertex srv;
   srv.request.vertex = dragged_vertex_;
   srv.request.position = toPoint(*vertex_previewed_);
@@ -290,6 +356,8 @@ std::string InteractionNode::releaseVertex()
   std::string message;
   if (reach(drag_vertex_, srv, message) && !srv.response.success)
     message = srv.response.message;
+  else if (message.empty() && bent)
+    message = "Let go: the bend springs back; the faces stay where they could follow flat.";
   dragged_vertex_ = -1;
   pick_ = Pick{};
   showPicks();

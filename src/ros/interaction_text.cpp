@@ -34,6 +34,7 @@ std::string forTheUser(const std::string& message)
     { "does not close", "Not folded: the marked creases do not fold flat together (a vertex would tear). Mark the "
                         "creases around it too." },
     { "fixed point lies off the sheet", "Pick the face that stays: click on it, away from the creases." },
+    { "bent, paper does not stretch", "The paper cannot reach there even bent: it would have to stretch." },
     { "cannot keep the faces rigid with the pulled", "The paper cannot follow the vertex there without stretching." },
     { "did not answer", "The paper model does not answer: is paper_model running?" },
     { "changed while this was computed", "The paper changed meanwhile: please try again." },

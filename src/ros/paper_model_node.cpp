@@ -12,6 +12,7 @@
 #include <tf2/exceptions.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include "virtual_origami/core/bend_reach.h"
 #include "virtual_origami/core/fold_io.h"
 #include "virtual_origami/core/obj_export.h"
 #include "virtual_origami/core/oripa_io.h"
@@ -691,6 +692,8 @@ bool PaperModelNode::dragVertex(DragVertex::Request& req, DragVertex::Response& 
   if (!result)
   {
     res.message = result.message();
+    std::lock_guard<std::mutex> lock(mutex_);
+    res.curved_reaches = core::bendingReaches(session_.paper(), target, pinnedVertices()).ok();
     return true;
   }
   res.residual = result->result.residual;

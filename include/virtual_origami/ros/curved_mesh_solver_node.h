@@ -2,9 +2,10 @@
 // crease pattern into one conforming triangle mesh, lets the paper bend around its pinned
 // vertices with the curved-paper solver, and publishes the bent sheet for rviz. Pins on tf
 // frames are looked up at `pin_rate` and the sheet follows them from its last balance, also
-// where the rigid faces of the model cannot (one face does not bend). It never writes back
-// into the model: the rigid faces stay the committed state, the mesh shows how real paper
-// would bend between them.
+// where the rigid faces of the model cannot (one face does not bend); so does a vertex the
+// mouse drags where the rigid faces cannot follow (`curved_drag`). It never writes back into
+// the model: the rigid faces stay the committed state, the mesh shows how real paper would
+// bend between them.
 #pragma once
 
 #include <optional>
@@ -16,6 +17,7 @@
 #include <tf2_ros/transform_listener.h>
 #include <virtual_origami/CurvedMeshSolverConfig.h>
 #include <virtual_origami/PaperState.h>
+#include <virtual_origami/VertexTarget.h>
 
 #include "virtual_origami/curved/curved_follow.h"
 #include "virtual_origami/curved/curved_solver.h"
@@ -45,12 +47,14 @@ public:
 
 private:
   void onState(const PaperState::ConstPtr& state);
+  /// A vertex held at the mouse (or let go): solved on the next follow cycle.
+  void onDrag(const VertexTarget::ConstPtr& drag);
   void reconfigure(CurvedMeshSolverConfig& config, uint32_t level);
   void solveAndPublish();
   void followFrames(const ros::TimerEvent&);
   /// The pins of the last state, those on frames at their frame's origin as tf has it now
-  /// (`stamp`: the newest transform used, else left as it is); false, with `error`, when tf
-  /// cannot place a frame within `wait`.
+  /// (`stamp`: the newest transform used, else left as it is), and the vertex the mouse holds;
+  /// false, with `error`, when tf cannot place a frame within `wait`.
   bool currentPins(std::vector<core::PullTarget>& pins, ros::Time& stamp, std::string& error,
                    const ros::Duration& wait = ros::Duration(0));
   void publish(const ros::Time& stamp, const core::CurvedReport& report, const char* what);
@@ -61,7 +65,10 @@ private:
   std::optional<core::CurvedSheetFollower> follower_;
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
-  ros::Subscriber state_sub_;
+  ros::Subscriber state_sub_, drag_sub_;
+  std::optional<core::PullTarget> drag_;  // the vertex the mouse holds where rigid faces cannot follow
+  ros::Time drag_stamp_;
+  bool let_go_ = false;  // the mouse let go: the sheet goes back to the state's pins
   ros::Publisher mesh_pub_;
   ros::Timer follow_timer_;
   int resumed_ = 0;  // solves resumed on frames standing still since the sheet last balanced

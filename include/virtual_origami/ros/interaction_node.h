@@ -170,6 +170,12 @@ private:
   core::Vec3 vertexTarget() const;
   void updateVertexDrag();
   std::string releaseVertex();
+  /// Where the faces cannot follow flat but bent paper reaches, the curved model takes the
+  /// drag over (SPEC §4.3): the vertex held at `target` on `curved_drag`, the bent sheet shown.
+  void bend(const core::Vec3& target);
+  /// The curved model lets go: the bent sheet is hidden and springs back to the state.
+  void stopBending();
+  void curvedSheetReceived(const visualization_msgs::MarkerArray::ConstPtr& sheet);
   /// Marks, the face that stays and the picked layer, drawn.
   void showPicks();
 
@@ -187,6 +193,10 @@ private:
   core::Vec3 vertex_at_press_ = core::Vec3::Zero();
   std::optional<core::Vec3> vertex_previewed_;  // the last target a preview took
   std::string vertex_refusal_;
+  bool bending_ = false;  // the drag is the curved model's: rigid faces cannot follow there
+  ros::Time bent_since_;
+  ros::Publisher curved_drag_pub_;
+  ros::Subscriber curved_sheet_sub_;
   interactive_markers::MenuHandler::EntryHandle fold_entry_ = 0, drag_entry_ = 0, layers_entry_ = 0,
                                                 snap_entry_ = 0;
   ros::ServiceClient flat_fold_, drag_vertex_;
