@@ -132,6 +132,13 @@ PaperModelNode::PaperModelNode(ros::NodeHandle nh, ros::NodeHandle private_nh) :
   state_pub_ = nh_.advertise<PaperState>("state", 1, true);
   markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
   operations_pub_ = nh_.advertise<Operation>("operations", 100);
+  curved_drag_sub_ = nh_.subscribe<VertexTarget>("curved_drag", 10, [this](const VertexTarget::ConstPtr& drag) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (faded_ == (drag->vertex >= 0))
+      return;
+    faded_ = drag->vertex >= 0;
+    publishMarkers(session_.preview() ? *session_.preview() : session_.paper());
+  });
 
   const core::Vec3 origin(private_nh.param("paper_x", 0.0), private_nh.param("paper_y", 0.0),
                           private_nh.param("paper_z", 0.0));
@@ -423,7 +430,17 @@ void PaperModelNode::followPins(const ros::TimerEvent&)
 
 void PaperModelNode::publishMarkers(const core::Paper& paper)
 {
-  markers_pub_.publish(paperMarkers(paper, style_, ros::Time::now()));
+  visualization_msgs::MarkerArray markers = paperMarkers(paper, style_, ros::Time::now());
+  if (faded_)
+    for (visualization_msgs::Marker& m : markers.markers)
+      if (m.ns == "front" || m.ns == "back")
+      {
+        constexpr float kFaded = 0.3f;
+        m.color.a = kFaded;
+        for (std_msgs::ColorRGBA& c : m.colors)
+          c.a = kFaded;
+      }
+  markers_pub_.publish(markers);
 }
 
 void PaperModelNode::broadcastFrames(const ros::TimerEvent&)

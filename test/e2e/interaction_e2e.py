@@ -17,7 +17,11 @@ ViewCamera display broadcasts as the tf frame rviz_camera:
   4. across the line of sight (the anti-diagonal), the view turns for the drag (seed Fig. 11)
      with the pointer on the turning face, and turns back on release;
   5. on a quarter fold (four layers), a click in rotate mode changes nothing on screen;
-  6. the menu's "Undo" brings back the state before.
+  6. the menu's "Undo" brings back the state before;
+  7. "Drag mode": a corner of a sheet pinned at its other three corners, dragged in and up (no
+     flat face can move), is bent after the mouse by the curved model (curved_mesh_solver, as
+     the default launch starts it) and drawn by the interaction; let go, it springs back and
+     nothing is committed.
 Screenshots of every step go to the output folder. Exits non-zero on any failure.
 
 Usage: interaction_e2e.py OUTPUT_DIR   (with the devel space's environment, e.g. devel/env.sh)
@@ -35,12 +39,13 @@ import rospy
 import tf2_ros
 from std_srvs.srv import Trigger
 from virtual_origami.msg import InteractionStatus, PaperState
-from virtual_origami.srv import Crease, Rotate
+from virtual_origami.srv import Crease, PinVertex, Rotate
 from visualization_msgs.msg import InteractiveMarkerFeedback, MarkerArray
 
 # rviz/origami.rviz: an 1024 x 720 window at the screen's corner, both docks closed; the
 # render panel fills it between the tool bar and the status bar, beside the dock buttons.
 PANEL = (16, 62, 992, 629)  # x, y, width, height in pixels
+DRAG_MODE = 12              # the menu's "Drag mode" entry, from 1 (InteractionNode's constructor)
 FOV = 0.785                 # the view's vertical field of view, radians
 ON_FACE_PX = 3.0            # "the pointer stays on the turning face": within this many pixels
 TIME_LIMIT = 280            # seconds for the whole test
@@ -89,7 +94,7 @@ class System:
                                            start_new_session=True))
         wait_for(lambda: os.path.exists('/tmp/.X11-unix/X' + self.display[1:]), 20, 'Xvfb did not start')
         self.procs.append(subprocess.Popen(
-            ['roslaunch', '-p', str(self.port), 'virtual_origami', 'origami.launch', 'curved:=false',
+            ['roslaunch', '-p', str(self.port), 'virtual_origami', 'origami.launch',
              'data_dir:=' + self.out, 'journal:=session.jsonl', 'resume:=false'],
             stdout=log('roslaunch.log'), stderr=subprocess.STDOUT, start_new_session=True))
 
@@ -167,16 +172,19 @@ class Checker:
         self.presses = []
         self.front = None  # the paper's front sides as paper_model last drew them
         self.drawn = 0     # paper drawings received
+        self.bent = None   # the bent sheet the interaction draws while the curved model bends it
         rospy.Subscriber('/origami/state', PaperState, self._state)
         rospy.Subscriber('/origami/interaction_status', InteractionStatus, self._status)
         rospy.Subscriber('/origami/interaction/feedback', InteractiveMarkerFeedback, self._feedback)
         rospy.Subscriber('/origami/markers', MarkerArray, self._markers)
+        rospy.Subscriber('/origami/interaction_markers', MarkerArray, self._guides)
         self.tf = tf2_ros.Buffer()
         self.listener = tf2_ros.TransformListener(self.tf)
         self.crease = rospy.ServiceProxy('/origami/crease', Crease)
         self.rotate = rospy.ServiceProxy('/origami/rotate', Rotate)
         self.undo = rospy.ServiceProxy('/origami/undo', Trigger)
         self.reset = rospy.ServiceProxy('/origami/reset', Trigger)
+        self.pin = rospy.ServiceProxy('/origami/pin', PinVertex)
 
     def _state(self, msg):
         self.state = msg
@@ -193,6 +201,13 @@ class Checker:
             if m.ns == 'front':
                 self.front = m
                 self.drawn += 1
+
+    def _guides(self, msg):
+        for m in msg.markers:
+            if m.action == m.DELETEALL or (m.ns == 'bent_sheet' and m.action == m.DELETE):
+                self.bent = None
+            elif m.ns == 'bent_sheet' and m.action == m.ADD:
+                self.bent = m
 
     def revision(self):
         return self.state.revision if self.state else None
@@ -545,6 +560,43 @@ def run(out):
     if undone.vertices_folded == folded.vertices_folded:
         raise Failure('undo did not change the paper back')
     print('undo: the state before the last fold is back')
+
+    # 7. Drag mode: three corners pinned, the fourth dragged in and up on the plane facing the eye.
+    check.reset()
+    wait_for(lambda: check.state.revision != folded.revision and len(check.state.faces) == 1, 30, 'reset')
+    revision = check.wait_revision(check.revision(), 'reset').revision
+    for x, y in ((1, 0), (1, 1), (0, 1)):
+        if not check.pin(vertex=vertex_at(check.state, x, y), frame_id='', release=False).success:
+            raise Failure('pinning the corner (%g, %g) was refused' % (x, y))
+    wait_for(lambda: len(check.state.pins) == 3, 10, 'the pins are not on the state')
+    mouse.menu((0.5, 0.5, 0.0), DRAG_MODE)
+    wait_for(lambda: check.status.mode == 'drag', 10, 'the menu did not switch to drag mode')
+    corner = (0.0, 0.0, 0.0)
+    eye = check.camera()[0]
+    n = mul(1 / norm(sub(eye, corner)), sub(eye, corner))
+    inward = (math.sqrt(0.5), math.sqrt(0.5), 0.0)
+    goal = add(mul(0.25, inward), (0.0, 0.0, -0.25 * dot(inward, n) / n[2]))
+    mouse.press(corner)
+    mouse.glide(mouse.pixel(corner), mouse.pixel(goal))
+    wait_for(lambda: check.status.bending and check.bent is not None and
+             min(norm(sub((p.x, p.y, p.z), goal)) for p in check.bent.points) < 0.01, 30,
+             'the curved model did not bend the sheet after the corner (%s)' % check.status.message)
+    time.sleep(0.5)  # rviz draws it
+    shot('12_bent.png')
+    off = min(norm(sub((p.x, p.y, p.z), goal)) for p in check.bent.points)
+    top = max(p.z for p in check.bent.points)
+    print('bend: the corner dragged to (%.3f, %.3f, %.3f), the bent sheet %.1f mm from it, its top at %.3f m; '
+          'said: %s' % (goal + (1000 * off, top, check.status.message)))
+    if check.revision() != revision:
+        raise Failure('bending the sheet changed the paper')
+    mouse.release()
+    wait_for(lambda: not check.status.bending and check.bent is None, 10, 'the bend did not end on release')
+    time.sleep(1.0)
+    if check.revision() != revision:
+        raise Failure('letting go of the bent sheet changed the paper')
+    if 'springs back' not in check.status.message:
+        raise Failure('letting go said: %s' % check.status.message)
+    print('bend: let go, it springs back; revision %d unchanged' % revision)
     print('screenshots:\n  ' + '\n  '.join(shots))
 
 

@@ -132,6 +132,8 @@ TEST_F(CurvedDrag, ACornerThreePinsHoldLiftsAsBentPaperAndSpringsBackWhenLetGo)
     ASSERT_TRUE(waitFor([&] { return status_.bending && bent_shown_ && nearest(bent_, to) < 1e-6; }, 60))
         << "the bent sheet does not reach the pointer; " << status_.message;
     EXPECT_EQ(client_.state().revision, base_);  // a bend is never committed
+    // The flat paper is drawn faded meanwhile: the bent sheet is the one held.
+    EXPECT_TRUE(waitFor([&] { return front_.color.a < 0.5; }, 5)) << "the flat paper is not faded";
     EXPECT_NE(status_.message.find("bends"), std::string::npos) << status_.message;
     // The pins hold, the corner is at the pointer, and the paper bends without stretching.
     for (const auto& [x, y] : { std::pair{ 1.0, 0.0 }, { 1.0, 1.0 }, { 0.0, 1.0 } })
@@ -144,6 +146,7 @@ TEST_F(CurvedDrag, ACornerThreePinsHoldLiftsAsBentPaperAndSpringsBackWhenLetGo)
   EXPECT_FALSE(status_.bending);
   EXPECT_FALSE(bent_shown_);
   EXPECT_NE(status_.message.find("springs back"), std::string::npos) << status_.message;
+  EXPECT_TRUE(waitFor([&] { return front_.color.a == 1.0f; }, 5)) << "the flat paper stays faded";
   expectUnchanged();
   // curved_mesh_solver's sheet lies flat on the state again, as balanced as its solve's force
   // tolerance leaves it (it stops there, not at zero: 4e-7 of the side measured).

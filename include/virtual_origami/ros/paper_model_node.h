@@ -2,6 +2,7 @@
 // state, markers, operations and tf frames, and journals every change to disk.
 #pragma once
 
+#include <atomic>
 #include <functional>
 #include <map>
 #include <memory>
@@ -27,6 +28,7 @@
 #include <virtual_origami/Pull.h>
 #include <virtual_origami/Rotate.h>
 #include <virtual_origami/Save.h>
+#include <virtual_origami/VertexTarget.h>
 
 #include "virtual_origami/core/data_folder.h"
 #include "virtual_origami/core/session.h"
@@ -117,6 +119,10 @@ private:
   std::string world_frame_;
   double size_ = 1.0;
   ros::Publisher state_pub_, markers_pub_, operations_pub_;
+  /// While the curved model bends the sheet after a dragged vertex (`curved_drag`), the flat
+  /// paper is drawn faded: the bent sheet is what the user holds.
+  ros::Subscriber curved_drag_sub_;
+  std::atomic<bool> faded_{ false };
   std::vector<ros::ServiceServer> services_;
   tf2_ros::StaticTransformBroadcaster static_tf_;
   tf2_ros::TransformBroadcaster tf_;
