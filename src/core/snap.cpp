@@ -109,10 +109,18 @@ bool snapToAngleDivision(const Paper& paper, const Vec3& cursor, const SnapSetti
   if (reach <= settings.radius)
     return false;
   double best = settings.radius;
-  for (int f : paper.facesOfVertex(start))
+  // Where layers' corners coincide (a folded model's open point) the angles of every layer's
+  // faces there are offered, not only those of the vertex the press snapped to.
+  std::vector<std::pair<int, int>> corners;  // (vertex, face)
+  const double same = 1e-9 * paper.scale();
+  for (size_t v = 0; v < paper.vertices.size(); ++v)
+    if ((paper.vertices[v].folded - p).norm() <= same)
+      for (int f : paper.facesOfVertex(static_cast<int>(v)))
+        corners.emplace_back(static_cast<int>(v), f);
+  for (const auto& [vertex, f] : corners)
     for (int n : settings.angle_divisions)
     {
-      const std::vector<Vec3> dirs = angleDivisions(paper, f, start, n);
+      const std::vector<Vec3> dirs = angleDivisions(paper, f, vertex, n);
       for (size_t k = 0; k < dirs.size(); ++k)
       {
         const double t = (cursor - p).dot(dirs[k]);
@@ -123,7 +131,7 @@ bool snapToAngleDivision(const Paper& paper, const Vec3& cursor, const SnapSetti
         {
           best = d;
           snap.kind = SnapKind::AngleDivision;
-          snap.vertex = start;
+          snap.vertex = vertex;
           snap.face = f;
           snap.divisions = n;
           snap.index = static_cast<int>(k) + 1;
@@ -135,7 +143,7 @@ bool snapToAngleDivision(const Paper& paper, const Vec3& cursor, const SnapSetti
     }
   if (snap.kind != SnapKind::AngleDivision)
     return false;
-  for (const Vec3& dir : angleDivisions(paper, snap.face, start, snap.divisions))
+  for (const Vec3& dir : angleDivisions(paper, snap.face, snap.vertex, snap.divisions))
     snap.guide_lines.push_back({ p, p + std::max(reach, exitAlong(paper, snap.face, p, dir)) * dir });
   return true;
 }

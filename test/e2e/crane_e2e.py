@@ -237,10 +237,11 @@ def snap_point(paper, cursor, start_vertex=-1, radius=SNAP_RADIUS):
     if norm(sub(cursor, p)) <= radius:
         return cursor, 'none', -1
     best, face, divisions = radius, -1, 0
-    for f, vs in enumerate(paper.faces):
-        if start_vertex not in vs:
-            continue
-        i = vs.index(start_vertex)
+    # The faces of every vertex lying there, in any layer (as core/snap.cpp).
+    here = [v for v, q in enumerate(paper.at) if norm(sub(q, p)) <= 1e-9]
+    for corner, f in [(v, f) for v in here for f, vs in enumerate(paper.faces) if v in vs]:
+        vs = paper.faces[f]
+        i = vs.index(corner)
         to_next = unit(sub(paper.at[vs[(i + 1) % len(vs)]], p))
         to_prev = unit(sub(paper.at[vs[i - 1]], p))
         angle = math.acos(max(-1.0, min(1.0, dot(to_next, to_prev))))

@@ -1,7 +1,15 @@
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
 #include "test_models.h"
+#include "virtual_origami/core/fold_sequence.h"
+#include "virtual_origami/core/session.h"
 #include "virtual_origami/core/snap.h"
+#include "virtual_origami/solvers/solver_factory.h"
 
 using namespace virtual_origami::core;
 using namespace virtual_origami::core::test;
@@ -99,4 +107,53 @@ TEST(Snap, VertexBeatsEdgeDivision)
   const Snap s = snapPoint(paper, p3(0.51, 0.01), SnapSettings{});
   EXPECT_EQ(s.kind, SnapKind::Vertex);
   EXPECT_TRUE(s.point.isApprox(p3(0.5, 0)));
+}
+
+TEST(Snap, WhereLayersCornersCoincideEachOffersTheAnglesOfEveryLayer)
+{
+  // The bird base (crane step 13): its open point and other points are corners of several
+  // layers. A line started there must be offered the same directions whichever layer's vertex
+  // the press snapped to (one of the four corners at the open point missed 22.5°).
+  std::ifstream file(std::string(VO_SOURCE_DIR) + "/test/data/crane_reference.json");
+  std::stringstream text;
+  text << file.rdbuf();
+  const Expected<FoldSequence> sequence = parseFoldSequence(text.str());
+  ASSERT_TRUE(sequence.ok()) << sequence.message();
+  Session session;
+  const Expected<std::vector<Paper>> states =
+      foldSequence(*sequence, session, makeSolver(sequence->solver));
+  ASSERT_TRUE(states.ok()) << states.message();
+  const Paper& bird = (*states)[13];
+  std::map<std::tuple<long, long, long>, std::vector<int>> at;  // vertices by folded point (1e-9 grid)
+  for (size_t v = 0; v < bird.vertices.size(); ++v)
+  {
+    const Vec3& q = bird.vertices[v].folded;
+    at[{ std::lround(q.x() * 1e9), std::lround(q.y() * 1e9), std::lround(q.z() * 1e9) }].push_back(static_cast<int>(v));
+  }
+  int groups = 0;
+  for (const auto& [key, vertices] : at)
+  {
+    if (vertices.size() < 2)
+      continue;
+    ++groups;
+    const Vec3 p = bird.vertices[vertices[0]].folded;
+    // The directions a line from there snaps to, sampled all round in the plane of the model.
+    std::vector<std::set<long>> offered;
+    for (int v : vertices)
+    {
+      std::set<long> directions;
+      for (int k = 0; k < 720; ++k)
+      {
+        const double a = 2 * M_PI * k / 720;
+        const Snap s = snapPoint(bird, p + 0.2 * Vec3(std::cos(a), std::sin(a), 0), SnapSettings{}, v);
+        if (s.kind == SnapKind::AngleDivision)
+          directions.insert(std::lround(std::atan2((s.point - p).y(), (s.point - p).x()) * 1e6));
+      }
+      offered.push_back(directions);
+    }
+    for (size_t i = 1; i < offered.size(); ++i)
+      EXPECT_EQ(offered[i], offered[0]) << "vertices " << vertices[0] << " and " << vertices[i] << " at ("
+                                        << p.transpose() << ") offer different directions";
+  }
+  EXPECT_GT(groups, 3);
 }

@@ -34,7 +34,8 @@ struct Snap
 {
   Vec3 point = Vec3::Zero();
   SnapKind kind = SnapKind::None;
-  int vertex = -1;                    // Vertex: the vertex; AngleDivision: the start vertex
+  int vertex = -1;                    // Vertex: the vertex; AngleDivision: the start vertex (or the
+                                      // one of a layer lying on it whose face is divided)
   int edge = -1;                      // EdgeDivision: the edge
   int face = -1;                      // AngleDivision: the face whose angle is divided
   int divisions = 0;                  // n of the division snapped to
@@ -44,7 +45,8 @@ struct Snap
 };
 
 /// Snaps a cursor point (in the `paper` frame, on the folded surface). `start_vertex`, when
-/// not -1, is the vertex the line starts at and enables the angle rule; a direction snapped
+/// not -1, is the vertex the line starts at and enables the angle rule (the angles of the faces
+/// of every vertex lying at the same point, in any layer, are divided); a direction snapped
 /// to goes on to where it leaves the face (or to the cursor, when that lies farther), so a
 /// line that ends inside the face still creases it all the way across.
 Snap snapPoint(const Paper& paper, const Vec3& cursor, const SnapSettings& settings, int start_vertex = -1);
