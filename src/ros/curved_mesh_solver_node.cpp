@@ -332,8 +332,10 @@ void CurvedMeshSolverNode::followFrames(const ros::TimerEvent&)
   for (size_t i = 0; !moved && i < pins.size(); ++i)
     moved = pins[i].vertex != follower_->pins()[i].vertex ||
             (pins[i].position - follower_->pins()[i].position).norm() > still;
-  constexpr int kResumes = 5;
-  if (!moved && (follower_->balanced() || resumed_ >= kResumes))
+  // A sheet let go springs back however long that takes (within reason): the wall-time
+  // budget of a solve must not leave it standing half bent on a busy machine.
+  const int resumes = let_go_ ? 200 : 5;
+  if (!moved && (follower_->balanced() || resumed_ >= resumes))
     return;
   resumed_ = moved ? 0 : resumed_ + 1;
   const core::Expected<core::CurvedReport> report = follower_->follow(pins);
@@ -343,10 +345,10 @@ void CurvedMeshSolverNode::followFrames(const ros::TimerEvent&)
                       report.message().c_str());
     return;
   }
-  if (!drag_)
-    let_go_ = false;  // back on the state's own pins
+  if (!drag_ && report->converged)
+    let_go_ = false;  // back on the state's own pins, balanced
   // Only balanced sheets are shown while frames move: an unbalanced one is solved on next cycle.
-  if (!report->converged && resumed_ < kResumes)
+  if (!report->converged && resumed_ < resumes)
     return;
   publish(stamp, *report, drag_ ? "mouse" : "frames");
 }
