@@ -60,7 +60,8 @@ int elasticaSpeed(const std::string& directory, double rk4_budget)
   const double bending_force = bendingStiffness(paper) / length;
   for (double per_width : { 2.0, 4.0, 8.0, 16.0 })
   {
-    const CurvedMesh mesh = *meshStrip(scene, StripMesher::Bubble, width / per_width);
+    CurvedMesh mesh = *meshStrip(scene, StripMesher::Bubble, width / per_width);
+    holdStripZones(scene, mesh);
     const std::vector<CurvedPin> pins = stripPins(scene, mesh, end, angle);
     for (CurvedMethod method : { CurvedMethod::Newton, CurvedMethod::QuasiNewton, CurvedMethod::Rk4 })
       for (double share : { 1e-2, 1e-4 })

@@ -78,15 +78,16 @@ Expected<CurvedMesh> meshStrip(const StripScene& scene, StripMesher mesher, doub
     options.spacing = spacing;
     mesh = bubbleMesh(scene.paper, options);
   }
-  if (mesh.ok())
-  {
-    // Faces 0 (the clamp zone) and 2 (the end zone) are the ones stripPins holds.
-    mesh->held_faces.assign(scene.paper.faces.size(), 0);
-    mesh->held_faces[0] = 1;
-    if (scene.held_end)
-      mesh->held_faces[2] = 1;
-  }
   return mesh;
+}
+
+void holdStripZones(const StripScene& scene, CurvedMesh& mesh)
+{
+  // Faces 0 (the clamp zone) and 2 (the end zone) are the ones stripPins holds.
+  mesh.held_faces.assign(scene.paper.faces.size(), 0);
+  mesh.held_faces[0] = 1;
+  if (scene.held_end)
+    mesh.held_faces[2] = 1;
 }
 
 std::vector<CurvedPin> stripPins(const StripScene& scene, const CurvedMesh& mesh, const Eigen::Vector2d& end,

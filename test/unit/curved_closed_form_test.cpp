@@ -61,7 +61,8 @@ double order(const std::vector<double>& spacing, const std::vector<double>& erro
 double heldStripDeviation(StripMesher mesher, double spacing, const StripScene& scene, const HeldElastica& elastica,
                           const Eigen::Vector2d& end, double angle)
 {
-  const CurvedMesh mesh = *meshStrip(scene, mesher, spacing);
+  CurvedMesh mesh = *meshStrip(scene, mesher, spacing);
+  holdStripZones(scene, mesh);
   const CurvedMaterial material = stripMaterial(*curvedMaterial(beamPaper()));
   CurvedSolver solver(mesh, scene.paper, material);
   Positions x = stripAlong(scene, mesh, elastica.curve);
@@ -96,7 +97,7 @@ void expectConvergesToTheElastica(double angle, const Eigen::Vector2d& end_over_
     // First order from four elements across the width on (at two the strip is not yet
     // resolved): the error cut 4× by the fourfold refinement, within a tenth of the order.
     EXPECT_GE(std::log(errors.front() / errors.back()) / std::log(4.0), 0.9) << name(mesher) << ", order " << p;
-    EXPECT_LT(errors.back(), 1e-3) << name(mesher);
+    EXPECT_LT(errors.back(), 1e-4) << name(mesher);
   }
 }
 }  // namespace
@@ -170,7 +171,8 @@ double cantileverTip(StripMesher mesher, double length, double per_width, const 
   const PaperMaterial paper = beamPaper();
   const double width = length / 10;
   const StripScene scene = *stripScene(length, width, false);
-  const CurvedMesh mesh = *meshStrip(scene, mesher, width / per_width);
+  CurvedMesh mesh = *meshStrip(scene, mesher, width / per_width);
+  holdStripZones(scene, mesh);
   Surroundings surroundings;
   surroundings.gravity = 9.81;
   const CurvedMaterial material = stripMaterial(*curvedMaterial(paper));
@@ -206,9 +208,12 @@ double smallSagFormula(double length)
 
 namespace
 {
-/// Both meshes are softer than the strip (the sag too large) and come closer with each halving
-/// of the spacing: the solve converges to the closed form.
-void expectSagConverges(double length)
+/// The tip within 1 % of the closed form at every spacing (b/4, b/8, b/16), the finest mesh
+/// included, on both meshers. The clamp is measured against its mirror image (a held face,
+/// CurvedMesh::held_faces) and the curvature's jumps cost (kPaperPlateSmoothing): without the
+/// first the strip was 4.6 → 1.2 % too soft (bubble) and 6.9 → 3.6 % (CGAL) from b/4 to b/16,
+/// with it alone the CGAL mesh kept ~2.5 % of wrinkles at every spacing.
+void expectTipWithinOnePercent(double length)
 {
   const PaperMaterial paper = beamPaper();
   const CantileverElastica elastica =
@@ -218,25 +223,19 @@ void expectSagConverges(double length)
   {
     const std::vector<double> errors = cantileverErrors(mesher, length, exact, elastica);
     for (size_t k = 0; k < errors.size(); ++k)
-    {
-      EXPECT_GT(errors[k], 0.0) << name(mesher);
-      if (k > 0)
-      {
-        EXPECT_LT(errors[k], errors[k - 1]) << name(mesher);
-      }
-    }
+      EXPECT_LT(std::abs(errors[k]), 0.01) << name(mesher) << " at width / " << (4 << k);
   }
 }
 }  // namespace
 
-TEST(Cantilever, SmallSagConvergesToTheBeamFormula)
+TEST(Cantilever, TipWithinOnePercentOfTheBeamFormulaOnEveryMeshUpToTheFinest)
 {
-  expectSagConverges(0.03);
+  expectTipWithinOnePercent(0.03);
 }
 
-TEST(Cantilever, LargeSagConvergesToTheElasticaUnderItsWeight)
+TEST(Cantilever, TipWithinOnePercentOfTheElasticaUnderItsWeightOnEveryMeshUpToTheFinest)
 {
-  expectSagConverges(0.15);
+  expectTipWithinOnePercent(0.15);
 }
 
 }  // namespace virtual_origami::core
