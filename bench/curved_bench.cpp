@@ -16,7 +16,10 @@
 
 #include <ctime>
 
+#include <Eigen/SVD>
+
 #include "virtual_origami/curved/bubble_mesh.h"
+#include "virtual_origami/curved/cgal_mesh.h"
 #include "virtual_origami/curved/elastica.h"
 #include "virtual_origami/curved/paper_material.h"
 #include "virtual_origami/curved/seed_scenes.h"
@@ -96,10 +99,122 @@ int elasticaSpeed(const std::string& directory, double budget)
   }
   return 0;
 }
+
+/// `points` moved by the rigid motion that best fits them onto `target` (Kabsch): with two
+/// corners pinned the sheet may turn freely about the line through them, so shapes are
+/// compared, not poses. (mesh_bench has the same.)
+Positions alignedTo(const Positions& points, const Positions& target)
+{
+  const Vec3 pc = points.rowwise().mean(), tc = target.rowwise().mean();
+  const Eigen::Matrix3d cov = (points.colwise() - pc) * (target.colwise() - tc).transpose();
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(cov, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
+  d(2, 2) = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0 ? -1.0 : 1.0;
+  const Eigen::Matrix3d rotation = svd.matrixV() * d * svd.matrixU().transpose();
+  return (rotation * (points.colwise() - pc)).colwise() + tc;
+}
+
+/// Seed scene 1 (corner a pulled towards c) against a reference that is itself balanced and
+/// converged: the pull to a fifth in four steps on a card-stiff sheet (q/k = 1e-2 side², as
+/// mesh_bench's resolution sweep), on each mesher at spacings 0.2 … 0.025. Every solution is
+/// compared (RMS and largest distance over a 21 × 21 grid of points, after the best rigid fit,
+/// over the side) with the finest of its own mesher and with the next finer one: the reference
+/// is converged when those distances keep falling with the spacing.
+int seedResolution(const std::string& directory)
+{
+  const std::string out_path = directory + "/curved_seed_resolution.csv";
+  std::ofstream csv(out_path);
+  const Expected<SeedScene> scene = seedScene(1);
+  if (!csv || !scene.ok())
+  {
+    std::cerr << "cannot write " << out_path << "\n";
+    return 1;
+  }
+  CurvedMesh probes;
+  for (int i = 0; i <= 20; ++i)
+    for (int j = 0; j <= 20; ++j)
+    {
+      MeshNode node;
+      node.crease_pattern = Vec2(0.05 * i, 0.05 * j);
+      probes.nodes.push_back(node);
+    }
+  SeedSceneOptions options;
+  options.steps = 4;
+  options.until = 0.2;
+  options.material.bend = 1e-2;
+  options.solve.max_iterations = 2000;
+  csv << "mesher,spacing,nodes,balanced,largest_force,cpu_seconds,rms_to_finest,max_to_finest,rms_to_next,"
+         "max_to_next\n";
+  const std::vector<double> spacings = { 0.2, 0.14, 0.1, 0.07, 0.05, 0.035, 0.025 };
+  for (const StripMesher mesher : { StripMesher::Bubble, StripMesher::Cgal })
+  {
+    struct Solution
+    {
+      Positions at_probes;
+      size_t nodes = 0;
+      bool balanced = false;
+      double force = 0, cpu = 0;
+    };
+    std::vector<Solution> solutions;
+    for (double spacing : spacings)
+    {
+      Expected<CurvedMesh> mesh = Expected<CurvedMesh>::failure("");
+      if (mesher == StripMesher::Cgal)
+      {
+        CgalMeshOptions mesh_options;
+        mesh_options.spacing = spacing;
+        mesh = cgalMesh(scene->paper, mesh_options);
+      }
+      else
+      {
+        BubbleMeshOptions mesh_options;
+        mesh_options.spacing = spacing;
+        mesh = bubbleMesh(scene->paper, mesh_options);
+      }
+      if (!mesh.ok())
+      {
+        std::cerr << mesh.message() << "\n";
+        return 1;
+      }
+      const double start = cpuNow();
+      const SeedSceneRun run = runSeedSceneOn(*scene, *mesh, options);
+      Solution s;
+      s.cpu = cpuNow() - start;
+      s.balanced = run.passed();
+      for (const SeedSceneStep& step : run.steps)
+        s.force = std::max(s.force, step.report.max_force);
+      s.nodes = run.mesh.nodes.size();
+      s.at_probes = transferNodes(run.mesh, run.positions, probes, Positions::Zero(3, probes.nodes.size()));
+      solutions.push_back(s);
+      std::printf("seed 1 %-6s h %.3f: %5zu nodes, balanced %d (largest force %.1e), %.2f s CPU\n",
+                  mesher == StripMesher::Cgal ? "cgal" : "bubble", spacing, s.nodes, s.balanced, s.force, s.cpu);
+      std::fflush(stdout);
+    }
+    const auto distance = [](const Positions& a, const Positions& b) {
+      const Eigen::VectorXd d = (alignedTo(a, b) - b).colwise().norm();
+      return std::make_pair(std::sqrt(d.squaredNorm() / static_cast<double>(d.size())), d.maxCoeff());
+    };
+    for (size_t k = 0; k < spacings.size(); ++k)
+    {
+      const Solution& s = solutions[k];
+      const auto to_finest = distance(s.at_probes, solutions.back().at_probes);
+      const auto to_next = k + 1 < spacings.size() ? distance(s.at_probes, solutions[k + 1].at_probes) :
+                                                     std::make_pair(double(NAN), double(NAN));
+      csv << (mesher == StripMesher::Cgal ? "cgal," : "bubble,") << spacings[k] << "," << s.nodes << ","
+          << s.balanced << "," << s.force << "," << s.cpu << "," << to_finest.first << "," << to_finest.second << ","
+          << to_next.first << "," << to_next.second << "\n";
+      std::printf("  h %.3f: to the finest rms %.2e max %.2e, to the next rms %.2e max %.2e\n", spacings[k],
+                  to_finest.first, to_finest.second, to_next.first, to_next.second);
+    }
+  }
+  return 0;
+}
 }  // namespace
 
 int main(int argc, char** argv)
 {
+  if (argc > 1 && std::string(argv[1]) == "seed_resolution")
+    return seedResolution(argc > 2 ? argv[2] : "docs/bench");
   if (argc > 1 && std::string(argv[1]) == "elastica")
     return elasticaSpeed(argc > 2 ? argv[2] : "docs/bench", argc > 3 ? std::atof(argv[3]) : 20.0);
   const std::string out_path = argc > 1 ? argv[1] : "docs/bench/curved_solvers.csv";
