@@ -7,6 +7,7 @@
 //   curved_bench [output.csv] [rk4 budget seconds per case, default 4]
 //   curved_bench elastica [output directory, default docs/bench] [budget seconds per RK4 or
 //                quasi-Newton solve, default 20]   (that part alone)
+//   curved_bench seed_resolution [output directory, default docs/bench] [bend q/k, default 1e-3]
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -115,13 +116,15 @@ Positions alignedTo(const Positions& points, const Positions& target)
 }
 
 /// Seed scene 1 (corner a pulled towards c) against a reference that is itself balanced and
-/// converged: the pull to a fifth in four steps on a card-stiff sheet (q/k = 1e-2 side², as
-/// mesh_bench's resolution sweep; bending as a plate of ν = 0.3, smoothing 3, as physical
-/// papers), on each mesher at spacings 0.2 … 0.025. Every solution is
+/// converged: the pull to a fifth in four steps (the corner turned 36°, which brings it 5 %
+/// nearer c) with bending `bend` (q/k in side²; mesh_bench's sweep uses 1e-2, at which the sheet
+/// stays flat and takes the 5 % as compression: bending energy ~1e-26; at 1e-3 it curls), as a
+/// plate of ν = 0.3, smoothing 3, every balance tested for stability and solved to 1e-11, on each
+/// mesher at spacings 0.2 … 0.035. Every solution is
 /// compared (RMS and largest distance over a 21 × 21 grid of points, after the best rigid fit,
 /// over the side) with the finest of its own mesher and with the next finer one: the reference
 /// is converged when those distances keep falling with the spacing.
-int seedResolution(const std::string& directory)
+int seedResolution(const std::string& directory, double bend)
 {
   const std::string out_path = directory + "/curved_seed_resolution.csv";
   std::ofstream csv(out_path);
@@ -136,22 +139,25 @@ int seedResolution(const std::string& directory)
     for (int j = 0; j <= 20; ++j)
     {
       MeshNode node;
-      node.crease_pattern = Vec2(0.05 * i, 0.05 * j);
+      // Inset by a thousandth: a probe on the sheet's edge may lie in no triangle by rounding.
+      node.crease_pattern = Vec2(0.001 + 0.0499 * i, 0.001 + 0.0499 * j);
       probes.nodes.push_back(node);
     }
   SeedSceneOptions options;
   options.steps = 4;
   options.until = 0.2;
-  options.material.bend = 1e-2;
+  options.material.bend = bend;
   // Bending as a plate (the closed forms converge with it); the seed's hinges cost a bend by
   // the triangles' shapes, which differ from mesh to mesh, so their solutions need not converge.
   options.material.plate_bending = true;
   options.material.poisson_ratio = 0.3;
   options.material.plate_smoothing = kPaperPlateSmoothing;
   options.solve.max_iterations = 2000;
-  csv << "mesher,spacing,nodes,balanced,largest_force,cpu_seconds,rms_to_finest,max_to_finest,rms_to_next,"
-         "max_to_next\n";
-  const std::vector<double> spacings = { 0.2, 0.14, 0.1, 0.07, 0.05, 0.035, 0.025 };
+  options.solve.tolerance = 1e-11;
+  options.solve.check_stability = true;
+  csv << "mesher,spacing,nodes,balanced,largest_force,cpu_seconds,stretch_energy,bend_energy,rms_to_finest,"
+         "max_to_finest,rms_to_next,max_to_next\n";
+  const std::vector<double> spacings = { 0.2, 0.14, 0.1, 0.07, 0.05, 0.035 };
   for (const StripMesher mesher : { StripMesher::Bubble, StripMesher::Cgal })
   {
     struct Solution
@@ -159,7 +165,7 @@ int seedResolution(const std::string& directory)
       Positions at_probes;
       size_t nodes = 0;
       bool balanced = false;
-      double force = 0, cpu = 0;
+      double force = 0, cpu = 0, stretch = 0, bend = 0;
     };
     std::vector<Solution> solutions;
     for (double spacing : spacings)
@@ -190,10 +196,17 @@ int seedResolution(const std::string& directory)
       for (const SeedSceneStep& step : run.steps)
         s.force = std::max(s.force, step.report.max_force);
       s.nodes = run.mesh.nodes.size();
+      if (!run.steps.empty())
+      {
+        s.stretch = run.steps.back().report.energy.stretch;
+        s.bend = run.steps.back().report.energy.bend;
+      }
       s.at_probes = transferNodes(run.mesh, run.positions, probes, Positions::Zero(3, probes.nodes.size()));
       solutions.push_back(s);
-      std::printf("seed 1 %-6s h %.3f: %5zu nodes, balanced %d (largest force %.1e), %.2f s CPU\n",
-                  mesher == StripMesher::Cgal ? "cgal" : "bubble", spacing, s.nodes, s.balanced, s.force, s.cpu);
+      std::printf("seed 1 %-6s h %.3f: %5zu nodes, balanced %d (largest force %.1e), %.2f s CPU, energy: stretch %.2e "
+                  "bend %.2e\n",
+                  mesher == StripMesher::Cgal ? "cgal" : "bubble", spacing, s.nodes, s.balanced, s.force, s.cpu,
+                  s.stretch, s.bend);
       std::fflush(stdout);
     }
     const auto distance = [](const Positions& a, const Positions& b) {
@@ -207,7 +220,7 @@ int seedResolution(const std::string& directory)
       const auto to_next = k + 1 < spacings.size() ? distance(s.at_probes, solutions[k + 1].at_probes) :
                                                      std::make_pair(double(NAN), double(NAN));
       csv << (mesher == StripMesher::Cgal ? "cgal," : "bubble,") << spacings[k] << "," << s.nodes << ","
-          << s.balanced << "," << s.force << "," << s.cpu << "," << to_finest.first << "," << to_finest.second << ","
+          << s.balanced << "," << s.force << "," << s.cpu << "," << s.stretch << "," << s.bend << "," << to_finest.first << "," << to_finest.second << ","
           << to_next.first << "," << to_next.second << "\n";
       std::printf("  h %.3f: to the finest rms %.2e max %.2e, to the next rms %.2e max %.2e\n", spacings[k],
                   to_finest.first, to_finest.second, to_next.first, to_next.second);
@@ -220,7 +233,7 @@ int seedResolution(const std::string& directory)
 int main(int argc, char** argv)
 {
   if (argc > 1 && std::string(argv[1]) == "seed_resolution")
-    return seedResolution(argc > 2 ? argv[2] : "docs/bench");
+    return seedResolution(argc > 2 ? argv[2] : "docs/bench", argc > 3 ? std::atof(argv[3]) : 1e-3);
   if (argc > 1 && std::string(argv[1]) == "elastica")
     return elasticaSpeed(argc > 2 ? argv[2] : "docs/bench", argc > 3 ? std::atof(argv[3]) : 20.0);
   const std::string out_path = argc > 1 ? argv[1] : "docs/bench/curved_solvers.csv";
