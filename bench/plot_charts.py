@@ -258,7 +258,7 @@ def chart_curved(tables):
 def chart_curved_elastica(tables):
     """curved_bench's elastica part: each method's error against Euler's elastica (a converged
     reference: RK4 in 4000 steps, halving them moves no point by 1e-10 of the length) against
-    its CPU time per solve, at four spacings and three tolerances, and the Pareto front."""
+    its CPU time per solve, at four spacings and two tolerances, and the Pareto front."""
     data = rows("curved_elastica.csv")
     if not data:
         return
@@ -291,6 +291,35 @@ def chart_curved_elastica(tables):
     lines.append("On the Pareto front: " + ", ".join(f"{r['method']} b/{r['per_width']} (tolerance {r['tolerance']})"
                                                      for r in sorted(on_front, key=lambda r: num(r["cpu_seconds"]))) + ".")
     tables["curved_elastica"] = "\n".join(lines)
+    chart_curved_seed_resolution(tables)
+
+
+def chart_curved_seed_resolution(tables):
+    """curved_bench seed_resolution: seed scene 1 on each mesher, each solution's distance from
+    its mesher's finest (balanced, stability checked) and from the next finer one, over the side."""
+    data = rows("curved_seed_resolution.csv")
+    if not data:
+        return
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for mesher, color in (("bubble", "C0"), ("cgal", "C1")):
+        pts = [r for r in data if r["mesher"] == mesher and num(r["rms_to_next"]) == num(r["rms_to_next"])]
+        ax.loglog([num(r["spacing"]) for r in pts], [num(r["rms_to_finest"]) for r in pts], "o-", c=color,
+                  label=f"{mesher}: RMS distance to its finest mesh")
+        ax.loglog([num(r["spacing"]) for r in pts], [num(r["rms_to_next"]) for r in pts], "s--", c=color, alpha=0.6,
+                  label=f"{mesher}: RMS distance to the next finer mesh")
+    finish(fig, ax, "mesh spacing / side", "distance / side (21 × 21 points, best rigid fit)",
+           "Seed scene 1 (q/k = 1e-3): refinement against its own finest mesh",
+           "curved_seed_resolution.png")
+    lines = ["| mesher | spacing | nodes | balanced | largest force | CPU time | stretch energy | bend energy | "
+             "RMS to finest | max to finest | RMS to next | max to next |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in data:
+        lines.append(f"| {r['mesher']} | {r['spacing']} | {r['nodes']} | {'yes' if r['balanced'] == '1' else 'no'} | "
+                     f"{fmt(num(r['largest_force']))} | {fmt(num(r['cpu_seconds']))} s | "
+                     f"{fmt(num(r['stretch_energy']))} | {fmt(num(r['bend_energy']))} | "
+                     f"{fmt(num(r['rms_to_finest']))} | {fmt(num(r['max_to_finest']))} | "
+                     f"{fmt(num(r['rms_to_next']))} | {fmt(num(r['max_to_next']))} |")
+    tables["curved_seed_resolution"] = "\n".join(lines)
 
 
 def chart_meshers(tables):
