@@ -252,6 +252,74 @@ def chart_curved(tables):
                      f"{fmt(num(rk.get('seconds')) * 1e3)} ms{'' if rk.get('converged') == '1' else ' (budget, not converged)'} | "
                      f"{fmt(num(rk.get('max_force')))} | {fmt(num(r['rk4_time_over_newton']))}× |")
     tables["curved"] = "\n".join(lines)
+    chart_curved_elastica(tables)
+
+
+def chart_curved_elastica(tables):
+    """curved_bench's elastica part: each method's error against Euler's elastica (a converged
+    reference: RK4 in 4000 steps, halving them moves no point by 1e-10 of the length) against
+    its CPU time per solve, at four spacings and two tolerances, and the Pareto front."""
+    data = rows("curved_elastica.csv")
+    if not data:
+        return
+    fig, ax = plt.subplots(figsize=(7.5, 5))
+    styles = {"newton": ("C0", "o"), "quasi_newton": ("C2", "s"), "rk4": ("C3", "^")}
+    for method, (color, marker) in styles.items():
+        pts = [r for r in data if r["method"] == method]
+        for done, label in (("1", f"{method} (balanced)"), ("0", f"{method} (budget or iterations ran out)")):
+            sel = [r for r in pts if r["converged"] == done]
+            if sel:
+                ax.scatter([num(r["cpu_seconds"]) for r in sel], [num(r["error"]) for r in sel], c=color if done == "1"
+                           else "none", edgecolors=color, marker=marker, label=label)
+        for r in pts:
+            ax.annotate(f"b/{r['per_width']}", (num(r["cpu_seconds"]), num(r["error"])), textcoords="offset points",
+                        xytext=(4, 3), fontsize=6)
+    front = pareto([(num(r["cpu_seconds"]), num(r["error"])) for r in data])
+    ax.step([p[0] for p in front], [p[1] for p in front], "k--", where="post", lw=1, label="Pareto front")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    finish(fig, ax, "CPU time per solve [s] (one core)", "mid-line's largest distance from the elastica / length",
+           "Curved paper against Euler's elastica (45° strip): error against time", "curved_elastica.png")
+    lines = ["| spacing | nodes | method | tolerance (× D/L) | balanced | iterations | CPU time | error / length |",
+             "|---|---|---|---|---|---|---|---|"]
+    for r in data:
+        lines.append(f"| b/{r['per_width']} | {r['nodes']} | {r['method']} | {r['tolerance']} | "
+                     f"{'yes' if r['converged'] == '1' else 'no'} | {r['iterations']} | "
+                     f"{fmt(num(r['cpu_seconds']) * 1e3)} ms | {fmt(num(r['error']))} |")
+    on_front = [r for r in data if (num(r["cpu_seconds"]), num(r["error"])) in front]
+    lines.append("")
+    lines.append("On the Pareto front: " + ", ".join(f"{r['method']} b/{r['per_width']} (tolerance {r['tolerance']})"
+                                                     for r in sorted(on_front, key=lambda r: num(r["cpu_seconds"]))) + ".")
+    tables["curved_elastica"] = "\n".join(lines)
+    chart_curved_seed_resolution(tables)
+
+
+def chart_curved_seed_resolution(tables):
+    """curved_bench seed_resolution: seed scene 1 on each mesher, each solution's distance from
+    its mesher's finest (balanced, stability checked) and from the next finer one, over the side."""
+    data = rows("curved_seed_resolution.csv")
+    if not data:
+        return
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for mesher, color in (("bubble", "C0"), ("cgal", "C1")):
+        pts = [r for r in data if r["mesher"] == mesher and num(r["rms_to_next"]) == num(r["rms_to_next"])]
+        ax.loglog([num(r["spacing"]) for r in pts], [num(r["rms_to_finest"]) for r in pts], "o-", c=color,
+                  label=f"{mesher}: RMS distance to its finest mesh")
+        ax.loglog([num(r["spacing"]) for r in pts], [num(r["rms_to_next"]) for r in pts], "s--", c=color, alpha=0.6,
+                  label=f"{mesher}: RMS distance to the next finer mesh")
+    finish(fig, ax, "mesh spacing / side", "distance / side (21 × 21 points, best rigid fit)",
+           "Seed scene 1 (q/k = 1e-3): refinement against its own finest mesh",
+           "curved_seed_resolution.png")
+    lines = ["| mesher | spacing | nodes | balanced | largest force | CPU time | stretch energy | bend energy | "
+             "RMS to finest | max to finest | RMS to next | max to next |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in data:
+        lines.append(f"| {r['mesher']} | {r['spacing']} | {r['nodes']} | {'yes' if r['balanced'] == '1' else 'no'} | "
+                     f"{fmt(num(r['largest_force']))} | {fmt(num(r['cpu_seconds']))} s | "
+                     f"{fmt(num(r['stretch_energy']))} | {fmt(num(r['bend_energy']))} | "
+                     f"{fmt(num(r['rms_to_finest']))} | {fmt(num(r['max_to_finest']))} | "
+                     f"{fmt(num(r['rms_to_next']))} | {fmt(num(r['max_to_next']))} |")
+    tables["curved_seed_resolution"] = "\n".join(lines)
 
 
 def chart_meshers(tables):

@@ -118,6 +118,7 @@ Expected<CurvedMaterial> curvedMaterial(const PaperMaterial& paper, PaperBending
   if (bending == PaperBending::Plate)
   {
     material.plate_bending = true;
+    material.plate_smoothing = kPaperPlateSmoothing;
     material.poisson_ratio = nu;
     material.bend = bendingStiffness(paper);
   }

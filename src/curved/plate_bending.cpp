@@ -19,7 +19,8 @@ struct Hinge
   double rest = 0.0;
   Eigen::RowVector3d row = Eigen::RowVector3d::Zero();
   int edge = -1;
-  int across = -1;  // the triangle on its far side
+  int across = -1;  // the triangle on its far side; -1 beside a held face (see sideHinge)
+  double scale = 1.0;
 };
 
 const Eigen::Matrix2d kBasis[3] = { (Eigen::Matrix2d() << 1, 0, 0, 0).finished(),
@@ -54,14 +55,34 @@ struct Lookup
   const Paper& paper;
   const CurvedMaterial& material;
   std::map<std::pair<int, int>, int> edge_of;
+
+  bool held(int triangle) const
+  {
+    const int face = mesh.triangles[triangle].face;
+    return face >= 0 && face < static_cast<int>(mesh.held_faces.size()) && mesh.held_faces[face];
+  }
 };
 
+/// The corner c mirrored across the line through a and b.
+Vec2 mirrored(const Vec2& c, const Vec2& a, const Vec2& b)
+{
+  const Vec2 along = (b - a).normalized();
+  const Vec2 foot = a + along * along.dot(c - a);
+  return 2 * foot - c;
+}
+
 /// The hinge on side i (opposite corner i) of triangle t, when that side bends: not on the
-/// sheet's edge, not a crease that turns freely.
+/// sheet's edge, not a crease that turns freely, not inside a held face. Beside a held face
+/// (a clamp) the paper continues as its own mirror image across the side (the even extension
+/// that a clamped edge's zero slope means): the hinge is then the dihedral with the mirror
+/// triangle, twice the one with the held triangle (`scale` 2), so the curvature recovered at
+/// the clamp is the paper's and not half of it.
 std::optional<Hinge> sideHinge(const Lookup& look, int t, int i)
 {
   const CurvedMesh& mesh = look.mesh;
   const MeshTriangle& tri = mesh.triangles[t];
+  if (look.held(t))
+    return std::nullopt;
   const int a = tri.nodes[(i + 1) % 3], b = tri.nodes[(i + 2) % 3];
   const auto found = look.edge_of.find({ std::min(a, b), std::max(a, b) });
   if (found == look.edge_of.end())
@@ -81,8 +102,15 @@ std::optional<Hinge> sideHinge(const Lookup& look, int t, int i)
       far = node;
   h.nodes = { a, b, tri.nodes[i], far };
   h.rest = crease && edge.paper_edge >= 0 ? look.paper.edges[edge.paper_edge].fold_angle : 0.0;
-  const std::array<Vec2, 3> near = cornersOf(mesh, t), across = cornersOf(mesh, h.across);
   const Vec2 pa = mesh.nodes[a].crease_pattern, pb = mesh.nodes[b].crease_pattern;
+  const std::array<Vec2, 3> near = cornersOf(mesh, t);
+  std::array<Vec2, 3> across = cornersOf(mesh, h.across);
+  if (look.held(h.across))
+  {
+    across = { pa, pb, mirrored(near[i], pa, pb) };
+    h.across = -1;
+    h.scale = 2.0;
+  }
   Vec2 out(pb.y() - pa.y(), pa.x() - pb.x());
   out.normalize();
   if (out.dot(pa - near[i]) < 0)
@@ -125,6 +153,8 @@ std::vector<PlateTerm> plateTerms(const CurvedMesh& mesh, const Paper& paper, co
   for (size_t t = 0; t < mesh.triangles.size(); ++t)
   {
     const MeshTriangle& tri = mesh.triangles[t];
+    if (look.held(static_cast<int>(t)))
+      continue;  // held rigidly: its energy cannot change
     double stiffness = material.bend;
     if (tri.face < static_cast<int>(mesh.curved_faces.size()) && !mesh.curved_faces[tri.face])
       stiffness *= material.flat_face;
@@ -155,7 +185,7 @@ std::vector<PlateTerm> plateTerms(const CurvedMesh& mesh, const Paper& paper, co
         for (size_t k = 0; k < count; ++k)
           for (int i = 0; i < 3; ++i)
             if (std::optional<Hinge> h = sideHinge(look, near[k], i))
-              if (std::find(near.begin(), near.end(), h->across) == near.end())
+              if (h->across >= 0 && std::find(near.begin(), near.end(), h->across) == near.end())
                 near.push_back(h->across);
       }
       std::vector<Hinge> candidates;
@@ -200,6 +230,8 @@ std::vector<PlateTerm> plateTerms(const CurvedMesh& mesh, const Paper& paper, co
       const Eigen::Matrix3d compliance = plate.inverse();
       curvature = compliance * r.transpose() * (r * compliance * r.transpose()).inverse();
     }
+    for (size_t k = 0; k < used.size(); ++k)
+      curvature.col(k) *= used[k].scale;
     PlateTerm term;
     for (const Hinge& h : used)
     {

@@ -65,15 +65,29 @@ Expected<StripScene> stripScene(double length, double width, bool held_end, doub
 
 Expected<CurvedMesh> meshStrip(const StripScene& scene, StripMesher mesher, double spacing)
 {
+  Expected<CurvedMesh> mesh = Expected<CurvedMesh>::failure("no mesher");
   if (mesher == StripMesher::Cgal)
   {
     CgalMeshOptions options;
     options.spacing = spacing;
-    return cgalMesh(scene.paper, options);
+    mesh = cgalMesh(scene.paper, options);
   }
-  BubbleMeshOptions options;
-  options.spacing = spacing;
-  return bubbleMesh(scene.paper, options);
+  else
+  {
+    BubbleMeshOptions options;
+    options.spacing = spacing;
+    mesh = bubbleMesh(scene.paper, options);
+  }
+  return mesh;
+}
+
+void holdStripZones(const StripScene& scene, CurvedMesh& mesh)
+{
+  // Faces 0 (the clamp zone) and 2 (the end zone) are the ones stripPins holds.
+  mesh.held_faces.assign(scene.paper.faces.size(), 0);
+  mesh.held_faces[0] = 1;
+  if (scene.held_end)
+    mesh.held_faces[2] = 1;
 }
 
 std::vector<CurvedPin> stripPins(const StripScene& scene, const CurvedMesh& mesh, const Eigen::Vector2d& end,

@@ -1,6 +1,7 @@
 // Curved paper against closed forms (SPEC §4.2, issue 21): Euler's elastica for a strip clamped
-// at one end with its other end turned and held, and a cantilever under its own weight, on
-// both meshers, with the error falling as the mesh is refined. Copy paper (80 g/m²) in SI.
+// at one end with its other end turned and held, its error falling as the mesh is refined, and
+// a cantilever under its own weight, its tip within 1 % of the closed forms on every mesh, on
+// both meshers. Copy paper (80 g/m²) in SI, the clamp zones held (holdStripZones).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -61,7 +62,8 @@ double order(const std::vector<double>& spacing, const std::vector<double>& erro
 double heldStripDeviation(StripMesher mesher, double spacing, const StripScene& scene, const HeldElastica& elastica,
                           const Eigen::Vector2d& end, double angle)
 {
-  const CurvedMesh mesh = *meshStrip(scene, mesher, spacing);
+  CurvedMesh mesh = *meshStrip(scene, mesher, spacing);
+  holdStripZones(scene, mesh);
   const CurvedMaterial material = stripMaterial(*curvedMaterial(beamPaper()));
   CurvedSolver solver(mesh, scene.paper, material);
   Positions x = stripAlong(scene, mesh, elastica.curve);
@@ -96,7 +98,7 @@ void expectConvergesToTheElastica(double angle, const Eigen::Vector2d& end_over_
     // First order from four elements across the width on (at two the strip is not yet
     // resolved): the error cut 4× by the fourfold refinement, within a tenth of the order.
     EXPECT_GE(std::log(errors.front() / errors.back()) / std::log(4.0), 0.9) << name(mesher) << ", order " << p;
-    EXPECT_LT(errors.back(), 1e-3) << name(mesher);
+    EXPECT_LT(errors.back(), 1e-4) << name(mesher);
   }
 }
 }  // namespace
@@ -170,7 +172,8 @@ double cantileverTip(StripMesher mesher, double length, double per_width, const 
   const PaperMaterial paper = beamPaper();
   const double width = length / 10;
   const StripScene scene = *stripScene(length, width, false);
-  const CurvedMesh mesh = *meshStrip(scene, mesher, width / per_width);
+  CurvedMesh mesh = *meshStrip(scene, mesher, width / per_width);
+  holdStripZones(scene, mesh);
   Surroundings surroundings;
   surroundings.gravity = 9.81;
   const CurvedMaterial material = stripMaterial(*curvedMaterial(paper));
@@ -206,37 +209,79 @@ double smallSagFormula(double length)
 
 namespace
 {
-/// Both meshes are softer than the strip (the sag too large) and come closer with each halving
-/// of the spacing: the solve converges to the closed form.
-void expectSagConverges(double length)
+/// The strip clamped flat for x ≤ 0 and bent to z = ½·κ·x² beyond: the clamped beam's shape
+/// of uniform curvature. Its plate energy over ½·D·κ² times the bent strip's area.
+double clampedParabolaEnergyRatio(StripMesher mesher, bool held)
+{
+  const double length = 0.1, width = 0.01, kappa = 1e-2;  // slopes up to 1e-3
+  const StripScene scene = *stripScene(length, width, false);
+  CurvedMesh mesh = *meshStrip(scene, mesher, width / 4);
+  if (held)
+    holdStripZones(scene, mesh);
+  const CurvedMaterial material = stripMaterial(*curvedMaterial(beamPaper()));
+  Positions x(3, mesh.nodes.size());
+  for (size_t v = 0; v < mesh.nodes.size(); ++v)
+  {
+    const Vec2& p = mesh.nodes[v].crease_pattern;
+    x.col(v) = Vec3(p.x(), p.y(), p.x() > 0 ? 0.5 * kappa * p.x() * p.x() : 0.0);
+  }
+  const double energy = evaluateCurved(curvedTerms(mesh, scene.paper, material), x).bend;
+  return energy / (0.5 * bendingStiffness(beamPaper()) * kappa * kappa * length * width);
+}
+}  // namespace
+
+TEST(Cantilever, TheClampedStripOfUniformCurvatureCostsThePlatesEnergyExactly)
+{
+  // The paper beside a held clamp is measured against its mirror image, which continues the
+  // uniform curvature: exact on both meshers (to the slopes' square). With the clamp zone bent
+  // as paper, the first triangles see about half the curvature and the clamp's count the rest:
+  // 2.6 % off at b/4 here, and a cantilever so clamped sagged 4.6 % too far at b/4.
+  for (StripMesher mesher : { StripMesher::Bubble, StripMesher::Cgal })
+  {
+    const double held = clampedParabolaEnergyRatio(mesher, true), unheld = clampedParabolaEnergyRatio(mesher, false);
+    std::printf("clamped parabola %-6s: energy / plate's %.6f held, %.6f bent as paper\n", name(mesher), held, unheld);
+    EXPECT_NEAR(held, 1.0, 1e-5) << name(mesher);
+    EXPECT_GT(std::abs(unheld - 1.0), 1e-2) << name(mesher);
+  }
+}
+
+namespace
+{
+/// The tip within 1 % of the closed form at every spacing (b/4, b/8, b/16), the finest mesh
+/// included. The clamp is measured against its mirror image (a held face,
+/// CurvedMesh::held_faces) and the curvature's jumps cost (kPaperPlateSmoothing): without the
+/// first the strip was 4.6 → 1.2 % too soft (bubble) and 6.9 → 3.6 % (CGAL) from b/4 to b/16,
+/// with it alone the CGAL mesh kept ~2.5 % of wrinkles at every spacing.
+void expectTipWithinOnePercent(StripMesher mesher, double length)
 {
   const PaperMaterial paper = beamPaper();
   const CantileverElastica elastica =
       *cantileverElastica(length, paper.areal_density * 9.81 / bendingStiffness(paper));
   const double exact = length < 0.1 ? smallSagFormula(length) : -elastica.curve.z.back();
-  for (StripMesher mesher : { StripMesher::Bubble, StripMesher::Cgal })
-  {
-    const std::vector<double> errors = cantileverErrors(mesher, length, exact, elastica);
-    for (size_t k = 0; k < errors.size(); ++k)
-    {
-      EXPECT_GT(errors[k], 0.0) << name(mesher);
-      if (k > 0)
-      {
-        EXPECT_LT(errors[k], errors[k - 1]) << name(mesher);
-      }
-    }
-  }
+  const std::vector<double> errors = cantileverErrors(mesher, length, exact, elastica);
+  for (size_t k = 0; k < errors.size(); ++k)
+    EXPECT_LT(std::abs(errors[k]), 0.01) << name(mesher) << " at width / " << (4 << k);
 }
 }  // namespace
 
-TEST(Cantilever, SmallSagConvergesToTheBeamFormula)
+TEST(Cantilever, SmallSagTipWithinOnePercentOfTheBeamFormulaUpToTheFinestBubbleMesh)
 {
-  expectSagConverges(0.03);
+  expectTipWithinOnePercent(StripMesher::Bubble, 0.03);
 }
 
-TEST(Cantilever, LargeSagConvergesToTheElasticaUnderItsWeight)
+TEST(Cantilever, SmallSagTipWithinOnePercentOfTheBeamFormulaUpToTheFinestCgalMesh)
 {
-  expectSagConverges(0.15);
+  expectTipWithinOnePercent(StripMesher::Cgal, 0.03);
+}
+
+TEST(Cantilever, LargeSagTipWithinOnePercentOfTheElasticaUpToTheFinestBubbleMesh)
+{
+  expectTipWithinOnePercent(StripMesher::Bubble, 0.15);
+}
+
+TEST(Cantilever, LargeSagTipWithinOnePercentOfTheElasticaUpToTheFinestCgalMesh)
+{
+  expectTipWithinOnePercent(StripMesher::Cgal, 0.15);
 }
 
 }  // namespace virtual_origami::core

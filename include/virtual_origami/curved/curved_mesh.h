@@ -46,6 +46,10 @@ struct CurvedMesh
   std::vector<MeshEdge> edges;     // derived by linkMesh()
   std::vector<int> vertex_nodes;   // paper vertex → its node
   std::vector<char> curved_faces;  // per paper face: 1 meshed to bend, 0 kept flat and coarse
+  /// Per paper face (empty: none): 1 where the caller pins every node of the face (a clamp).
+  /// Plate bending then gives the face no energy and measures the paper beside it against the
+  /// face's plane, as at a clamped plate's edge (plate_bending.h).
+  std::vector<char> held_faces;
   double spacing = 0.0;            // the bubble diameter it was meshed with
 
   /// Rest (crease-pattern) area of a triangle.

@@ -45,11 +45,17 @@ enum class PaperBending
   Hinges,
 };
 
+/// The plate_smoothing of physical papers: the curvature's jumps between triangles cost 3 times
+/// their plate energy, which keeps the less regular CGAL triangles from trading curvature for
+/// mesh-scale wrinkles (they relax ~2.5 % / (1 + 3·s) of a cantilever's stiffness at every
+/// spacing) while adding only O(spacing²) to a smooth bend (docs/CURVED.md, the closed forms).
+constexpr double kPaperPlateSmoothing = 3.0;
+
 /// The mesh's moduli for this paper (derivation in paper_material.cpp): uniaxial stretch ε
 /// costs ½·E h·ε² per area, shear γ ½·G h·γ² (both exactly on equilateral triangles), a bend of
 /// curvature K ½·D·(ν (tr K)² + (1 − ν) K : K) (Plate) or, on equilateral triangles, ½·D·κ²
-/// for a cylindrical bend (Hinges). `thickness` and `density` (the areal density) are set too.
-/// Fails as checkPaperMaterial.
+/// for a cylindrical bend (Hinges). Plate bending comes with plate_smoothing kPaperPlateSmoothing.
+/// `thickness` and `density` (the areal density) are set too. Fails as checkPaperMaterial.
 Expected<CurvedMaterial> curvedMaterial(const PaperMaterial& paper, PaperBending bending = PaperBending::Plate);
 
 /// Refuses moduli the solver cannot use: stretch or bend not positive and finite, shear, crease,

@@ -6,7 +6,10 @@
 // is instead a plate of Poisson ratio −1/3 whose stiffness depends on the triangles' shapes.
 // Known limit: the recovered curvatures of a patch need not add up to its hinges' total (the
 // patch test), and on the CGAL mesh's less regular triangles a bent strip relaxes ~3 % of its
-// bending energy into mesh-scale wrinkles at every spacing (0.3 % on the bubble mesh).
+// bending energy into mesh-scale wrinkles at every spacing (0.3 % on the bubble mesh), unless
+// the curvature's jumps cost (CurvedMaterial::plate_smoothing; physical papers use 3).
+// Beside a held face (CurvedMesh::held_faces, a clamp) the paper is measured against its mirror
+// image across the clamp line, so a clamped edge's curvature is recovered in full.
 #pragma once
 
 #include <vector>

@@ -3,7 +3,8 @@
 // its other end too (a zone x ∈ [L, L + c] turned and moved as one piece: Euler's elastica) or
 // free there (a cantilever under its own weight). Flat creases at x = 0 and x = L give the
 // meshes a line of nodes exactly where the strip starts and ends; they bend as the paper does
-// (CurvedMaterial::crease 1), so the clamp is a clamp and not a hinge.
+// (CurvedMaterial::crease 1), so the clamp is a clamp and not a hinge, and holdStripZones makes
+// the plate terms measure the strip there against the clamp's plane (its mirror image).
 #pragma once
 
 #include <vector>
@@ -35,6 +36,10 @@ Expected<StripScene> stripScene(double length, double width, bool held_end, doub
 
 /// The strip meshed at `spacing` (m) by either mesher.
 Expected<CurvedMesh> meshStrip(const StripScene& scene, StripMesher mesher, double spacing);
+
+/// Marks the zones stripPins holds as held faces (CurvedMesh::held_faces): plate bending then
+/// measures the strip beside them as a clamped plate's edge. Without it they bend as paper.
+void holdStripZones(const StripScene& scene, CurvedMesh& mesh);
 
 /// The pins: the clamp zone (x ≤ 0) flat where it lies; with a held end, the end zone (x ≥ L)
 /// turned by `end_angle` about y (towards +z) with its edge x = L moved to `end` (x, z).
