@@ -1,5 +1,6 @@
 // Helpers the benchmark programs share: a wall clock, the machine's memory bandwidth (the
-// floor of an explicit step) and a structured sheet mesh of any size.
+// floor of an explicit step), a structured sheet mesh of any size and the best rigid fit of
+// two shapes.
 #pragma once
 
 #include <algorithm>
@@ -7,6 +8,8 @@
 #include <cstdlib>
 #include <iostream>
 #include <vector>
+
+#include <Eigen/SVD>
 
 #include "virtual_origami/curved/curved_mesh.h"
 
@@ -94,6 +97,20 @@ inline CurvedMesh gridMesh(const Paper& paper, int n)
     std::exit(1);
   }
   return mesh;
+}
+
+/// `points` moved by the rigid motion that best fits them onto `target` (Kabsch): with only two
+/// corners pinned the sheet may turn freely about the line through them, so shapes are
+/// compared, not poses.
+inline Positions alignedTo(const Positions& points, const Positions& target)
+{
+  const Vec3 pc = points.rowwise().mean(), tc = target.rowwise().mean();
+  const Eigen::Matrix3d cov = (points.colwise() - pc) * (target.colwise() - tc).transpose();
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(cov, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
+  d(2, 2) = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0 ? -1.0 : 1.0;
+  const Eigen::Matrix3d rotation = svd.matrixV() * d * svd.matrixU().transpose();
+  return (rotation * (points.colwise() - pc)).colwise() + tc;
 }
 
 }  // namespace virtual_origami::bench

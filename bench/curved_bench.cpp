@@ -28,6 +28,7 @@
 #include "bench_common.h"
 
 using namespace virtual_origami::core;
+using virtual_origami::bench::alignedTo;
 using virtual_origami::bench::gridMesh;
 using virtual_origami::bench::now;
 
@@ -99,20 +100,6 @@ int elasticaSpeed(const std::string& directory, double budget)
       }
   }
   return 0;
-}
-
-/// `points` moved by the rigid motion that best fits them onto `target` (Kabsch): with two
-/// corners pinned the sheet may turn freely about the line through them, so shapes are
-/// compared, not poses. (mesh_bench has the same.)
-Positions alignedTo(const Positions& points, const Positions& target)
-{
-  const Vec3 pc = points.rowwise().mean(), tc = target.rowwise().mean();
-  const Eigen::Matrix3d cov = (points.colwise() - pc) * (target.colwise() - tc).transpose();
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(cov, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
-  d(2, 2) = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0 ? -1.0 : 1.0;
-  const Eigen::Matrix3d rotation = svd.matrixV() * d * svd.matrixU().transpose();
-  return (rotation * (points.colwise() - pc)).colwise() + tc;
 }
 
 /// Seed scene 1 (corner a pulled towards c) against a reference that is itself balanced and

@@ -15,8 +15,7 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/SVD>
-
+#include "bench_common.h"
 #include "virtual_origami/core/crease.h"
 #include "virtual_origami/core/reference_patterns.h"
 #include "virtual_origami/curved/bubble_mesh.h"
@@ -24,6 +23,7 @@
 #include "virtual_origami/curved/seed_scenes.h"
 
 using namespace virtual_origami::core;
+using virtual_origami::bench::alignedTo;
 
 namespace
 {
@@ -71,20 +71,6 @@ Expected<CurvedMesh> cgal(const Paper& paper, double spacing)
   CgalMeshOptions options;
   options.spacing = spacing;
   return cgalMesh(paper, options);
-}
-
-/// `points` moved by the rigid motion that best fits them onto `target` (Kabsch): with only two
-/// corners pinned the sheet may turn freely about the line through them, so shapes are
-/// compared, not poses.
-Positions alignedTo(const Positions& points, const Positions& target)
-{
-  const Vec3 pc = points.rowwise().mean(), tc = target.rowwise().mean();
-  const Eigen::Matrix3d cov = (points.colwise() - pc) * (target.colwise() - tc).transpose();
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(cov, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
-  d(2, 2) = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0 ? -1.0 : 1.0;
-  const Eigen::Matrix3d rotation = svd.matrixV() * d * svd.matrixU().transpose();
-  return (rotation * (points.colwise() - pc)).colwise() + tc;
 }
 
 /// The solution's positions at probe points of the crease pattern (a grid over the sheet),
