@@ -204,6 +204,8 @@ void CurvedMeshSolverNode::reconfigure(CurvedMeshSolverConfig& config, uint32_t)
 
 void CurvedMeshSolverNode::onState(const PaperState::ConstPtr& state)
 {
+  if (drag_ && last_state_ && state->revision != last_state_->revision)
+    drag_.reset();  // a new paper: the drag of the old one is over (also when its let-go was lost)
   last_state_ = state;
   solveAndPublish();
 }

@@ -137,6 +137,7 @@ PaperModelNode::PaperModelNode(ros::NodeHandle nh, ros::NodeHandle private_nh) :
     if (faded_ == (drag->vertex >= 0))
       return;
     faded_ = drag->vertex >= 0;
+    faded_revision_ = session_.revision();
     publishMarkers(session_.preview() ? *session_.preview() : session_.paper());
   });
 
@@ -326,6 +327,8 @@ void PaperModelNode::publishState(const ros::Time& stamp)
   state.header.frame_id = style_.frame_id;
   state.notice = notice_;
   state_pub_.publish(state);
+  if (session_.revision() != faded_revision_)
+    faded_ = false;  // a new paper: a bend of the old one is over (also when its let-go was lost)
   publishMarkers(session_.paper());
   // Now, not the state's stamp: a pull's older tf stamp would leave the last timer's
   // broadcast of the old pose as the latest.

@@ -123,6 +123,7 @@ private:
   /// paper is drawn faded: the bent sheet is what the user holds.
   ros::Subscriber curved_drag_sub_;
   std::atomic<bool> faded_{ false };
+  uint64_t faded_revision_ = 0;  // the revision the paper was faded on
   std::vector<ros::ServiceServer> services_;
   tf2_ros::StaticTransformBroadcaster static_tf_;
   tf2_ros::TransformBroadcaster tf_;
