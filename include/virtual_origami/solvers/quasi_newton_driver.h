@@ -51,6 +51,13 @@ struct QuasiNewtonOptions
   /// global step) where the straight prediction costs more energy than it gains, or after a
   /// frame that its budget stopped before balance.
   bool restore_predicted_faces = true;
+  /// Lagged: each Newton–Krylov step also moves along the last frame's motion as far as the
+  /// Gauss–Newton model says (a kept matrix calls a mechanism's present turn stiff, and a
+  /// slide's frames fall behind along it).
+  bool follow_motion = true;
+  /// End a frame its limits stopped short of balance with one step of the constant matrix that
+  /// restores the faces its last (linear) step stretched; room for it is kept in a time budget.
+  bool restore_final_faces = true;
 };
 
 class QuasiNewtonDriver : public CreaseDriver
