@@ -107,6 +107,7 @@ struct QuasiNewtonDriver::Setup
   std::vector<double> last_target, before_last_target;
   bool last_balanced = true;  // whether the last frame reached balance within its budget
   bool last_continued = false;  // the last frame went on from the one before it
+  double last_face_energy = 0.0;  // the face term of the energy at the last frame
 
   Setup(const Paper& paper, const std::vector<char>& held, const std::vector<double>& target, double stiffness)
     : crease_pattern(creasePattern(paper)), fixed(held), driven_edges(drivenEdges(paper, target)),
@@ -225,12 +226,34 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
 
   const std::vector<int>& free = s.free_vertices;
   const bool anchored = std::any_of(fixed.begin(), fixed.end(), [](char c) { return c != 0; });
+  // Start from a prediction along the motion when this is the frame after the last two (the
+  // last went on from the one before it: a new slide's second frame has no motion to go by).
+  const bool continues = s.last.cols() == x.cols() && s.last == start;
+  const bool predicts = options_.predict && continues && s.last_continued && s.before_last.cols() == x.cols() &&
+                        s.last_target.size() == target.size();
+  // The energy where the frame starts: a prediction needs only its value, whose face term is
+  // the last frame's (the same positions); the full pass (with the gradient) is paid for only
+  // where the frame goes on from there.
   Positions gradient;
-  const double evaluate_from = budget.seconds();
-  DrivenFaces::Evaluation now = energy.evaluate(x, &gradient);
+  DrivenFaces::Evaluation now;
+  bool start_evaluated = false;
   // What an energy pass and a back-substitution cost here: a frame's budget is spent only on
   // work that ends within it (the last step's line search and the report come after).
-  const double evaluate_seconds = budget.seconds() - evaluate_from;
+  double evaluate_seconds = 0.0;
+  const auto evaluateStart = [&]() {
+    const double evaluate_from = budget.seconds();
+    now = energy.evaluate(x, &gradient);
+    evaluate_seconds = budget.seconds() - evaluate_from;
+    start_evaluated = true;
+  };
+  if (predicts)
+  {
+    now.face_energy = s.last_face_energy;
+    now.hinge_energy = energy.hingeEnergy(x);
+    now.energy = now.face_energy + now.hinge_energy;
+  }
+  else
+    evaluateStart();
   double solve_seconds = 0.0;
   // A frame stopped by its budget ends with a restoring step (restore_final_faces): kept room.
   double final_reserve = 0.0;
@@ -238,9 +261,6 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
     return limits_.max_seconds <= 0 ||
            budget.seconds() + work + 2 * evaluate_seconds + final_reserve < limits_.max_seconds;
   };
-  // Start from a prediction along the motion when this is the frame after the last two (the
-  // last went on from the one before it: a new slide's second frame has no motion to go by).
-  const bool continues = s.last.cols() == x.cols() && s.last == start;
   // The last frame's own motion, where this frame goes on from it: the direction a mechanism
   // is turning in (see followMotion below).
   Eigen::MatrixX3d motion;
@@ -270,8 +290,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
     }
     s.restore_seconds = clock.seconds();
   };
-  if (options_.predict && continues && s.last_continued && s.before_last.cols() == x.cols() &&
-      s.last_target.size() == target.size())
+  if (predicts)
   {
     double step_now = 0.0, step_before = 0.0;
     for (size_t e = 0; e < target.size(); ++e)
@@ -288,7 +307,9 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
         if (s.free_index[v] < 0)
           predicted.col(static_cast<Eigen::Index>(v)) = x.col(static_cast<Eigen::Index>(v));
       Positions predicted_gradient;
+      const double evaluate_from = budget.seconds();
       DrivenFaces::Evaluation guess = energy.evaluate(predicted, &predicted_gradient);
+      evaluate_seconds = budget.seconds() - evaluate_from;
       // Carried on straight, every turning face stretches by about half its turn squared (a
       // 1 % step of a Miura-ori: 5e-4). Where that costs more than the step gains (a large
       // sheet), or where the last frame ran out of budget before balance (a slide's frames: the
@@ -302,9 +323,12 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
         x = std::move(predicted);
         gradient = std::move(predicted_gradient);
         now = guess;
+        start_evaluated = true;
       }
     }
   }
+  if (!start_evaluated)
+    evaluateStart();
 
   // The Gauss–Newton matrix at x; nothing held, its null space (rigid motions) is shifted away
   // by far less than the faces' stiffness, and a failed factorisation (a degenerate face) is
@@ -382,6 +406,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
   // Newton–Krylov: the Gauss–Newton system at x solved by conjugate gradients, preconditioned
   // by the kept factorisation (the matrix of a nearby state, so a few iterations do).
   bool krylov_slow = false;
+  bool krylov_met = false;  // the last step's conjugate gradients reached their tolerance
   Positions spread = Positions::Zero(3, x.cols()), product;
   const auto multiply = [&](const DrivenFaces::Linearization& l, const Eigen::MatrixX3d& v) {
     for (size_t i = 0; i < free.size(); ++i)
@@ -405,6 +430,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
     double rz = dot(r, z);
     const double goal = options_.krylov_tolerance * std::sqrt(dot(r, r));
     krylov_slow = true;
+    krylov_met = !(dot(r, r) > 0);  // nothing to solve
     for (int k = 0; k < options_.krylov_iterations; ++k)
     {
       const Eigen::MatrixX3d ap = multiply(l, p);
@@ -418,6 +444,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
       if (std::sqrt(dot(r, r)) <= goal)
       {
         krylov_slow = k + 1 > options_.krylov_iterations / 2;
+        krylov_met = true;
         break;
       }
       // Anytime: a frame's budget spent, the step so far serves (each iteration improves it).
@@ -499,9 +526,11 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
       direction = lbfgsStep();
     if (rigid)
       rigid->remove(direction);
-    // Balanced when the step the model predicts moves nothing measurably.
+    // Balanced when the step the model predicts moves nothing measurably. A Newton–Krylov step
+    // cut short (by the budget or the iteration cap) on a matrix kept from another state can
+    // be small far from balance: only a solved one tells.
     const double step_size = direction.cwiseAbs().maxCoeff();
-    if (step_size <= tolerance)
+    if (step_size <= tolerance && (options_.hessian != DriverHessian::Lagged || krylov_met))
     {
       report.converged = true;
       break;
@@ -628,6 +657,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
   s.last = result;
   s.last_target = target;
   s.last_continued = continues;
+  s.last_face_energy = now.face_energy;
   s.last_balanced = report.converged;
   return report;
 }
