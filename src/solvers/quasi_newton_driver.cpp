@@ -406,7 +406,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
   // Newton–Krylov: the Gauss–Newton system at x solved by conjugate gradients, preconditioned
   // by the kept factorisation (the matrix of a nearby state, so a few iterations do).
   bool krylov_slow = false;
-  bool krylov_met = false;  // the last step's conjugate gradients reached their tolerance
+  bool krylov_cut = false;  // the budget ended the last step's conjugate gradients
   Positions spread = Positions::Zero(3, x.cols()), product;
   const auto multiply = [&](const DrivenFaces::Linearization& l, const Eigen::MatrixX3d& v) {
     for (size_t i = 0; i < free.size(); ++i)
@@ -430,7 +430,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
     double rz = dot(r, z);
     const double goal = options_.krylov_tolerance * std::sqrt(dot(r, r));
     krylov_slow = true;
-    krylov_met = !(dot(r, r) > 0);  // nothing to solve
+    krylov_cut = false;
     for (int k = 0; k < options_.krylov_iterations; ++k)
     {
       const Eigen::MatrixX3d ap = multiply(l, p);
@@ -444,12 +444,14 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
       if (std::sqrt(dot(r, r)) <= goal)
       {
         krylov_slow = k + 1 > options_.krylov_iterations / 2;
-        krylov_met = true;
         break;
       }
       // Anytime: a frame's budget spent, the step so far serves (each iteration improves it).
       if (!fits(solve_seconds))
+      {
+        krylov_cut = true;
         break;
+      }
       z = precondition(r);
       if (rigid)
         rigid->remove(z);
@@ -527,10 +529,10 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
     if (rigid)
       rigid->remove(direction);
     // Balanced when the step the model predicts moves nothing measurably. A Newton–Krylov step
-    // cut short (by the budget or the iteration cap) on a matrix kept from another state can
-    // be small far from balance: only a solved one tells.
+    // the budget cut short (one or two iterations on a matrix kept from another state) can be
+    // small far from balance: it does not tell.
     const double step_size = direction.cwiseAbs().maxCoeff();
-    if (step_size <= tolerance && (options_.hessian != DriverHessian::Lagged || krylov_met))
+    if (step_size <= tolerance && !krylov_cut)
     {
       report.converged = true;
       break;
