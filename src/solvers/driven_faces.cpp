@@ -230,6 +230,19 @@ DrivenFaces::Evaluation DrivenFaces::evaluate(const Positions& x, Positions* gra
   return out;
 }
 
+double DrivenFaces::hingeEnergy(const Positions& x) const
+{
+  double energy = 0.0;
+  for (size_t i = 0; i < hinges_.size(); ++i)
+    if (std::isfinite(target_[i]))
+    {
+      const Hinge& h = hinges_[i];
+      const double miss = unwrapNear(hingeAngle(h, x), reference_[h.edge]) - target_[i];
+      energy += 0.5 * h.weight * miss * miss;
+    }
+  return energy;
+}
+
 Eigen::SparseMatrix<double> DrivenFaces::constantMatrix(const std::vector<int>& free_index, int free_count) const
 {
   std::vector<Eigen::Triplet<double>> triplets;

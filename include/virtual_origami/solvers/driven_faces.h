@@ -53,6 +53,9 @@ public:
   /// Energy at x (positions divided by scale()), and its gradient dE/dx when asked.
   Evaluation evaluate(const Positions& x, Positions* gradient = nullptr) const;
 
+  /// The hinge term of the energy alone at x (no face fitted: a fraction of evaluate's cost).
+  double hingeEnergy(const Positions& x) const;
+
   /// Unwrapped fold angle of every hinge's edge at x (NaN for edges that are no hinge).
   std::vector<double> angles(const Positions& x) const;
 

@@ -36,9 +36,10 @@ struct QuasiNewtonOptions
   /// from (the kept matrix no longer predicts the energy well).
   double refresh_ratio = 0.5;
   /// Lagged: conjugate-gradient iterations per Newton step, and the residual (relative to the
-  /// gradient) that ends them early.
+  /// gradient) that ends them early. 1 %: at 5 % a 40 × 40 Miura-ori's first corner turn from
+  /// the flat sheet took 22 steps (linear convergence), at 1 % it takes 12 like the later ones.
   int krylov_iterations = 8;
-  double krylov_tolerance = 0.05;
+  double krylov_tolerance = 0.01;
   /// The driver's initial face stiffness (CreaseDriver::setFaceStiffness changes it).
   double face_stiffness = 1e4;
   int memory = 8;  // L-BFGS correction pairs
@@ -51,6 +52,13 @@ struct QuasiNewtonOptions
   /// global step) where the straight prediction costs more energy than it gains, or after a
   /// frame that its budget stopped before balance.
   bool restore_predicted_faces = true;
+  /// Lagged: each Newton–Krylov step also moves along the last frame's motion as far as the
+  /// Gauss–Newton model says (a kept matrix calls a mechanism's present turn stiff, and a
+  /// slide's frames fall behind along it).
+  bool follow_motion = true;
+  /// End a frame its limits stopped short of balance with one step of the constant matrix that
+  /// restores the faces its last (linear) step stretched; room for it is kept in a time budget.
+  bool restore_final_faces = true;
 };
 
 class QuasiNewtonDriver : public CreaseDriver
