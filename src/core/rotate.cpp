@@ -57,6 +57,14 @@ Expected<std::pair<int, int>> resolveFaceAndAxis(const Paper& paper, const Rotat
   const int edges = static_cast<int>(paper.edges.size());
   if (!std::isfinite(request.angle))
     return R::failure("the rotation angle is not finite");
+  // More than a whole turn places no face anywhere a smaller turn does not, and the solver
+  // would follow it in stages without end (an angle of 1e300 did, found by fuzzing).
+  if (std::abs(request.angle) > 2 * M_PI + 1e-9)
+  {
+    std::ostringstream msg;
+    msg << "the rotation angle " << request.angle << " rad is more than a whole turn";
+    return R::failure(msg.str());
+  }
   if ((request.face < 0 || request.axis_edge < 0) && !request.click.allFinite())
     return R::failure("the click point has a non-finite coordinate");
   if (request.face < -1 || request.face >= faces)

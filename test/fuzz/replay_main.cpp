@@ -3,11 +3,12 @@
 // a bounded number of seeded mutations of them (a deterministic fuzz smoke run). A failing
 // input is written to `replay-failure-<target>` in the working directory and named on stderr.
 //
-// Usage: <target>_replay [--mutations N] [--seed S] [--max-len BYTES] FILE_OR_DIR...
+// Usage: <target>_replay [--mutations N] [--seed S] [--max-len BYTES] [--slow SECONDS] [--save M FILE] FILE_OR_DIR...
 #include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <csignal>
 #include <cstdint>
 #include <cstdio>
@@ -72,11 +73,19 @@ Bytes readFile(const std::filesystem::path& path)
   return Bytes(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
+double g_slow = 0.0;  // --slow: inputs that take longer than this many seconds are named
+
 void run(const Bytes& input, const std::string& label)
 {
   std::snprintf(g_label, sizeof g_label, "%s", label.c_str());
   g_current = &input;
+  const auto start = std::chrono::steady_clock::now();
+  if (g_slow > 0)
+    std::fprintf(stderr, "replay: %s ...\r", g_label);
   LLVMFuzzerTestOneInput(input.data(), input.size());
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (g_slow > 0 && seconds > g_slow)
+    std::fprintf(stderr, "replay: %s took %.1f s\n", g_label, seconds);
   g_current = nullptr;
 }
 
@@ -138,6 +147,8 @@ void mutate(Bytes& b, const std::vector<Bytes>& corpus, std::mt19937_64& rng, si
 int main(int argc, char** argv)
 {
   long mutations = 0;
+  long save_mutation = -1;
+  std::string save_path;
   uint64_t seed = 1;
   size_t max_len = 4096;
   std::vector<std::filesystem::path> files;
@@ -149,6 +160,13 @@ int main(int argc, char** argv)
       mutations = std::atol(argv[++i]);
     else if (arg == "--seed" && i + 1 < argc)
       seed = std::strtoull(argv[++i], nullptr, 10);
+    else if (arg == "--save" && i + 2 < argc)
+    {
+      save_mutation = std::atol(argv[++i]);
+      save_path = argv[++i];
+    }
+    else if (arg == "--slow" && i + 1 < argc)
+      g_slow = std::atof(argv[++i]);
     else if (arg == "--max-len" && i + 1 < argc)
       max_len = std::strtoull(argv[++i], nullptr, 10);
     else if (std::filesystem::is_directory(arg))
@@ -187,6 +205,13 @@ int main(int argc, char** argv)
     const int rounds = 1 + static_cast<int>(rng() % 4);
     for (int r = 0; r < rounds; ++r)
       mutate(input, corpus, rng, max_len);
+    if (m == save_mutation)  // to keep an input that hangs (a crash saves itself)
+    {
+      std::ofstream(save_path, std::ios::binary).write(reinterpret_cast<const char*>(input.data()),
+                                                       static_cast<std::streamsize>(input.size()));
+      std::printf("replay: mutation %ld written to %s\n", m, save_path.c_str());
+      return 0;
+    }
     run(input, "mutation " + std::to_string(m) + " of seed " + std::to_string(seed));
   }
   std::printf("replay: %ld seeded mutations (seed %llu) ran clean\n", mutations, static_cast<unsigned long long>(seed));

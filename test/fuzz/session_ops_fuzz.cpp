@@ -1,5 +1,5 @@
 // Fuzz target: random sequences of Session operations (crease, rotate and its preview,
-// squash, undo, redo, reset, load) on a few starting papers with each solver, parameters
+// squash, undo, redo, reset, load, flat fold on chosen creases, vertex drag) on a few starting papers with each solver, parameters
 // bounded but sometimes NaN, infinite or huge. After every step: the model's invariants hold
 // (checkValidity), a refused operation changed nothing (paper bit-exact, revision, history),
 // a committed one made exactly one revision, and undo/redo walk a shadow history. At the end:
@@ -361,7 +361,20 @@ private:
       }
       default:
       {
-        if (in.flag())
+        // One byte picks among the rest: flat fold, vertex drag, and reset or load by its low
+        // bit, the flag that picked them before (half of those picks now fold or drag).
+        const uint8_t pick = in.byte();
+        if (pick % 4 == 2)
+        {
+          flatFold(in, before);
+          break;
+        }
+        if (pick % 4 == 3)
+        {
+          drag(in, before);
+          break;
+        }
+        if (pick % 2 == 1)
         {
           static const double sizes[] = { 1.0, 0.5, 3.0, 0.0, -1.0 };
           const double size = in.byte() % 4 == 0 ? in.special() : sizes[in.byte() % 5];
@@ -381,6 +394,79 @@ private:
       }
     }
     trace_ << '\n';
+  }
+
+  /// A fold on chosen creases: one to three segments of the crease pattern (through the paper's
+  /// vertices mostly), each valley, mountain or unfold, sometimes a non-finite angle; the face
+  /// that stays under a crease-pattern point. Committed, or a preview part of the way.
+  void flatFold(ByteReader& in, const Before& before)
+  {
+    const Paper& paper = session_.paper();
+    const auto patternPoint = [&](ByteReader& r) {
+      if (!paper.vertices.empty() && r.byte() % 4 != 0)
+        return Vec2(paper.vertices[r.index(static_cast<int>(paper.vertices.size()))].crease_pattern);
+      return Vec2(decodePoint(r, paper).head<2>());
+    };
+    std::vector<int> creases;
+    for (size_t e = 0; e < paper.edges.size(); ++e)
+      if (paper.edges[e].isCrease())
+        creases.push_back(static_cast<int>(e));
+    FlatFoldRequest request;
+    const int count = 1 + in.byte() % 3;
+    for (int i = 0; i < count; ++i)
+    {
+      CreaseLineAngle crease;
+      if (!creases.empty() && in.flag())  // along a crease there is: folds that can succeed
+      {
+        const Edge& edge = paper.edges[creases[in.index(static_cast<int>(creases.size()))]];
+        crease.start = paper.vertices[edge.vertices[0]].crease_pattern;
+        crease.end = paper.vertices[edge.vertices[1]].crease_pattern;
+      }
+      else
+      {
+        crease.start = patternPoint(in);
+        crease.end = patternPoint(in);
+      }
+      static const double angles[] = { M_PI, -M_PI, 0.0, M_PI / 2 };
+      crease.angle = in.byte() % 8 == 0 ? in.special() : angles[in.byte() % 4];
+      request.creases.push_back(crease);
+    }
+    request.fixed_point = patternPoint(in);
+    const bool commit = in.byte() % 4 != 0;
+    const double fraction = commit ? 1.0 : in.byte() % 8 == 0 ? in.special() : in.range(0.0, 1.0);
+    trace_ << (commit ? "flat_fold" : "flat_fold preview") << " of " << count << " creases, fixed "
+           << describe(Vec3(request.fixed_point.x(), request.fixed_point.y(), 0));
+    const auto result = session_.flatFold(request, commit, fraction);
+    outcome(result.ok(), result.message());
+    if (!result)
+      expectUnchanged(before, result.message());
+    else if (commit)
+      expectCommitted(before);
+    else
+    {
+      expectUnchanged(before, "preview");
+      check(session_.preview().has_value(), "a successful flat-fold preview left no preview");
+    }
+  }
+
+  /// A vertex dragged to a point (mostly near the paper), committed or previewed.
+  void drag(ByteReader& in, const Before& before)
+  {
+    const Paper& paper = session_.paper();
+    PullTarget target;
+    target.vertex = decodeId(in, static_cast<int>(paper.vertices.size()));
+    target.position = decodePoint(in, paper);
+    const bool commit = in.byte() % 4 != 0;
+    trace_ << (commit ? "drag_vertex " : "drag_vertex preview ") << target.vertex << " to "
+           << describe(target.position);
+    const auto result = session_.dragVertex(target, commit);
+    outcome(result.ok(), result.message());
+    if (!result)
+      expectUnchanged(before, result.message());
+    else if (commit)
+      expectCommitted(before);
+    else
+      expectUnchanged(before, "preview");
   }
 
   /// Loads the current paper again through FOLD (must succeed), or a damaged copy of it (a

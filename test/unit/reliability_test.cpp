@@ -12,6 +12,7 @@
 #include "virtual_origami/core/fold_io.h"
 #include "virtual_origami/core/session.h"
 #include "virtual_origami/core/session_journal.h"
+#include "virtual_origami/solvers/solver_factory.h"
 
 using namespace virtual_origami::core;
 using namespace virtual_origami::core::test;
@@ -98,6 +99,25 @@ TEST(Reliability, SheetSizesStayFarFromOverflow)
   }
   crumb.sheet_area = 0.0;
   EXPECT_FALSE(session.load(crumb, "crumb.fold").ok());
+}
+
+TEST(Reliability, ATurnOfMoreThanAWholeTurnIsRefusedNotFollowedWithoutEnd)
+{
+  // A finite angle of 1e300 rad once sent the staged solve of a turn the solver must follow
+  // into ~1e300 stages (session_ops/rotate-angle-1e300-stages-without-end).
+  Session session(creasedSquare());
+  session.setSolver(makeSolver("shape_matching"));
+  RotateRequest request;
+  request.click = p3(0.9, 0.6);
+  const uint64_t revision = session.revision();
+  for (double angle : { 1e300, -1e300, 7.0, -2 * M_PI - 1e-6 })
+  {
+    request.angle = angle;
+    const auto result = session.rotate(request, true);
+    ASSERT_FALSE(result.ok()) << angle;
+    EXPECT_NE(result.message().find("more than a whole turn"), std::string::npos) << result.message();
+  }
+  EXPECT_EQ(session.revision(), revision);
 }
 
 TEST(Reliability, LoadingADeviceOrADirectoryIsRefusedUnread)

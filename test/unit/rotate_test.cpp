@@ -179,6 +179,10 @@ TEST(Rotate, BadInputChangesNothing)
   request.click = p3(0.8, 0.5);
   request.angle = NAN;
   expectRejected(paper, request, "not finite");
+  request.angle = 1e300;  // finite, but the staged solve would never end
+  expectRejected(paper, request, "more than a whole turn");
+  request.angle = -2 * M_PI - 1e-6;
+  expectRejected(paper, request, "more than a whole turn");
   request.angle = 1.0;
   request.face = 7;
   expectRejected(paper, request, "face 7 does not exist");
