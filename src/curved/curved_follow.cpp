@@ -95,7 +95,8 @@ Status CurvedSheetFollower::setMaterial(const CurvedMaterial& material, const Su
   return success();
 }
 
-Expected<CurvedReport> CurvedSheetFollower::solveState(const Paper& paper, const std::vector<PullTarget>& pins)
+Expected<CurvedReport> CurvedSheetFollower::solveState(const Paper& paper, const std::vector<PullTarget>& pins,
+                                                       bool anew)
 {
   using Failure = Expected<CurvedReport>;
   if (const Status checked = checkPins(paper, pins); !checked)
@@ -105,7 +106,7 @@ Expected<CurvedReport> CurvedSheetFollower::solveState(const Paper& paper, const
   if (const Status checked = checkSurroundings(options_.surroundings); !checked)
     return Failure::failure(checked.message());
   const bool same_pattern = mesh_ && sameCreasePattern(*paper_, paper);
-  if (same_pattern && sameFoldedState(*paper_, paper))
+  if (!anew && same_pattern && sameFoldedState(*paper_, paper))
     return moveTo(pins);  // the pins alone moved: from the last balance
 
   // A new shape: the state's rigid faces are the start, on the kept mesh or a new one. The

@@ -214,8 +214,13 @@ void CurvedMeshSolverNode::onDrag(const VertexTarget::ConstPtr& drag)
 {
   if (drag->vertex < 0)
   {
-    let_go_ = let_go_ || drag_.has_value();
+    // Let go, the paper springs back to the state's own sheet (solved from its rigid faces: a
+    // bend undone by the solve would stop wherever the soft bending's forces fall below the
+    // tolerance).
+    const bool held = drag_.has_value();
     drag_.reset();
+    if (held && last_state_)
+      solveAndPublish(true);
     return;
   }
   const core::Vec3 position = toVec3(drag->position);
@@ -271,7 +276,7 @@ bool CurvedMeshSolverNode::currentPins(std::vector<core::PullTarget>& pins, ros:
   return true;
 }
 
-void CurvedMeshSolverNode::solveAndPublish()
+void CurvedMeshSolverNode::solveAndPublish(bool anew)
 {
   if (!config_.enabled || !follower_)
     return;
@@ -300,7 +305,7 @@ void CurvedMeshSolverNode::solveAndPublish()
   }
   if (stamp.isZero())
     stamp = last_state_->header.stamp;
-  const core::Expected<core::CurvedReport> report = follower_->solveState(*paper, pins);
+  const core::Expected<core::CurvedReport> report = follower_->solveState(*paper, pins, anew);
   if (!report)
   {
     // Never publish a diverged sheet; the last good one stays on the latched topic.
@@ -314,7 +319,7 @@ void CurvedMeshSolverNode::followFrames(const ros::TimerEvent&)
 {
   if (!config_.enabled || !follower_ || !follower_->hasSheet() || !last_state_)
     return;
-  bool on_frames = drag_.has_value() || let_go_;
+  bool on_frames = drag_.has_value();
   for (const Pin& pin : last_state_->pins)
     on_frames = on_frames || !pin.frame_id.empty();
   if (!on_frames)
@@ -334,10 +339,8 @@ void CurvedMeshSolverNode::followFrames(const ros::TimerEvent&)
   for (size_t i = 0; !moved && i < pins.size(); ++i)
     moved = pins[i].vertex != follower_->pins()[i].vertex ||
             (pins[i].position - follower_->pins()[i].position).norm() > still;
-  // A sheet let go springs back however long that takes (within reason): the wall-time
-  // budget of a solve must not leave it standing half bent on a busy machine.
-  const int resumes = let_go_ ? 200 : 5;
-  if (!moved && (follower_->balanced() || resumed_ >= resumes))
+  constexpr int kResumes = 5;
+  if (!moved && (follower_->balanced() || resumed_ >= kResumes))
     return;
   resumed_ = moved ? 0 : resumed_ + 1;
   const core::Expected<core::CurvedReport> report = follower_->follow(pins);
@@ -347,10 +350,8 @@ void CurvedMeshSolverNode::followFrames(const ros::TimerEvent&)
                       report.message().c_str());
     return;
   }
-  if (!drag_ && report->converged)
-    let_go_ = false;  // back on the state's own pins, balanced
   // Only balanced sheets are shown while frames move: an unbalanced one is solved on next cycle.
-  if (!report->converged && resumed_ < resumes)
+  if (!report->converged && resumed_ < kResumes)
     return;
   publish(stamp, *report, drag_ ? "mouse" : "frames");
 }

@@ -148,9 +148,8 @@ TEST_F(CurvedDrag, ACornerThreePinsHoldLiftsAsBentPaperAndSpringsBackWhenLetGo)
   EXPECT_NE(status_.message.find("springs back"), std::string::npos) << status_.message;
   EXPECT_TRUE(waitFor([&] { return front_.color.a == 1.0f; }, 5)) << "the flat paper stays faded";
   expectUnchanged();
-  // curved_mesh_solver's sheet lies flat on the state again, as balanced as its solve's force
-  // tolerance leaves it (it stops there, not at zero: 4e-7 of the side measured).
-  flatSheet(1e-5);
+  // curved_mesh_solver's sheet is the state's own again: solved from its flat faces, exactly flat.
+  flatSheet(1e-12);
 }
 
 TEST_F(CurvedDrag, WhereTheFacesFollowTheyDoAndLetGoTheyStayWhereTheyLastCould)

@@ -87,6 +87,12 @@ TEST(CurvedFollow, ALongMoveIsSplitAndTheSameStateKeepsItsBalance)
   EXPECT_EQ(follower.lastSteps(), 1);
   EXPECT_LT((follower.positions() - bent).cwiseAbs().maxCoeff(), 1e-6);
   EXPECT_GT(measureCurved(follower.mesh(), follower.paper(), follower.positions()).max_bend, 0.1);
+  // Let go of the corner and solved anew: the sheet of the flat state, exactly flat (going on
+  // from the bend it would stop wherever the soft bending's forces fall below the tolerance).
+  report = follower.solveState(paper, { lifted[0], lifted[1] }, true);
+  ASSERT_TRUE(report) << report.message();
+  EXPECT_TRUE(report->converged);
+  EXPECT_EQ(follower.positions().row(2).cwiseAbs().maxCoeff(), 0.0);
 }
 
 TEST(CurvedFollow, BadPinsAreRefusedAndChangeNothing)

@@ -39,7 +39,9 @@ public:
   /// exist or at a point that is not finite, a paper the mesher cannot mesh, a material or
   /// surroundings setMaterial would refuse (a paper thicker than the new mesh's spacing too), a
   /// move of more than max_steps steps, or a solve that diverges (the last balance stays).
-  Expected<CurvedReport> solveState(const Paper& paper, const std::vector<PullTarget>& pins);
+  /// `anew`: from the state's rigid faces even where the last balance could go on (paper let
+  /// go springs back to its rest, which no resolution of a soft bend by a force tolerance finds).
+  Expected<CurvedReport> solveState(const Paper& paper, const std::vector<PullTarget>& pins, bool anew = false);
 
   /// Another paper or surroundings (a physical paper's moduli, gravity): the sheet keeps its
   /// mesh and shape and solves on with them from the next solve. Refused, changing nothing, for

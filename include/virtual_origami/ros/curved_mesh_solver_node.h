@@ -50,7 +50,8 @@ private:
   /// A vertex held at the mouse (or let go): solved on the next follow cycle.
   void onDrag(const VertexTarget::ConstPtr& drag);
   void reconfigure(CurvedMeshSolverConfig& config, uint32_t level);
-  void solveAndPublish();
+  /// The last state solved (`anew`: from its rigid faces, not from the last balance).
+  void solveAndPublish(bool anew = false);
   void followFrames(const ros::TimerEvent&);
   /// The pins of the last state, those on frames at their frame's origin as tf has it now
   /// (`stamp`: the newest transform used, else left as it is), and the vertex the mouse holds;
@@ -68,7 +69,6 @@ private:
   ros::Subscriber state_sub_, drag_sub_;
   std::optional<core::PullTarget> drag_;  // the vertex the mouse holds where rigid faces cannot follow
   ros::Time drag_stamp_;
-  bool let_go_ = false;  // the mouse let go: the sheet goes back to the state's pins
   ros::Publisher mesh_pub_;
   ros::Timer follow_timer_;
   int resumed_ = 0;  // solves resumed on frames standing still since the sheet last balanced
