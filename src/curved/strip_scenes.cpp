@@ -65,20 +65,15 @@ Expected<StripScene> stripScene(double length, double width, bool held_end, doub
 
 Expected<CurvedMesh> meshStrip(const StripScene& scene, StripMesher mesher, double spacing)
 {
-  Expected<CurvedMesh> mesh = Expected<CurvedMesh>::failure("no mesher");
   if (mesher == StripMesher::Cgal)
   {
     CgalMeshOptions options;
     options.spacing = spacing;
-    mesh = cgalMesh(scene.paper, options);
+    return cgalMesh(scene.paper, options);
   }
-  else
-  {
-    BubbleMeshOptions options;
-    options.spacing = spacing;
-    mesh = bubbleMesh(scene.paper, options);
-  }
-  return mesh;
+  BubbleMeshOptions options;
+  options.spacing = spacing;
+  return bubbleMesh(scene.paper, options);
 }
 
 void holdStripZones(const StripScene& scene, CurvedMesh& mesh)

@@ -800,18 +800,7 @@ def run(out):
     steps, reference = reference_states(out)
     shots = []
     window = []
-
-    def shot(name, crop=None):
-        path = os.path.join(out, name)
-        box = crop or (window[2], window[3], window[0], window[1])
-        subprocess.run(['import', '-window', 'root', '-crop', '%dx%d+%d+%d' % box, '+repage', path], check=True)
-        shots.append(path)
-        return path
-
-    def view_shot(name):
-        """The render panel only."""
-        px, py, w, h = e2e.PANEL
-        return shot(name, (w, h, window[0] + px, window[1] + py))
+    shot, view_shot = e2e.shooters(out, window, shots)
 
     check = e2e.Checker()
     wait_for(lambda: check.state is not None, 60, 'no state from paper_model')

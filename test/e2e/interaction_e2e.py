@@ -338,10 +338,10 @@ def distance_to_triangle(q, a, b, c):
     return min(to_segment(a, b), to_segment(b, c), to_segment(c, a))
 
 
-def run(out):
-    shots = []
-    window = []
-
+def shooters(out, window, shots):
+    """shot(name, crop=None): a screenshot of the rviz `window` ([x, y, width, height], filled in
+    once rviz is up) or of `crop` into `out`; view_shot(name): of the render panel only (the status
+    bar counts frames per second). Each path is appended to `shots`."""
     def shot(name, crop=None):
         path = os.path.join(out, name)
         box = crop or (window[2], window[3], window[0], window[1])
@@ -350,8 +350,14 @@ def run(out):
         return path
 
     def view_shot(name):
-        """The render panel only (the status bar counts frames per second)."""
         return shot(name, (PANEL[2], PANEL[3], window[0] + PANEL[0], window[1] + PANEL[1]))
+    return shot, view_shot
+
+
+def run(out):
+    shots = []
+    window = []
+    shot, view_shot = shooters(out, window, shots)
 
     check = Checker()
     wait_for(lambda: check.state is not None, 60, 'no state from paper_model')

@@ -437,16 +437,7 @@ private:
     trace_ << (commit ? "flat_fold" : "flat_fold preview") << " of " << count << " creases, fixed "
            << describe(Vec3(request.fixed_point.x(), request.fixed_point.y(), 0));
     const auto result = session_.flatFold(request, commit, fraction);
-    outcome(result.ok(), result.message());
-    if (!result)
-      expectUnchanged(before, result.message());
-    else if (commit)
-      expectCommitted(before);
-    else
-    {
-      expectUnchanged(before, "preview");
-      check(session_.preview().has_value(), "a successful flat-fold preview left no preview");
-    }
+    expectAnswered(before, result.ok(), result.message(), commit);
   }
 
   /// A vertex dragged to a point (mostly near the paper), committed or previewed.
@@ -460,13 +451,23 @@ private:
     trace_ << (commit ? "drag_vertex " : "drag_vertex preview ") << target.vertex << " to "
            << describe(target.position);
     const auto result = session_.dragVertex(target, commit);
-    outcome(result.ok(), result.message());
-    if (!result)
-      expectUnchanged(before, result.message());
+    expectAnswered(before, result.ok(), result.message(), commit);
+  }
+
+  /// An operation that commits or previews: refused, it changed nothing; committed, it made one
+  /// revision; previewed, it left the history as it was and a preview there.
+  void expectAnswered(const Before& before, bool ok, const std::string& message, bool commit)
+  {
+    outcome(ok, message);
+    if (!ok)
+      expectUnchanged(before, message);
     else if (commit)
       expectCommitted(before);
     else
+    {
       expectUnchanged(before, "preview");
+      check(session_.preview().has_value(), "a successful preview left no preview");
+    }
   }
 
   /// Loads the current paper again through FOLD (must succeed), or a damaged copy of it (a

@@ -1,13 +1,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
+#include "crane_reference.h"
 #include "test_models.h"
 #include "virtual_origami/core/drag.h"
-#include "virtual_origami/core/fold_sequence.h"
-#include "virtual_origami/solvers/solver_factory.h"
 
 using namespace virtual_origami::core;
 using namespace virtual_origami::core::test;
@@ -232,13 +229,7 @@ TEST(RotationRing, ItsLimitsAreThoseOfTheLayersTheTurnCarries)
     for (bool carry : { true, false })
       expectRingLimitsAsRotateTurns(stackOfLayers(times), carry, checked);
   // The crane's flat states, up to eight layers (the script folds them).
-  std::ifstream file(std::string(VO_SOURCE_DIR) + "/test/data/crane_reference.json");
-  std::stringstream text;
-  text << file.rdbuf();
-  const Expected<FoldSequence> sequence = parseFoldSequence(text.str());
-  ASSERT_TRUE(sequence.ok()) << sequence.message();
-  Session session;
-  const Expected<std::vector<Paper>> states = foldSequence(*sequence, session, makeSolver(sequence->solver));
+  const Expected<std::vector<Paper>> states = craneStates();
   ASSERT_TRUE(states.ok()) << states.message();
   for (size_t i : { size_t(8), size_t(13), size_t(19) })  // the square base, the bird base, the crane before its wings
     for (bool carry : { true, false })

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "crane_reference.h"
 #include "test_models.h"
 #include "virtual_origami/core/fold_sequence.h"
 #include "virtual_origami/core/metrics.h"
@@ -162,8 +163,7 @@ TEST(FoldSequence, AFlatFoldIsCommittedAsTheFlatFoldOperation)
 // crane_by_mouse).
 TEST(FoldSequence, TheCraneFoldsAsItDidWhenFlatFoldsWerePulls)
 {
-  const Expected<FoldSequence> sequence =
-      parseFoldSequence(readFile(std::string(VO_SOURCE_DIR) + "/test/data/crane_reference.json"));
+  const Expected<FoldSequence> sequence = test::craneReference();
   ASSERT_TRUE(sequence.ok()) << sequence.message();
   Session session;
   const auto states = foldSequence(*sequence, session, makeSolver(sequence->solver));

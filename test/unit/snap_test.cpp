@@ -1,15 +1,11 @@
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <map>
 #include <set>
-#include <sstream>
 
+#include "crane_reference.h"
 #include "test_models.h"
-#include "virtual_origami/core/fold_sequence.h"
-#include "virtual_origami/core/session.h"
 #include "virtual_origami/core/snap.h"
-#include "virtual_origami/solvers/solver_factory.h"
 
 using namespace virtual_origami::core;
 using namespace virtual_origami::core::test;
@@ -114,14 +110,7 @@ TEST(Snap, WhereLayersCornersCoincideEachOffersTheAnglesOfEveryLayer)
   // The bird base (crane step 13): its open point and other points are corners of several
   // layers. A line started there must be offered the same directions whichever layer's vertex
   // the press snapped to (one of the four corners at the open point missed 22.5°).
-  std::ifstream file(std::string(VO_SOURCE_DIR) + "/test/data/crane_reference.json");
-  std::stringstream text;
-  text << file.rdbuf();
-  const Expected<FoldSequence> sequence = parseFoldSequence(text.str());
-  ASSERT_TRUE(sequence.ok()) << sequence.message();
-  Session session;
-  const Expected<std::vector<Paper>> states =
-      foldSequence(*sequence, session, makeSolver(sequence->solver));
+  const Expected<std::vector<Paper>> states = craneStates();
   ASSERT_TRUE(states.ok()) << states.message();
   const Paper& bird = (*states)[13];
   std::map<std::tuple<long, long, long>, std::vector<int>> at;  // vertices by folded point (1e-9 grid)
