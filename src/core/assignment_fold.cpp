@@ -137,12 +137,20 @@ Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFo
     if (std::isfinite(targets[e]))
       goal[e] = request.fraction * targets[e];
 
-  Paper work = paper;
+  // A preview frame works on the paper itself (a copy of a 10,000-vertex paper is a tenth of a
+  // frame's budget) and puts its positions back where the driver fails; a commit on a copy.
+  Paper copy;
+  if (request.converge)
+    copy = paper;
+  Paper& work = request.converge ? copy : paper;
   AssignmentFoldResult result;
   result.fraction = request.fraction;
   if (!request.converge)
   {
+    const Positions before = foldedPositions(paper);
     result.solve = driver.drive(work, goal, fixed);
+    if (result.solve.diverged)
+      setFoldedPositions(paper, before);
   }
   else
   {
@@ -219,7 +227,8 @@ Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFo
   result.face_strain = faceStrains(work);
   result.max_strain = result.face_strain.empty() ? 0.0 : *std::max_element(result.face_strain.begin(), result.face_strain.end());
   result.angle_error = angleError(work, goal);
-  paper = std::move(work);
+  if (request.converge)
+    paper = std::move(copy);
   return result;
 }
 

@@ -123,8 +123,11 @@ DrivenFaces::DrivenFaces(const Paper& paper, double face_stiffness)
   // Rest shapes in sheet-scale units, so that the energy is the same for any sheet size.
   std::vector<int> rigid_of_face(paper.faces.size(), -1);
   std::vector<double> size2;
+  int offset = 0;
   for (size_t r = 0; r < faces_.size(); ++r)
   {
+    face_offset_.push_back(offset);
+    offset += static_cast<int>(faces_[r].vertices.size());
     faces_[r].rest /= scale_;
     const double s2 = faces_[r].rest.colwise().squaredNorm().mean();
     size2.push_back(s2);
@@ -188,16 +191,20 @@ std::vector<double> DrivenFaces::angles(const Positions& x) const
   return out;
 }
 
-DrivenFaces::Evaluation DrivenFaces::evaluate(const Positions& x, Positions* gradient) const
+DrivenFaces::Evaluation DrivenFaces::evaluate(const Positions& x, Positions* gradient, Linearization* l) const
 {
   Evaluation out;
   if (gradient)
     gradient->setZero(3, x.cols());
+  if (l)
+    prepare(*l);
   for (size_t f = 0; f < faces_.size(); ++f)
   {
     const RigidFace& face = faces_[f];
     Eigen::Vector3d mean;
     const Eigen::Matrix3d r = fitFaceRotation(face, x, &mean);
+    if (l)
+      linearizeFace(f, r, *l);
     for (Eigen::Index k = 0; k < face.rest.cols(); ++k)
     {
       // With R_f fitted, dE/dx_v is the weighted residual itself (the fit is stationary in R).
@@ -215,13 +222,19 @@ DrivenFaces::Evaluation DrivenFaces::evaluate(const Positions& x, Positions* gra
     const double angle = unwrapNear(hingeAngle(h, x), reference_[h.edge]);
     const double miss = angle - target_[i];
     out.hinge_energy += 0.5 * h.weight * miss * miss;
-    if (gradient)
+    if (gradient || l)
     {
-      const Eigen::Matrix<double, 3, 4> g = hingeAngleGradient(h, x) * (h.weight * miss);
-      gradient->col(h.a) += g.col(0);
-      gradient->col(h.b) += g.col(1);
-      gradient->col(h.left) += g.col(2);
-      gradient->col(h.right) += g.col(3);
+      const Eigen::Matrix<double, 3, 4> unit = hingeAngleGradient(h, x);
+      if (l)
+        l->hinge_gradient.push_back(unit);
+      if (gradient)
+      {
+        const Eigen::Matrix<double, 3, 4> g = unit * (h.weight * miss);
+        gradient->col(h.a) += g.col(0);
+        gradient->col(h.b) += g.col(1);
+        gradient->col(h.left) += g.col(2);
+        gradient->col(h.right) += g.col(3);
+      }
     }
   }
   out.energy = out.face_energy + out.hinge_energy;
@@ -341,21 +354,34 @@ void DrivenFaces::gaussNewtonTriplets(const Positions& x, const std::vector<int>
   }
 }
 
+void DrivenFaces::prepare(Linearization& l) const
+{
+  const int corners = faces_.empty() ? 0 : face_offset_.back() + static_cast<int>(faces_.back().vertices.size());
+  l.turned_rest.resize(3, corners);
+  l.inertia_inverse.resize(faces_.size());
+  l.hinge_gradient.clear();
+  l.hinge_gradient.reserve(hinges_.size());
+}
+
+void DrivenFaces::linearizeFace(size_t f, const Eigen::Matrix3d& r, Linearization& l) const
+{
+  const RigidFace& face = faces_[f];
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+  for (Eigen::Index k = 0; k < face.rest.cols(); ++k)
+  {
+    const Eigen::Vector3d q = r.leftCols<2>() * face.rest.col(k);
+    l.turned_rest.col(face_offset_[f] + k) = q;
+    inertia += q.squaredNorm() * Eigen::Matrix3d::Identity() - q * q.transpose();
+  }
+  l.inertia_inverse[f] = inertia.inverse();
+}
+
 DrivenFaces::Linearization DrivenFaces::linearize(const Positions& x) const
 {
   Linearization l;
-  l.turned_rest.reserve(faces_.size());
-  l.inertia_inverse.reserve(faces_.size());
-  for (const RigidFace& face : faces_)
-  {
-    const Eigen::Matrix3d r = fitFaceRotation(face, x, nullptr);
-    Eigen::Matrix3Xd q = r.leftCols<2>() * face.rest;
-    Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
-    for (Eigen::Index k = 0; k < q.cols(); ++k)
-      inertia += q.col(k).squaredNorm() * Eigen::Matrix3d::Identity() - q.col(k) * q.col(k).transpose();
-    l.turned_rest.push_back(std::move(q));
-    l.inertia_inverse.push_back(inertia.inverse());
-  }
+  prepare(l);
+  for (size_t f = 0; f < faces_.size(); ++f)
+    linearizeFace(f, fitFaceRotation(faces_[f], x, nullptr), l);
   for (size_t i = 0; i < hinges_.size(); ++i)
     if (std::isfinite(target_[i]))
       l.hinge_gradient.push_back(hingeAngleGradient(hinges_[i], x));
@@ -368,7 +394,7 @@ void DrivenFaces::gaussNewtonProduct(const Linearization& l, const Positions& v,
   for (size_t f = 0; f < faces_.size(); ++f)
   {
     const std::vector<int>& vs = faces_[f].vertices;
-    const Eigen::Matrix3Xd& q = l.turned_rest[f];
+    const auto q = l.turned_rest.middleCols(face_offset_[f], static_cast<Eigen::Index>(vs.size()));
     Eigen::Vector3d turn = Eigen::Vector3d::Zero(), mean = Eigen::Vector3d::Zero();
     for (size_t k = 0; k < vs.size(); ++k)
     {

@@ -90,6 +90,7 @@ struct QuasiNewtonDriver::Setup
   std::vector<Vec2> crease_pattern;
   std::vector<char> fixed;
   std::vector<char> driven_edges;
+  std::vector<Spring> springs;  // for the strain reported
   DrivenFaces energy;
   std::vector<int> free_index, free_vertices;
   Factor factor;  // the constant matrix
@@ -101,9 +102,11 @@ struct QuasiNewtonDriver::Setup
   std::vector<int> slots;  // where each of the triplets lands among the matrix's values
   double factor_seconds = 0.0;  // wall time the last factorisation took
   double restore_seconds = 0.0;  // wall time the last restoring step took
+  double evaluate_seconds = 0.0;  // wall time the last energy pass of a line search took
   // The last two frames this driver returned (as in the paper) and their targets, and where
   // the last one started.
   Positions last, before_last, last_start;
+  Eigen::MatrixX3d last_motion;  // the last call's own motion (free vertices, sheet units)
   std::vector<double> last_target, before_last_target;
   bool last_balanced = true;  // whether the last frame reached balance within its budget
   bool last_continued = false;  // the last frame went on from the one before it
@@ -111,7 +114,7 @@ struct QuasiNewtonDriver::Setup
 
   Setup(const Paper& paper, const std::vector<char>& held, const std::vector<double>& target, double stiffness)
     : crease_pattern(creasePattern(paper)), fixed(held), driven_edges(drivenEdges(paper, target)),
-      energy(paper, stiffness)
+      springs(faceSprings(paper)), energy(paper, stiffness)
   {
     for (const Face& face : paper.faces)
       face_vertices.push_back(face.vertices);
@@ -214,7 +217,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
   const Positions start = foldedPositions(paper);
   const double scale = energy.scale();
   Positions x = start / scale;
-  const std::vector<Spring> springs = faceSprings(paper);
+  const std::vector<Spring>& springs = s.springs;
   if (!s.factored || s.free_vertices.empty())
   {
     report.max_strain = springStrain(springs, start).max;
@@ -229,8 +232,16 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
   // Start from a prediction along the motion when this is the frame after the last two (the
   // last went on from the one before it: a new slide's second frame has no motion to go by).
   const bool continues = s.last.cols() == x.cols() && s.last == start;
-  const bool predicts = options_.predict && continues && s.last_continued && s.before_last.cols() == x.cols() &&
-                        s.last_target.size() == target.size();
+  // A frame whose budget cannot pay for a factorisation of the Gauss–Newton matrix, going on
+  // from the last frame along its motion: its steps come from the subspace of that motion and
+  // the constant matrix's conjugate directions (subspaceStep below), no factorisation used.
+  const bool motion_known = (continues && s.last_start.cols() == x.cols() && s.last_start != s.last) ||
+                            s.last_motion.rows() == static_cast<Eigen::Index>(s.free_vertices.size());
+  const bool subspace_frame = options_.hessian == DriverHessian::Lagged && options_.subspace_frames &&
+                              (motion_known || s.gauss_newton.valid()) && limits_.max_seconds > 0 &&
+                              limits_.max_seconds < options_.subspace_below_seconds;
+  const bool predicts = options_.predict && !(subspace_frame && !options_.subspace_predict) && continues &&
+                        s.last_continued && s.before_last.cols() == x.cols() && s.last_target.size() == target.size();
   // The energy where the frame starts: a prediction needs only its value, whose face term is
   // the last frame's (the same positions); the full pass (with the gradient) is paid for only
   // where the frame goes on from there.
@@ -240,10 +251,17 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
   // What an energy pass and a back-substitution cost here: a frame's budget is spent only on
   // work that ends within it (the last step's line search and the report come after).
   double evaluate_seconds = 0.0;
+  // A subspace frame linearises where it starts in the same pass (the faces' fits shared).
+  DrivenFaces::Linearization start_linearization;
+  bool start_linearized = false;
   const auto evaluateStart = [&]() {
     const double evaluate_from = budget.seconds();
-    now = energy.evaluate(x, &gradient);
+    now = energy.evaluate(x, &gradient, subspace_frame ? &start_linearization : nullptr);
+    start_linearized = subspace_frame;
     evaluate_seconds = budget.seconds() - evaluate_from;
+    // The line search's passes do not linearise: budget them as the last plain pass took.
+    if (subspace_frame && s.evaluate_seconds > 0)
+      evaluate_seconds = s.evaluate_seconds;
     start_evaluated = true;
   };
   if (predicts)
@@ -266,13 +284,22 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
   Eigen::MatrixX3d motion;
   if (continues && s.last_start.cols() == x.cols())
     motion = gather(s.last - s.last_start, free) / scale;
+  // A subspace frame that starts a slide goes by the last motion this driver made elsewhere on
+  // the pattern: the mechanism turns much the same way there, and the Galerkin step says how far.
+  else if (subspace_frame && s.last_motion.rows() == static_cast<Eigen::Index>(free.size()))
+    motion = s.last_motion;
   // One step of the constant matrix from `at` (rotations fitted, the faces' shapes restored),
   // taken where it lowers the energy: what a linear step along turning faces stretched, taken
   // out for about one back-substitution.
+  // A subspace frame's rigid motions, made once where it starts (they only keep the steps from
+  // drifting the floating sheet: a frame's small motion does not change them measurably).
+  std::optional<RigidMotions> frame_rigid;
   const auto restoreFaces = [&](Positions& at, Positions& at_gradient, DrivenFaces::Evaluation& at_energy) {
     const SolveBudget clock(SolveLimits{});
     Eigen::MatrixX3d restore = -s.factor.solve(gather(at_gradient, free));
-    if (!anchored)
+    if (frame_rigid)
+      frame_rigid->remove(restore);
+    else if (!anchored)
       RigidMotions(at, free).remove(restore);
     for (double length = 1.0; length >= 0.25; length *= 0.5)
     {
@@ -380,7 +407,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
         s.gauss_newton.solve(Eigen::Map<const Eigen::VectorXd>(rows.data(), rows.size()));
     return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(solved.data(), rows.rows(), 3);
   };
-  bool refresh = options_.hessian != DriverHessian::Constant &&
+  bool refresh = !subspace_frame && options_.hessian != DriverHessian::Constant &&
                  (options_.hessian == DriverHessian::Exact || !s.gauss_newton.valid());
 
   Eigen::MatrixX3d g = gather(gradient, free);
@@ -483,6 +510,67 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
     if (c.allFinite())
       direction = c(0) * direction + c(1) * m;
   };
+  // A frame's step without the Gauss–Newton factorisation: the Galerkin step of the
+  // Gauss–Newton model over the last frame's motion and conjugate directions of the constant
+  // matrix (conjugate gradients augmented by the motion). The constant matrix calls a
+  // mechanism's turn stiff, the motion is that turn; the matrix restores what the motion's
+  // linear step stretches. Each direction costs one back-substitution of the constant
+  // (scalar) factor and one product, a fifth of a back-substitution of the kept one.
+  double subspace_add_seconds = 0.0;
+  const auto subspaceStep = [&](const DrivenFaces::Linearization& l, const RigidMotions* rigid) -> Eigen::MatrixX3d {
+    const double step_from = budget.seconds();
+    Eigen::MatrixX3d r = -g;
+    if (rigid)
+      rigid->remove(r);
+    const double goal = options_.krylov_tolerance * std::sqrt(dot(r, r));
+    std::vector<Eigen::MatrixX3d> basis, basis_product;  // H-orthonormal u_i and H u_i
+    Eigen::MatrixX3d step = Eigen::MatrixX3d::Zero(r.rows(), 3);
+    step_product = Eigen::MatrixX3d::Zero(r.rows(), 3);
+    const auto add = [&](Eigen::MatrixX3d v) {
+      if (rigid)
+        rigid->remove(v);
+      Eigen::MatrixX3d hv = multiply(l, v);
+      const double before = dot(v, hv);
+      for (size_t i = 0; i < basis.size(); ++i)
+      {
+        const double c = dot(basis_product[i], v);
+        v -= c * basis[i];
+        hv -= c * basis_product[i];
+      }
+      const double norm2 = dot(v, hv);
+      if (!(norm2 > 1e-10 * before))
+        return;
+      const double norm = std::sqrt(norm2);
+      basis.push_back(v / norm);
+      basis_product.push_back(hv / norm);
+      const double c = dot(basis.back(), r);
+      step += c * basis.back();
+      step_product += c * basis_product.back();
+      r -= c * basis_product.back();
+    };
+    // No motion yet (a slide's first frame): the kept matrix's step in its place, which
+    // points along the turn the balance takes, if too short.
+    if (motion.size() > 0)
+      add(motion);
+    if (!continues && s.gauss_newton.valid())
+      add(precondition(r));
+    krylov_cut = false;
+    for (int k = 0; k < options_.subspace_directions; ++k)
+    {
+      if (std::sqrt(dot(r, r)) <= goal)
+        break;
+      if (k > 0 && !fits(subspace_add_seconds))
+      {
+        krylov_cut = true;
+        break;
+      }
+      const double add_from = budget.seconds();
+      add(s.factor.solve(r));
+      subspace_add_seconds = budget.seconds() - add_from;
+    }
+    solve_seconds = budget.seconds() - step_from;  // what the next iteration's step will cost
+    return step;
+  };
   Positions trial = x, trial_gradient;
   std::string stuck;
   bool diverged = !std::isfinite(now.energy);
@@ -516,8 +604,18 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
       }
     }
     Eigen::MatrixX3d direction;
-    const std::optional<RigidMotions> rigid = anchored ? std::nullopt : std::make_optional<RigidMotions>(x, free);
-    if (options_.hessian == DriverHessian::Lagged)
+    if (subspace_frame && !anchored && !frame_rigid)
+      frame_rigid.emplace(x, free);
+    const std::optional<RigidMotions> rigid =
+        anchored || subspace_frame ? std::nullopt : std::make_optional<RigidMotions>(x, free);
+    if (subspace_frame)
+    {
+      if (!start_linearized)
+        start_linearization = energy.linearize(x);
+      start_linearized = false;  // x moves on
+      direction = subspaceStep(start_linearization, frame_rigid ? &*frame_rigid : nullptr);
+    }
+    else if (options_.hessian == DriverHessian::Lagged)
     {
       const DrivenFaces::Linearization linearization = energy.linearize(x);
       direction = newtonKrylovStep(linearization, rigid ? &*rigid : nullptr);
@@ -526,8 +624,9 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
     }
     else
       direction = lbfgsStep();
-    if (rigid)
-      rigid->remove(direction);
+    const RigidMotions* drift = rigid ? &*rigid : (frame_rigid ? &*frame_rigid : nullptr);
+    if (drift)
+      drift->remove(direction);
     // Balanced when the step the model predicts moves nothing measurably. A Newton–Krylov step
     // the budget cut short (one or two iterations on a matrix kept from another state) can be
     // small far from balance: it does not tell.
@@ -546,8 +645,8 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
       changes.clear();
       rho.clear();
       direction = -precondition(g);
-      if (rigid)
-        rigid->remove(direction);
+      if (drift)
+        drift->remove(direction);
       slope = dot(g, direction);
       if (!(slope < 0))
       {
@@ -563,7 +662,9 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
       trial = x;
       for (size_t i = 0; i < free.size(); ++i)
         trial.col(free[i]) += step_length * direction.row(static_cast<Eigen::Index>(i)).transpose();
+      const double evaluate_from = budget.seconds();
       next = energy.evaluate(trial, &trial_gradient);
+      s.evaluate_seconds = budget.seconds() - evaluate_from;
       if (next.energy <= now.energy + options_.armijo * step_length * slope)
       {
         accepted = true;
@@ -588,7 +689,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
     if (!accepted)
     {
       // A fresh matrix may still find a way down.
-      if (options_.hessian == DriverHessian::Lagged && !steps.empty())
+      if (options_.hessian == DriverHessian::Lagged && !subspace_frame && !steps.empty())
       {
         refresh = true;
         continue;
@@ -621,7 +722,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
     const bool room = limits_.max_seconds <= 0 ||
                       limits_.max_seconds - budget.seconds() > 2 * s.factor_seconds;
     if (options_.hessian == DriverHessian::Exact ||
-        (options_.hessian == DriverHessian::Lagged && room &&
+        (options_.hessian == DriverHessian::Lagged && room && !subspace_frame &&
          (krylov_slow || step_size > options_.refresh_ratio * last_step)))
       refresh = true;
     last_step = step_size;
@@ -638,6 +739,10 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
     for (size_t i = 0; i < free.size(); ++i)
       x_gradient.col(free[i]) = g.row(static_cast<Eigen::Index>(i)).transpose();
     restoreFaces(x, x_gradient, now);
+    // A subspace frame that still shows strain above `restore_strain` (a slide's second frame,
+    // whose motion to follow came from a frame without one) restores once more.
+    if (subspace_frame && springStrain(springs, x * scale).max > options_.restore_strain)
+      restoreFaces(x, x_gradient, now);
   }
   report.seconds = budget.seconds();
   if (diverged)
@@ -657,6 +762,8 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
   s.before_last_target = s.last_target;
   s.last_start = start;
   s.last = result;
+  if (result != start)
+    s.last_motion = gather(result - start, free) / scale;
   s.last_target = target;
   s.last_continued = continues;
   s.last_face_energy = now.face_energy;

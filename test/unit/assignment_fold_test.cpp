@@ -412,6 +412,52 @@ TEST(AssignmentFold, AnytimeSlideOnAUsedDriverFollowsTheBalance)
   EXPECT_LE(distance / slid.scale(), 5e-3);
 }
 
+// Frames within a time budget too small for a factorisation (paper_model's previews) take their
+// steps in the subspace of the last motion and the constant matrix's directions: on a driver
+// that balanced other frames first, a slide keeps its faces within the strain a preview may
+// show and stays near the balanced path, whether the budget allows one iteration or many.
+TEST(AssignmentFold, BudgetedSlideFollowsTheBalanceWithoutAFactorisation)
+{
+  const Paper flat = miuraTessellation(20, 20).value().paper;
+  for (const double budget : { 1e-9, 0.05 })
+  {
+    QuasiNewtonDriver driver;
+    NewtonSolver rigid;
+    Paper start = flat;
+    AssignmentFoldRequest commit;
+    commit.fraction = 0.3;
+    ASSERT_TRUE(foldByAssignment(start, commit, driver, &rigid));
+    AssignmentFoldRequest preview;
+    preview.converge = false;
+    driver.setLimits(SolveLimits{ 1e-6, 5000, 0.0 });
+    Paper balanced = start;
+    for (int k = 1; k <= 5; ++k)
+    {
+      preview.fraction = 0.3 + 0.01 * k;
+      const Expected<AssignmentFoldResult> r = foldByAssignment(balanced, preview, driver, nullptr);
+      ASSERT_TRUE(r && r->solve.converged) << "balanced frame " << k;
+    }
+    driver.setLimits(SolveLimits{ 1e-6, 5000, budget });
+    Paper slid = start;
+    for (int k = 1; k <= 40; ++k)
+    {
+      preview.fraction = 0.3 + 0.01 * k;
+      const Expected<AssignmentFoldResult> r = foldByAssignment(slid, preview, driver, nullptr);
+      ASSERT_TRUE(r) << r.message();
+      EXPECT_LE(r->max_strain, 1e-3) << "budget " << budget << " s, frame " << k;
+    }
+    const auto reference = makeCreaseDriver("quasi_newton");
+    reference->setLimits(SolveLimits{ 1e-9, 5000, 0.0 });
+    Paper balance = slid;
+    const Expected<AssignmentFoldResult> exact = foldByAssignment(balance, preview, *reference, nullptr);
+    ASSERT_TRUE(exact && exact->solve.converged);
+    double distance = 0.0;
+    for (size_t v = 0; v < slid.vertices.size(); ++v)
+      distance = std::max(distance, (slid.vertices[v].folded - balance.vertices[v].folded).norm());
+    EXPECT_LE(distance / slid.scale(), 5e-3) << "budget " << budget << " s";
+  }
+}
+
 TEST(AssignmentFold, BadInputChangesNothing)
 {
   const auto d = makeCreaseDriver("quasi_newton");

@@ -50,8 +50,10 @@ public:
     double face_energy = 0.0;
     double hinge_energy = 0.0;
   };
-  /// Energy at x (positions divided by scale()), and its gradient dE/dx when asked.
-  Evaluation evaluate(const Positions& x, Positions* gradient = nullptr) const;
+  struct Linearization;
+  /// Energy at x (positions divided by scale()), and its gradient dE/dx when asked; and the
+  /// Gauss–Newton linearisation at x when asked (as linearize(x), the faces' fits shared).
+  Evaluation evaluate(const Positions& x, Positions* gradient = nullptr, Linearization* linearization = nullptr) const;
 
   /// The hinge term of the energy alone at x (no face fitted: a fraction of evaluate's cost).
   double hingeEnergy(const Positions& x) const;
@@ -77,9 +79,11 @@ public:
 
   /// The Gauss–Newton matrix at one state, kept as factors per face and hinge so that its
   /// product with a vector costs one pass over them (Newton–Krylov), never assembled.
+  /// Flat arrays, no allocation per face: a 10,000-vertex pattern's linearisation is a
+  /// preview frame's hot path.
   struct Linearization
   {
-    std::vector<Eigen::Matrix3Xd> turned_rest;  // q_v = R_f p̃_v per face vertex
+    Eigen::Matrix3Xd turned_rest;  // q_v = R_f p̃_v per face vertex, faces one after another
     std::vector<Eigen::Matrix3d> inertia_inverse;
     std::vector<Eigen::Matrix<double, 3, 4>> hinge_gradient;  // driven hinges, in order
   };
@@ -94,7 +98,11 @@ public:
   double faceStiffness() const { return stiffness_; }
 
 private:
+  void prepare(Linearization& linearization) const;
+  void linearizeFace(size_t face, const Eigen::Matrix3d& rotation, Linearization& linearization) const;
+
   std::vector<RigidFace> faces_;
+  std::vector<int> face_offset_;  // where each face's vertices start in Linearization::turned_rest
   std::vector<double> face_weight_;  // K / s_f²
   std::vector<Hinge> hinges_;
   std::vector<double> target_;       // per hinge, NaN when free

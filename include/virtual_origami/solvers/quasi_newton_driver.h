@@ -59,6 +59,16 @@ struct QuasiNewtonOptions
   /// End a frame its limits stopped short of balance with one step of the constant matrix that
   /// restores the faces its last (linear) step stretched; room for it is kept in a time budget.
   bool restore_final_faces = true;
+  /// Lagged: a frame whose time budget is below `subspace_below_seconds` and that goes on from
+  /// the last frame's motion takes its steps in the subspace of that motion and up to
+  /// `subspace_directions` conjugate directions of the constant matrix (no factorisation).
+  bool subspace_frames = true;
+  double subspace_below_seconds = 0.1;
+  int subspace_directions = 6;
+  /// Such frames start from the prediction along the motion too.
+  bool subspace_predict = false;
+  /// A subspace frame that ends with more strain than this restores its faces once more.
+  double restore_strain = 5e-4;
 };
 
 class QuasiNewtonDriver : public CreaseDriver
