@@ -1,14 +1,79 @@
 #include "virtual_origami/curved/spd_factorization.h"
 
 #include <algorithm>
+#include <mutex>
 
 #include <Eigen/CholmodSupport>
 
 namespace virtual_origami::core
 {
+namespace
+{
+/// Eigen's supernodal LLᵀ with its symbolic factor reachable, so that it can be copied out and in.
+class SupernodalLLT : public Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower>
+{
+public:
+  /// The symbolic factor right after analyzePattern (before any numeric factorisation).
+  const cholmod_factor* factor() const { return m_cholmodFactor; }
+  /// Takes a copy of another analysis of the same pattern in place of analyzePattern.
+  bool adopt(const cholmod_factor* symbolic)
+  {
+    if (m_cholmodFactor)
+      cholmod_free_factor(&m_cholmodFactor, &cholmod());
+    m_cholmodFactor = cholmod_copy_factor(const_cast<cholmod_factor*>(symbolic), &cholmod());
+    m_isInitialized = m_cholmodFactor != nullptr;
+    m_info = m_cholmodFactor ? Eigen::Success : Eigen::NumericalIssue;
+    m_analysisIsOk = m_cholmodFactor != nullptr;
+    m_factorizationIsOk = false;
+    return m_analysisIsOk;
+  }
+};
+}  // namespace
+
+class SpdFactorization::SharedAnalysis
+{
+public:
+  SharedAnalysis() { cholmod_start(&common_); }
+  ~SharedAnalysis()
+  {
+    if (symbolic_)
+      cholmod_free_factor(&symbolic_, &common_);
+    cholmod_finish(&common_);
+  }
+  SharedAnalysis(const SharedAnalysis&) = delete;
+  SharedAnalysis& operator=(const SharedAnalysis&) = delete;
+
+  std::mutex mutex;
+  Eigen::SparseMatrix<double> pattern;
+
+  const cholmod_factor* symbolic() const { return symbolic_; }
+  void keep(const Eigen::SparseMatrix<double>& analysed, const cholmod_factor* symbolic)
+  {
+    if (symbolic_)
+      cholmod_free_factor(&symbolic_, &common_);
+    symbolic_ = cholmod_copy_factor(const_cast<cholmod_factor*>(symbolic), &common_);
+    pattern = symbolic_ ? analysed : Eigen::SparseMatrix<double>();
+  }
+
+private:
+  cholmod_common common_;
+  cholmod_factor* symbolic_ = nullptr;
+};
+
+std::unique_lock<std::mutex> lockBlas()
+{
+  static std::mutex blas;
+  return std::unique_lock<std::mutex>(blas);
+}
+
+std::shared_ptr<SpdFactorization::SharedAnalysis> SpdFactorization::makeSharedAnalysis()
+{
+  return std::make_shared<SharedAnalysis>();
+}
+
 struct SpdFactorization::Impl
 {
-  Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt;
+  SupernodalLLT llt;
   Eigen::SparseMatrix<double> pattern;  // the matrix the analysis was done for (values unused)
   // Not positive definite is an answer here (the damping then rises), not a warning to print.
   Impl() { llt.cholmod().print = 0; }
@@ -36,6 +101,17 @@ bool SpdFactorization::factorize(const Eigen::SparseMatrix<double>& a, double sh
   {
     impl_->pattern = a;
     impl_->pattern.makeCompressed();
+    std::unique_lock<std::mutex> shared_lock;
+    if (shared_)
+    {
+      shared_lock = std::unique_lock<std::mutex>(shared_->mutex);
+      if (shared_->symbolic() && samePattern(impl_->pattern, shared_->pattern) &&
+          impl_->llt.adopt(shared_->symbolic()))
+      {
+        shared_lock.unlock();
+        return finishFactorize(a, shift);
+      }
+    }
     // Nested dissection (METIS) for a large mesh's matrix: against CHOLMOD's default choice
     // (minimum degree there) it halves the factorisation's flops on a 10,000-node sheet and
     // cuts a tenth of the factor, for an analysis done once per pattern.
@@ -49,8 +125,16 @@ bool SpdFactorization::factorize(const Eigen::SparseMatrix<double>& a, double sh
       impl_->llt.analyzePattern(impl_->pattern);
     }
     ++analyses_;
+    if (shared_ && impl_->llt.info() == Eigen::Success)
+      shared_->keep(impl_->pattern, impl_->llt.factor());
   }
+  return finishFactorize(a, shift);
+}
+
+bool SpdFactorization::finishFactorize(const Eigen::SparseMatrix<double>& a, double shift)
+{
   impl_->llt.setShift(shift);
+  const std::unique_lock<std::mutex> blas = lockBlas();
   impl_->llt.factorize(a);
   valid_ = impl_->llt.info() == Eigen::Success;
   rows_ = static_cast<int>(a.rows());
@@ -59,6 +143,7 @@ bool SpdFactorization::factorize(const Eigen::SparseMatrix<double>& a, double sh
 
 Eigen::VectorXd SpdFactorization::solve(const Eigen::VectorXd& b) const
 {
+  const std::unique_lock<std::mutex> blas = lockBlas();
   return impl_->llt.solve(b);
 }
 

@@ -9,6 +9,7 @@
 #include <Eigen/Sparse>
 
 #include "virtual_origami/core/face_springs.h"
+#include "virtual_origami/curved/spd_factorization.h"
 #include "virtual_origami/solvers/rigid_faces.h"
 #include "virtual_origami/solvers/solve_budget.h"
 
@@ -139,6 +140,7 @@ public:
       values[i] += mu;
     if (supernodal_)
     {
+      const std::unique_lock<std::mutex> blas = lockBlas();
       supernodal_->factorize(matrix_);
       return supernodal_->info() == Eigen::Success;
     }
@@ -152,7 +154,11 @@ public:
     Eigen::VectorXd ordered(size_);
     for (int i = 0; i < size_ / 3; ++i)
       ordered.segment<3>(3 * block_order_[i]) = rhs.segment<3>(3 * i);
-    const Eigen::VectorXd solution = supernodal_ ? Eigen::VectorXd(supernodal_->solve(ordered)) : Eigen::VectorXd(solver_.solve(ordered));
+    const Eigen::VectorXd solution = supernodal_ ? [&]() {
+      const std::unique_lock<std::mutex> blas = lockBlas();
+      return Eigen::VectorXd(supernodal_->solve(ordered));
+    }()
+                                                 : Eigen::VectorXd(solver_.solve(ordered));
     Eigen::VectorXd result(size_);
     for (int i = 0; i < size_ / 3; ++i)
       result.segment<3>(3 * i) = solution.segment<3>(3 * block_order_[i]);

@@ -112,10 +112,12 @@ struct QuasiNewtonDriver::Setup
   bool last_continued = false;  // the last frame went on from the one before it
   double last_face_energy = 0.0;  // the face term of the energy at the last frame
 
-  Setup(const Paper& paper, const std::vector<char>& held, const std::vector<double>& target, double stiffness)
+  Setup(const Paper& paper, const std::vector<char>& held, const std::vector<double>& target, double stiffness,
+        std::shared_ptr<SpdFactorization::SharedAnalysis> analysis)
     : crease_pattern(creasePattern(paper)), fixed(held), driven_edges(drivenEdges(paper, target)),
       springs(faceSprings(paper)), energy(paper, stiffness)
   {
+    gauss_newton.shareAnalysis(std::move(analysis));
     for (const Face& face : paper.faces)
       face_vertices.push_back(face.vertices);
     free_index = freeIndices(fixed, paper.vertices.size(), &free_count);
@@ -136,8 +138,17 @@ struct QuasiNewtonDriver::Setup
     for (int i = 0; i < free_count; ++i)
       matrix.coeffRef(i, i) += shift;
     factor.cholmod().print = 0;  // not definite is answered below, not printed
-    factor.compute(matrix);
+    {
+      const std::unique_lock<std::mutex> blas = lockBlas();
+      factor.compute(matrix);
+    }
     factored = factor.info() == Eigen::Success;
+  }
+
+  Eigen::MatrixX3d solveConstant(const Eigen::MatrixX3d& rhs) const
+  {
+    const std::unique_lock<std::mutex> blas = lockBlas();
+    return factor.solve(rhs);
   }
 
   bool matches(const Paper& paper, const std::vector<char>& held, const std::vector<double>& target) const
@@ -169,7 +180,8 @@ struct QuasiNewtonDriver::Setup
   }
 };
 
-QuasiNewtonDriver::QuasiNewtonDriver(QuasiNewtonOptions options) : options_(options)
+QuasiNewtonDriver::QuasiNewtonDriver(QuasiNewtonOptions options)
+  : options_(options), analysis_(SpdFactorization::makeSharedAnalysis())
 {
   face_stiffness_ = options.face_stiffness;
   limits_.tolerance = 1e-9;
@@ -194,6 +206,7 @@ std::string QuasiNewtonDriver::name() const
 std::unique_ptr<CreaseDriver> QuasiNewtonDriver::clone() const
 {
   auto copy = std::make_unique<QuasiNewtonDriver>(options_);
+  copy->analysis_ = analysis_;
   copy->setLimits(limits_);
   copy->setFaceStiffness(face_stiffness_);
   return copy;
@@ -205,7 +218,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
   SolveBudget budget(limits_);
   SolveReport report;
   if (!setup_ || !setup_->matches(paper, fixed, target) || setup_->energy.faceStiffness() != face_stiffness_)
-    setup_ = std::make_unique<Setup>(paper, fixed, target, face_stiffness_);
+    setup_ = std::make_unique<Setup>(paper, fixed, target, face_stiffness_, analysis_);
   Setup& s = *setup_;
   DrivenFaces& energy = s.energy;
   energy.setTargets(target);
@@ -296,7 +309,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
   std::optional<RigidMotions> frame_rigid;
   const auto restoreFaces = [&](Positions& at, Positions& at_gradient, DrivenFaces::Evaluation& at_energy) {
     const SolveBudget clock(SolveLimits{});
-    Eigen::MatrixX3d restore = -s.factor.solve(gather(at_gradient, free));
+    Eigen::MatrixX3d restore = -s.solveConstant(gather(at_gradient, free));
     if (frame_rigid)
       frame_rigid->remove(restore);
     else if (!anchored)
@@ -400,7 +413,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
   };
   const auto precondition = [&](const Eigen::MatrixX3d& q) -> Eigen::MatrixX3d {
     if (options_.hessian == DriverHessian::Constant || !s.gauss_newton.valid())
-      return s.factor.solve(q);
+      return s.solveConstant(q);
     const Eigen::MatrixX3d qt = q;  // row per vertex: flattened row-major it is 3i + axis
     Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> rows = qt;
     const Eigen::VectorXd solved =
@@ -565,7 +578,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
         break;
       }
       const double add_from = budget.seconds();
-      add(s.factor.solve(r));
+      add(s.solveConstant(r));
       subspace_add_seconds = budget.seconds() - add_from;
     }
     solve_seconds = budget.seconds() - step_from;  // what the next iteration's step will cost

@@ -32,8 +32,10 @@ public:
   virtual ~CreaseDriver() = default;
   virtual std::string name() const = 0;
   virtual SolveReport drive(Paper& paper, const std::vector<double>& target, const std::vector<char>& fixed) = 0;
-  /// A fresh driver of the same kind, limits and stiffness, sharing no state with this one
-  /// (for a computation that changes its stiffness while others use this one).
+  /// A fresh driver of the same kind, limits and stiffness, sharing no state with this one that
+  /// could change what it computes (for a computation that changes its stiffness while others
+  /// use this one); what depends on the pattern alone, like a factorisation's ordering, may be
+  /// shared.
   virtual std::unique_ptr<CreaseDriver> clone() const = 0;
 
   const SolveLimits& limits() const { return limits_; }

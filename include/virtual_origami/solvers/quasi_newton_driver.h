@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "virtual_origami/core/assignment_fold.h"
+#include "virtual_origami/curved/spd_factorization.h"
 
 namespace virtual_origami::core
 {
@@ -90,6 +91,9 @@ private:
   QuasiNewtonOptions options_;
   std::mutex mutex_;
   std::unique_ptr<Setup> setup_;
+  // The Gauss–Newton matrix's symbolic analysis, shared with this driver's clones (a commit's
+  // fresh clone copies it instead of analysing again; it depends on the pattern alone).
+  std::shared_ptr<SpdFactorization::SharedAnalysis> analysis_;
 };
 
 }  // namespace virtual_origami::core
