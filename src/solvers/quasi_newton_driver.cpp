@@ -90,7 +90,7 @@ struct QuasiNewtonDriver::Setup
   std::vector<Vec2> crease_pattern;
   std::vector<char> fixed;
   std::vector<char> driven_edges;
-  std::vector<Spring> springs;  // for the strain reported
+  std::vector<Spring> springs;  // the faces' vertex pairs, for the strain reported
   DrivenFaces energy;
   std::vector<int> free_index, free_vertices;
   Factor factor;  // the constant matrix
@@ -301,12 +301,12 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
   // the pattern: the mechanism turns much the same way there, and the Galerkin step says how far.
   else if (subspace_frame && s.last_motion.rows() == static_cast<Eigen::Index>(free.size()))
     motion = s.last_motion;
-  // One step of the constant matrix from `at` (rotations fitted, the faces' shapes restored),
-  // taken where it lowers the energy: what a linear step along turning faces stretched, taken
-  // out for about one back-substitution.
   // A subspace frame's rigid motions, made once where it starts (they only keep the steps from
   // drifting the floating sheet: a frame's small motion does not change them measurably).
   std::optional<RigidMotions> frame_rigid;
+  // One step of the constant matrix from `at` (rotations fitted, the faces' shapes restored),
+  // taken where it lowers the energy: what a linear step along turning faces stretched, taken
+  // out for about one back-substitution.
   const auto restoreFaces = [&](Positions& at, Positions& at_gradient, DrivenFaces::Evaluation& at_energy) {
     const SolveBudget clock(SolveLimits{});
     Eigen::MatrixX3d restore = -s.solveConstant(gather(at_gradient, free));
@@ -561,8 +561,9 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
       step_product += c * basis_product.back();
       r -= c * basis_product.back();
     };
-    // No motion yet (a slide's first frame): the kept matrix's step in its place, which
-    // points along the turn the balance takes, if too short.
+    // A slide's first frame (not going on from the last, its motion from elsewhere on the
+    // path): the kept matrix's step as well, which points along the turn the balance takes
+    // here, if too short.
     if (motion.size() > 0)
       add(motion);
     if (!continues && s.gauss_newton.valid())

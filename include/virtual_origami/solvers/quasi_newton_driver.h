@@ -11,6 +11,9 @@
 // - exact ("newton", the reference): that matrix refactorised every iteration (damped
 //   Gauss–Newton).
 // Each frame starts from a prediction along the motion of the frames before it. Anytime.
+// A lagged driver's frame whose time budget cannot pay for a factorisation (a preview's) is a
+// subspace frame: the Galerkin step over the last motion and the constant matrix's conjugate
+// directions, with no back-substitution of the Gauss–Newton matrix (docs/SOLVERS.md).
 #pragma once
 
 #include <memory>
