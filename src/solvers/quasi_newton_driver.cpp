@@ -106,7 +106,6 @@ struct QuasiNewtonDriver::Setup
   // The last two frames this driver returned (as in the paper) and their targets, and where
   // the last one started.
   Positions last, before_last, last_start;
-  Eigen::MatrixX3d last_motion;  // the last call's own motion (free vertices, sheet units)
   std::vector<double> last_target, before_last_target;
   bool last_balanced = true;  // whether the last frame reached balance within its budget
   bool last_continued = false;  // the last frame went on from the one before it
@@ -248,12 +247,11 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
   // A frame whose budget cannot pay for a factorisation of the Gauss–Newton matrix, going on
   // from the last frame along its motion: its steps come from the subspace of that motion and
   // the constant matrix's conjugate directions (subspaceStep below), no factorisation used.
-  const bool motion_known = (continues && s.last_start.cols() == x.cols() && s.last_start != s.last) ||
-                            s.last_motion.rows() == static_cast<Eigen::Index>(s.free_vertices.size());
+  const bool motion_known = s.last_start.cols() == x.cols() && s.last_start != s.last;
   const bool subspace_frame = options_.hessian == DriverHessian::Lagged && options_.subspace_frames &&
                               (motion_known || s.gauss_newton.valid()) && limits_.max_seconds > 0 &&
                               limits_.max_seconds < options_.subspace_below_seconds;
-  const bool predicts = options_.predict && !(subspace_frame && !options_.subspace_predict) && continues &&
+  const bool predicts = options_.predict && !subspace_frame && continues &&
                         s.last_continued && s.before_last.cols() == x.cols() && s.last_target.size() == target.size();
   // The energy where the frame starts: a prediction needs only its value, whose face term is
   // the last frame's (the same positions); the full pass (with the gradient) is paid for only
@@ -295,12 +293,10 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
   // The last frame's own motion, where this frame goes on from it: the direction a mechanism
   // is turning in (see followMotion below).
   Eigen::MatrixX3d motion;
-  if (continues && s.last_start.cols() == x.cols())
-    motion = gather(s.last - s.last_start, free) / scale;
   // A subspace frame that starts a slide goes by the last motion this driver made elsewhere on
   // the pattern: the mechanism turns much the same way there, and the Galerkin step says how far.
-  else if (subspace_frame && s.last_motion.rows() == static_cast<Eigen::Index>(free.size()))
-    motion = s.last_motion;
+  if ((continues || subspace_frame) && s.last_start.cols() == x.cols())
+    motion = gather(s.last - s.last_start, free) / scale;
   // A subspace frame's rigid motions, made once where it starts (they only keep the steps from
   // drifting the floating sheet: a frame's small motion does not change them measurably).
   std::optional<RigidMotions> frame_rigid;
@@ -776,8 +772,6 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
   s.before_last_target = s.last_target;
   s.last_start = start;
   s.last = result;
-  if (result != start)
-    s.last_motion = gather(result - start, free) / scale;
   s.last_target = target;
   s.last_continued = continues;
   s.last_face_energy = now.face_energy;

@@ -69,8 +69,6 @@ struct QuasiNewtonOptions
   bool subspace_frames = true;
   double subspace_below_seconds = 0.1;
   int subspace_directions = 6;
-  /// Such frames start from the prediction along the motion too.
-  bool subspace_predict = false;
   /// A subspace frame that ends with more strain than this restores its faces once more.
   double restore_strain = 5e-4;
 };
