@@ -666,6 +666,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
     }
     double step_length = 1.0;
     bool accepted = false;
+    bool restored = false;  // the accepted trial is a restored one, off the line
     DrivenFaces::Evaluation next;
     for (int k = 0; k < options_.max_line_search; ++k, step_length *= 0.5)
     {
@@ -679,6 +680,18 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
       {
         accepted = true;
         break;
+      }
+      // A long linear step along turning faces stretches them (by about half the turn squared)
+      // and fails on that alone: with the faces restored it may still be the step to take.
+      if (options_.restore_trial_faces && !subspace_frame)
+      {
+        restoreFaces(trial, trial_gradient, next);
+        if (next.energy <= now.energy + options_.armijo * step_length * slope)
+        {
+          accepted = true;
+          restored = true;
+          break;
+        }
       }
     }
     if (!accepted)
@@ -710,7 +723,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
       break;
     }
     const Eigen::MatrixX3d g_next = gather(trial_gradient, free);
-    Eigen::MatrixX3d step = step_length * direction;
+    Eigen::MatrixX3d step = restored ? Eigen::MatrixX3d(gather(trial - x, free)) : Eigen::MatrixX3d(step_length * direction);
     Eigen::MatrixX3d change = g_next - g;
     const double curvature = dot(step, change);
     if (options_.hessian != DriverHessian::Exact &&
