@@ -5,6 +5,8 @@
 
 #include <Eigen/CholmodSupport>
 
+#include "nested_dissection.h"
+
 namespace virtual_origami::core
 {
 namespace
@@ -81,8 +83,6 @@ struct SpdFactorization::Impl
 
 namespace
 {
-constexpr Eigen::Index kNestedDissectionRows = 3000;
-
 bool samePattern(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix<double>& b)
 {
   return a.rows() == b.rows() && a.cols() == b.cols() && a.nonZeros() == b.nonZeros() &&
@@ -112,18 +112,7 @@ bool SpdFactorization::factorize(const Eigen::SparseMatrix<double>& a, double sh
         return finishFactorize(a, shift);
       }
     }
-    // Nested dissection (METIS) for a large mesh's matrix: against CHOLMOD's default choice
-    // (minimum degree there) it halves the factorisation's flops on a 10,000-node sheet and
-    // cuts a tenth of the factor, for an analysis done once per pattern.
-    cholmod_common& common = impl_->llt.cholmod();
-    common.nmethods = a.rows() >= kNestedDissectionRows ? 1 : 0;
-    common.method[0].ordering = CHOLMOD_METIS;
-    impl_->llt.analyzePattern(impl_->pattern);
-    if (impl_->llt.info() != Eigen::Success && common.nmethods == 1)
-    {
-      common.nmethods = 0;  // no METIS in this CHOLMOD: its default
-      impl_->llt.analyzePattern(impl_->pattern);
-    }
+    analyzeWithNestedDissection(impl_->llt, impl_->pattern);
     ++analyses_;
     if (shared_ && impl_->llt.info() == Eigen::Success)
       shared_->keep(impl_->pattern, impl_->llt.factor());

