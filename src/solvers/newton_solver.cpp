@@ -88,14 +88,6 @@ public:
                 slots_[f].push_back(slot(row(free_index[v], a), row(free_index[w], b)));
     for (int i = 0; i < size_; ++i)
       diagonal_.push_back(slot(i, i));
-    if (size_ >= kSupernodalRows)
-    {
-      supernodal_ = std::make_unique<Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Upper>>();
-      supernodal_->cholmod().print = 0;  // not definite is an answer (the damping rises)
-      analyzeWithNestedDissection(*supernodal_, matrix_);
-    }
-    else
-      solver_.analyzePattern(matrix_);
   }
 
   /// Fills the matrix for the fitted rotations, adds μ on the diagonal and factors it.
@@ -139,6 +131,20 @@ public:
     }
     for (int i : diagonal_)
       values[i] += mu;
+    // Analysed at the first factorisation, not before: a solve that starts converged (a turn
+    // its crease driver has guided) needs none, and a large model's analysis is 10–100 ms.
+    if (!analysed_)
+    {
+      if (size_ >= kSupernodalRows)
+      {
+        supernodal_ = std::make_unique<Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Upper>>();
+        supernodal_->cholmod().print = 0;  // not definite is an answer (the damping rises)
+        analyzeWithNestedDissection(*supernodal_, matrix_);
+      }
+      else
+        solver_.analyzePattern(matrix_);
+      analysed_ = true;
+    }
     if (supernodal_)
     {
       const std::unique_lock<std::mutex> blas = lockBlas();
@@ -185,6 +191,7 @@ private:
   SparseMatrix matrix_;
   std::vector<std::vector<int>> slots_;
   std::vector<int> diagonal_;
+  bool analysed_ = false;
   // Already ordered: the natural ordering takes the upper triangle as it is, without a copy.
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Upper, Eigen::NaturalOrdering<int>> solver_;
   // Large models (a tessellation of thousands of vertices): CHOLMOD's supernodal Cholesky,
