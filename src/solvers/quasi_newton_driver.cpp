@@ -723,7 +723,8 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
       break;
     }
     const Eigen::MatrixX3d g_next = gather(trial_gradient, free);
-    Eigen::MatrixX3d step = restored ? Eigen::MatrixX3d(gather(trial - x, free)) : Eigen::MatrixX3d(step_length * direction);
+    Eigen::MatrixX3d step =
+        restored ? Eigen::MatrixX3d(gather(trial - x, free)) : Eigen::MatrixX3d(step_length * direction);
     Eigen::MatrixX3d change = g_next - g;
     const double curvature = dot(step, change);
     if (options_.hessian != DriverHessian::Exact &&

@@ -469,8 +469,8 @@ TEST(AssignmentFold, RestoredTrialsReachATurnsBalanceInFewerSteps)
   for (int e : flat.faces[0].edges)
   {
     const Edge& edge = flat.edges[e];
-    if (edge.isCrease() &&
-        std::abs(flat.vertices[edge.vertices[1]].crease_pattern.y() - flat.vertices[edge.vertices[0]].crease_pattern.y()) > 1e-9)
+    const Vec2 along = flat.vertices[edge.vertices[1]].crease_pattern - flat.vertices[edge.vertices[0]].crease_pattern;
+    if (edge.isCrease() && std::abs(along.y()) > 1e-9)  // the zigzag crease, not the straight one
       axis = e;
   }
   ASSERT_GE(axis, 0);
