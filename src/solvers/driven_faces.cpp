@@ -82,6 +82,37 @@ Eigen::Matrix<double, 3, 4> hingeAngleGradient(const Hinge& h, const Positions& 
   return g;
 }
 
+Eigen::Matrix<double, 3, 4> hingeAngleGradientChange(const Hinge& h, const Positions& x, const Positions& v)
+{
+  const Eigen::Vector3d e = x.col(h.b) - x.col(h.a);
+  const Eigen::Vector3d c = x.col(h.left) - x.col(h.a);
+  const Eigen::Vector3d d = x.col(h.right) - x.col(h.a);
+  const Eigen::Vector3d de = v.col(h.b) - v.col(h.a);
+  const Eigen::Vector3d dc = v.col(h.left) - v.col(h.a);
+  const Eigen::Vector3d dd = v.col(h.right) - v.col(h.a);
+  const Eigen::Vector3d n_left = e.cross(c), n_right = d.cross(e);
+  const Eigen::Vector3d dn_left = de.cross(c) + e.cross(dc), dn_right = dd.cross(e) + d.cross(de);
+  const double e2 = e.squaredNorm(), e_norm = std::sqrt(e2), de_norm = e.dot(de) / e_norm;
+  // g = |e| n / |n|² and its change, per wing.
+  const auto wing = [&](const Eigen::Vector3d& n, const Eigen::Vector3d& dn, Eigen::Vector3d& g, Eigen::Vector3d& dg) {
+    const double n2 = n.squaredNorm();
+    g = e_norm * n / n2;
+    dg = de_norm * n / n2 + e_norm * (dn / n2 - 2.0 * n.dot(dn) / (n2 * n2) * n);
+  };
+  Eigen::Vector3d g_left, g_right, dg_left, dg_right;
+  wing(n_left, dn_left, g_left, dg_left);
+  wing(n_right, dn_right, g_right, dg_right);
+  const double t_left = c.dot(e) / e2, t_right = d.dot(e) / e2;
+  const double dt_left = (dc.dot(e) + c.dot(de)) / e2 - 2.0 * c.dot(e) * e.dot(de) / (e2 * e2);
+  const double dt_right = (dd.dot(e) + d.dot(de)) / e2 - 2.0 * d.dot(e) * e.dot(de) / (e2 * e2);
+  Eigen::Matrix<double, 3, 4> out;
+  out.col(0) = dt_left * g_left - (1 - t_left) * dg_left + dt_right * g_right - (1 - t_right) * dg_right;
+  out.col(1) = -dt_left * g_left - t_left * dg_left - dt_right * g_right - t_right * dg_right;
+  out.col(2) = dg_left;
+  out.col(3) = dg_right;
+  return out;
+}
+
 Eigen::Matrix3d fitFaceRotation(const RigidFace& face, const Positions& x, Eigen::Vector3d* mean_out)
 {
   const Eigen::Index n = face.rest.cols();
@@ -197,14 +228,17 @@ DrivenFaces::Evaluation DrivenFaces::evaluate(const Positions& x, Positions* gra
   if (gradient)
     gradient->setZero(3, x.cols());
   if (l)
+  {
     prepare(*l);
+    l->at = x;
+  }
   for (size_t f = 0; f < faces_.size(); ++f)
   {
     const RigidFace& face = faces_[f];
     Eigen::Vector3d mean;
     const Eigen::Matrix3d r = fitFaceRotation(face, x, &mean);
     if (l)
-      linearizeFace(f, r, *l);
+      linearizeFace(f, r, x, *l);
     for (Eigen::Index k = 0; k < face.rest.cols(); ++k)
     {
       // With R_f fitted, dE/dx_v is the weighted residual itself (the fit is stationary in R).
@@ -226,7 +260,10 @@ DrivenFaces::Evaluation DrivenFaces::evaluate(const Positions& x, Positions* gra
     {
       const Eigen::Matrix<double, 3, 4> unit = hingeAngleGradient(h, x);
       if (l)
+      {
         l->hinge_gradient.push_back(unit);
+        l->hinge_miss.push_back(miss);
+      }
       if (gradient)
       {
         const Eigen::Matrix<double, 3, 4> g = unit * (h.weight * miss);
@@ -361,19 +398,33 @@ void DrivenFaces::prepare(Linearization& l) const
   l.inertia_inverse.resize(faces_.size());
   l.hinge_gradient.clear();
   l.hinge_gradient.reserve(hinges_.size());
+  l.frame.resize(faces_.size());
+  l.stretch_inverse.resize(faces_.size());
+  l.stretch_trace.resize(faces_.size());
+  l.hinge_miss.clear();
+  l.hinge_miss.reserve(hinges_.size());
 }
 
-void DrivenFaces::linearizeFace(size_t f, const Eigen::Matrix3d& r, Linearization& l) const
+void DrivenFaces::linearizeFace(size_t f, const Eigen::Matrix3d& r, const Positions& x, Linearization& l) const
 {
   const RigidFace& face = faces_[f];
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+  Eigen::Matrix<double, 3, 2> moment = Eigen::Matrix<double, 3, 2>::Zero();  // M = Σ x_v p̃_vᵀ (p̃ centred)
   for (Eigen::Index k = 0; k < face.rest.cols(); ++k)
   {
     const Eigen::Vector3d q = r.leftCols<2>() * face.rest.col(k);
     l.turned_rest.col(face_offset_[f] + k) = q;
     inertia += q.squaredNorm() * Eigen::Matrix3d::Identity() - q * q.transpose();
+    moment += x.col(face.vertices[k]) * face.rest.col(k).transpose();
   }
   l.inertia_inverse[f] = inertia.inverse();
+  l.frame[f] = r.leftCols<2>();
+  Eigen::Matrix2d stretch = l.frame[f].transpose() * moment;
+  stretch = 0.5 * (stretch + stretch.transpose()).eval();
+  const double trace = stretch.trace();
+  const bool regular = trace > 0 && stretch.determinant() > 1e-4 * trace * trace;
+  l.stretch_trace[f] = regular ? trace : 0.0;
+  l.stretch_inverse[f] = regular ? Eigen::Matrix2d(stretch.inverse()) : Eigen::Matrix2d::Zero();
 }
 
 DrivenFaces::Linearization DrivenFaces::linearize(const Positions& x) const
@@ -381,10 +432,15 @@ DrivenFaces::Linearization DrivenFaces::linearize(const Positions& x) const
   Linearization l;
   prepare(l);
   for (size_t f = 0; f < faces_.size(); ++f)
-    linearizeFace(f, fitFaceRotation(faces_[f], x, nullptr), l);
+    linearizeFace(f, fitFaceRotation(faces_[f], x, nullptr), x, l);
   for (size_t i = 0; i < hinges_.size(); ++i)
     if (std::isfinite(target_[i]))
-      l.hinge_gradient.push_back(hingeAngleGradient(hinges_[i], x));
+    {
+      const Hinge& h = hinges_[i];
+      l.hinge_gradient.push_back(hingeAngleGradient(h, x));
+      l.hinge_miss.push_back(unwrapNear(hingeAngle(h, x), reference_[h.edge]) - target_[i]);
+    }
+  l.at = x;
   return l;
 }
 
@@ -420,6 +476,64 @@ void DrivenFaces::gaussNewtonProduct(const Linearization& l, const Positions& v,
       along += g.col(p).dot(v.col(vs[p]));
     for (int p = 0; p < 4; ++p)
       out.col(vs[p]) += h.weight * along * g.col(p);
+  }
+}
+
+void DrivenFaces::hessianProduct(const Linearization& l, const Positions& v, Positions& out) const
+{
+  out.setZero(3, v.cols());
+  for (size_t f = 0; f < faces_.size(); ++f)
+  {
+    const RigidFace& face = faces_[f];
+    const std::vector<int>& vs = face.vertices;
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (int w : vs)
+      mean += v.col(w);
+    mean /= static_cast<double>(vs.size());
+    const double trace = l.stretch_trace[f];
+    if (!(trace > 0))
+    {
+      // A sliver face: its polar factor has no derivative; turned as a rigid body instead.
+      const auto q = l.turned_rest.middleCols(face_offset_[f], static_cast<Eigen::Index>(vs.size()));
+      Eigen::Vector3d turn = Eigen::Vector3d::Zero();
+      for (size_t k = 0; k < vs.size(); ++k)
+        turn += q.col(static_cast<Eigen::Index>(k)).cross(v.col(vs[k]));
+      const Eigen::Vector3d spin = l.inertia_inverse[f] * turn;
+      for (size_t k = 0; k < vs.size(); ++k)
+        out.col(vs[k]) += face_weight_[f] * (v.col(vs[k]) - mean + q.col(static_cast<Eigen::Index>(k)).cross(spin));
+      continue;
+    }
+    // The face's gradient is w (x_v − x̄ − Q p̃_v) with Q the polar factor of M = Σ x_v p̃_vᵀ;
+    // M = Q S gives dQ = Q Ω + (I − Q Qᵀ) dM S⁻¹, with Ω = ω J skew and
+    // ω tr S = (QᵀdM)₀₁ − (QᵀdM)₁₀.
+    Eigen::Matrix<double, 3, 2> moment = Eigen::Matrix<double, 3, 2>::Zero();
+    for (size_t k = 0; k < vs.size(); ++k)
+      moment += v.col(vs[k]) * face.rest.col(static_cast<Eigen::Index>(k)).transpose();
+    const Eigen::Matrix<double, 3, 2>& q = l.frame[f];
+    const Eigen::Matrix2d a = q.transpose() * moment;
+    const double spin = (a(0, 1) - a(1, 0)) / trace;
+    Eigen::Matrix<double, 3, 2> frame_change = (moment - q * a) * l.stretch_inverse[f];
+    frame_change.col(0) -= spin * q.col(1);
+    frame_change.col(1) += spin * q.col(0);
+    for (size_t k = 0; k < vs.size(); ++k)
+      out.col(vs[k]) +=
+          face_weight_[f] * (v.col(vs[k]) - mean - frame_change * face.rest.col(static_cast<Eigen::Index>(k)));
+  }
+  size_t driven = 0;
+  for (size_t i = 0; i < hinges_.size(); ++i)
+  {
+    if (!std::isfinite(target_[i]))
+      continue;
+    const Hinge& h = hinges_[i];
+    const Eigen::Matrix<double, 3, 4>& g = l.hinge_gradient[driven];
+    const double miss = l.hinge_miss[driven++];
+    const int vs[4] = { h.a, h.b, h.left, h.right };
+    double along = 0.0;
+    for (int p = 0; p < 4; ++p)
+      along += g.col(p).dot(v.col(vs[p]));
+    const Eigen::Matrix<double, 3, 4> change = hingeAngleGradientChange(h, l.at, v);
+    for (int p = 0; p < 4; ++p)
+      out.col(vs[p]) += h.weight * (along * g.col(p) + miss * change.col(p));
   }
 }
 

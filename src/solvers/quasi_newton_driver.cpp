@@ -81,6 +81,24 @@ bool driven(double target)
 }
 }  // namespace
 
+struct QuasiNewtonDriver::AssemblyPlan
+{
+  std::mutex mutex;
+  std::vector<std::pair<int, int>> entries;  // the (row, column) of each entry it was made for
+  std::vector<int> slots;
+  Eigen::SparseMatrix<double> pattern;  // compressed
+
+  bool matches(const std::vector<Eigen::Triplet<double>>& triplets) const
+  {
+    if (triplets.size() != entries.size())
+      return false;
+    for (size_t k = 0; k < triplets.size(); ++k)
+      if (triplets[k].row() != entries[k].first || triplets[k].col() != entries[k].second)
+        return false;
+    return true;
+  }
+};
+
 /// What stays while the pattern, the held vertices and the set of driven creases stay: the
 /// energy's faces and hinges, and the factorised constant matrix. Also the last frames, for
 /// the prediction.
@@ -93,8 +111,9 @@ struct QuasiNewtonDriver::Setup
   std::vector<Spring> springs;  // the faces' vertex pairs, for the strain reported
   DrivenFaces energy;
   std::vector<int> free_index, free_vertices;
+  Eigen::SparseMatrix<double> constant_matrix;  // until it is factorised
   Factor factor;  // the constant matrix
-  bool factored = false;
+  bool constant_tried = false, factored = false;
   int free_count = 0;
   SpdFactorization gauss_newton;  // the lagged or exact matrix, 3 rows per free vertex
   Eigen::SparseMatrix<double> gauss_newton_matrix;
@@ -124,28 +143,43 @@ struct QuasiNewtonDriver::Setup
       if (free_index[v] >= 0)
         free_vertices.push_back(static_cast<int>(v));
     energy.setTargets(target);
-    Eigen::SparseMatrix<double> matrix = energy.constantMatrix(free_index, free_count);
+    constant_matrix = energy.constantMatrix(free_index, free_count);
     // Nothing held: the energy has the rigid motions as null space. A shift far below the
     // faces' stiffness makes the matrix definite without steering the steps.
     const bool anchored = std::any_of(fixed.begin(), fixed.end(), [](char c) { return c != 0; });
     double shift = 0.0;
-    for (int k = 0; k < matrix.outerSize(); ++k)
-      for (Eigen::SparseMatrix<double>::InnerIterator it(matrix, k); it; ++it)
+    for (int k = 0; k < constant_matrix.outerSize(); ++k)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(constant_matrix, k); it; ++it)
         if (it.row() == it.col())
           shift = std::max(shift, it.value());
     shift *= anchored ? 1e-12 : 1e-8;
     for (int i = 0; i < free_count; ++i)
-      matrix.coeffRef(i, i) += shift;
-    factor.cholmod().print = 0;  // not definite is answered below, not printed
-    {
-      const std::unique_lock<std::mutex> blas = lockBlas();
-      factor.compute(matrix);
-    }
-    factored = factor.info() == Eigen::Success;
+      constant_matrix.coeffRef(i, i) += shift;
   }
 
-  Eigen::MatrixX3d solveConstant(const Eigen::MatrixX3d& rhs) const
+  /// The constant matrix factorised at its first use: a commit or a turn whose steps are all
+  /// taken whole needs none (its analysis and factorisation are 30 ms on 10,000 vertices).
+  bool factorConstant()
   {
+    if (!constant_tried)
+    {
+      constant_tried = true;
+      factor.cholmod().print = 0;  // not definite is answered by the callers, not printed
+      {
+        const std::unique_lock<std::mutex> blas = lockBlas();
+        factor.compute(constant_matrix);
+      }
+      factored = factor.info() == Eigen::Success;
+      constant_matrix = Eigen::SparseMatrix<double>();
+    }
+    return factored;
+  }
+
+  /// The constant matrix's solve; zero where it is not definite (no step from it).
+  Eigen::MatrixX3d solveConstant(const Eigen::MatrixX3d& rhs)
+  {
+    if (!factorConstant())
+      return Eigen::MatrixX3d::Zero(rhs.rows(), 3);
     const std::unique_lock<std::mutex> blas = lockBlas();
     return factor.solve(rhs);
   }
@@ -180,7 +214,7 @@ struct QuasiNewtonDriver::Setup
 };
 
 QuasiNewtonDriver::QuasiNewtonDriver(QuasiNewtonOptions options)
-  : options_(options), analysis_(SpdFactorization::makeSharedAnalysis())
+  : options_(options), analysis_(SpdFactorization::makeSharedAnalysis()), assembly_(std::make_shared<AssemblyPlan>())
 {
   face_stiffness_ = options.face_stiffness;
   limits_.tolerance = 1e-9;
@@ -206,6 +240,7 @@ std::unique_ptr<CreaseDriver> QuasiNewtonDriver::clone() const
 {
   auto copy = std::make_unique<QuasiNewtonDriver>(options_);
   copy->analysis_ = analysis_;
+  copy->assembly_ = assembly_;
   copy->setLimits(limits_);
   copy->setFaceStiffness(face_stiffness_);
   return copy;
@@ -230,7 +265,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
   const double scale = energy.scale();
   Positions x = start / scale;
   const std::vector<Spring>& springs = s.springs;
-  if (!s.factored || s.free_vertices.empty())
+  if (s.free_vertices.empty() || (options_.hessian == DriverHessian::Constant && !s.factorConstant()))
   {
     report.max_strain = springStrain(springs, start).max;
     report.converged = s.free_vertices.empty();
@@ -369,34 +404,48 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
   // The Gauss–Newton matrix at x; nothing held, its null space (rigid motions) is shifted away
   // by far less than the faces' stiffness, and a failed factorisation (a degenerate face) is
   // retried with more.
+  bool factor_fresh = false;  // the kept matrix is the one at x
+  // A factorisation is paid for only where the budget has room for it (twice what the last
+  // one took): in a preview frame the kept matrix serves until it fails outright.
+  const auto factor_room = [&]() {
+    return limits_.max_seconds <= 0 || limits_.max_seconds - budget.seconds() > 2 * s.factor_seconds;
+  };
   const auto refactor = [&]() {
     const SolveBudget clock(SolveLimits{});
     const auto timed = [&](bool ok) {
       s.factor_seconds = clock.seconds();
+      factor_fresh = ok;
       return ok;
     };
     energy.gaussNewtonTriplets(x, s.free_index, s.triplets);
     Eigen::SparseMatrix<double>& m = s.gauss_newton_matrix;
     if (s.slots.size() != s.triplets.size())
     {
-      m.resize(3 * s.free_count, 3 * s.free_count);
-      m.setFromTriplets(s.triplets.begin(), s.triplets.end());
-      m.makeCompressed();
-      s.slots.resize(s.triplets.size());
-      for (size_t k = 0; k < s.triplets.size(); ++k)
+      AssemblyPlan& plan = *assembly_;
+      const std::lock_guard<std::mutex> planning(plan.mutex);
+      if (!plan.matches(s.triplets))
       {
-        const int* rows = m.innerIndexPtr();
-        const int begin = m.outerIndexPtr()[s.triplets[k].col()], end = m.outerIndexPtr()[s.triplets[k].col() + 1];
-        s.slots[k] = static_cast<int>(std::lower_bound(rows + begin, rows + end, s.triplets[k].row()) - rows);
+        plan.pattern.resize(3 * s.free_count, 3 * s.free_count);
+        plan.pattern.setFromTriplets(s.triplets.begin(), s.triplets.end());
+        plan.pattern.makeCompressed();
+        plan.slots.resize(s.triplets.size());
+        plan.entries.resize(s.triplets.size());
+        const int* rows = plan.pattern.innerIndexPtr();
+        for (size_t k = 0; k < s.triplets.size(); ++k)
+        {
+          const int begin = plan.pattern.outerIndexPtr()[s.triplets[k].col()];
+          const int end = plan.pattern.outerIndexPtr()[s.triplets[k].col() + 1];
+          plan.slots[k] = static_cast<int>(std::lower_bound(rows + begin, rows + end, s.triplets[k].row()) - rows);
+          plan.entries[k] = { s.triplets[k].row(), s.triplets[k].col() };
+        }
       }
+      m = plan.pattern;
+      s.slots = plan.slots;
     }
-    else
-    {
-      double* values = m.valuePtr();
-      std::fill(values, values + m.nonZeros(), 0.0);
-      for (size_t k = 0; k < s.triplets.size(); ++k)
-        values[s.slots[k]] += s.triplets[k].value();
-    }
+    double* values = m.valuePtr();
+    std::fill(values, values + m.nonZeros(), 0.0);
+    for (size_t k = 0; k < s.triplets.size(); ++k)
+      values[s.slots[k]] += s.triplets[k].value();
     double largest = 0.0;
     for (int k = 0; k < m.outerSize(); ++k)
       for (Eigen::SparseMatrix<double>::InnerIterator it(m, k); it; ++it)
@@ -442,12 +491,25 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
   // Newton–Krylov: the Gauss–Newton system at x solved by conjugate gradients, preconditioned
   // by the kept factorisation (the matrix of a nearby state, so a few iterations do).
   bool krylov_slow = false;
+  bool krylov_restart = false;  // newtonKrylovStep gave up on the kept matrix
   bool krylov_cut = false;  // the budget ended the last step's conjugate gradients
   Positions spread = Positions::Zero(3, x.cols()), product;
+  // Newton–Krylov steps multiply by the energy's own Hessian (exact_hessian) once the steps
+  // converge (two whole steps in a row, neither shortened nor restored, the second less than
+  // half the first). Far from a balance it is indefinite, and near-singular along a mechanism
+  // starting to turn, where Gauss–Newton's convex model takes the better steps (a turn from the
+  // flat sheet). A step it gives that is not taken whole hands back to Gauss–Newton for the
+  // rest of the frame. Subspace frames multiply by the Gauss–Newton matrix (their Galerkin
+  // model must be convex).
+  bool exact_products = false, exact_refused = false, last_whole = false;
+  const bool exact_allowed = options_.exact_hessian && !subspace_frame;
   const auto multiply = [&](const DrivenFaces::Linearization& l, const Eigen::MatrixX3d& v) {
     for (size_t i = 0; i < free.size(); ++i)
       spread.col(free[i]) = v.row(static_cast<Eigen::Index>(i)).transpose();
-    energy.gaussNewtonProduct(l, spread, product);
+    if (exact_products)
+      energy.hessianProduct(l, spread, product);
+    else
+      energy.gaussNewtonProduct(l, spread, product);
     return gather(product, free);
   };
   Eigen::MatrixX3d step_product;  // H times the step newtonKrylovStep returned
@@ -463,16 +525,27 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
     if (rigid)
       rigid->remove(z);
     Eigen::MatrixX3d p = z;
+    const Eigen::MatrixX3d first = z;
     double rz = dot(r, z);
     const double goal = options_.krylov_tolerance * std::sqrt(dot(r, r));
     krylov_slow = true;
     krylov_cut = false;
+    krylov_restart = false;
     for (int k = 0; k < options_.krylov_iterations; ++k)
     {
       const Eigen::MatrixX3d ap = multiply(l, p);
       const double curvature = dot(p, ap);
       if (!(curvature > 0))
+      {
+        // The Hessian is not positive along p (away from a stable balance): the steps so far
+        // descend; with none yet, the kept matrix's own step does.
+        if (k == 0)
+        {
+          d = p;
+          step_product = ap;
+        }
         break;
+      }
       const double a = rz / curvature;
       d += a * p;
       step_product += a * ap;
@@ -488,12 +561,32 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
         krylov_cut = true;
         break;
       }
+      // Half the iterations spent short of the goal after a whole step: the kept matrix is
+      // from a state too far (a long first step turned the mechanism). A fresh one, where the
+      // budget has room for it, does in one or two iterations what the rest would not. Not
+      // after a shortened or restored step: that far from balance a fresh matrix's step is
+      // no better.
+      if (k + 1 == options_.krylov_iterations / 2 && last_whole && !factor_fresh && factor_room())
+      {
+        krylov_restart = true;
+        break;
+      }
       z = precondition(r);
       if (rigid)
         rigid->remove(z);
       const double rz_next = dot(r, z);
       p = z + (rz_next / rz) * p;
       rz = rz_next;
+    }
+    // A trust region for the exact Hessian: a step ten times the kept matrix's own says
+    // the Hessian is near singular here (a mechanism starting to turn): the kept matrix's step
+    // serves, and Gauss–Newton the rest of the frame.
+    if (exact_products && d.cwiseAbs().maxCoeff() > 10.0 * first.cwiseAbs().maxCoeff())
+    {
+      exact_products = false;
+      exact_refused = true;
+      d = first;
+      step_product = multiply(l, d);
     }
     return d;
   };
@@ -629,6 +722,8 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
     {
       const DrivenFaces::Linearization linearization = energy.linearize(x);
       direction = newtonKrylovStep(linearization, rigid ? &*rigid : nullptr);
+      if (krylov_restart && refactor())
+        direction = newtonKrylovStep(linearization, rigid ? &*rigid : nullptr);
       if (options_.follow_motion && motion.size() > 0)
         followMotion(linearization, rigid ? &*rigid : nullptr, direction);
     }
@@ -741,14 +836,16 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
       }
     }
     // The kept matrix pays while the steps shrink fast; when they stop, factor afresh.
-    // A factorisation is paid for only where the budget has room for it (twice what the last
-    // one took): in a preview frame the kept matrix serves until it fails outright.
-    const bool room = limits_.max_seconds <= 0 ||
-                      limits_.max_seconds - budget.seconds() > 2 * s.factor_seconds;
+    factor_fresh = false;
     if (options_.hessian == DriverHessian::Exact ||
-        (options_.hessian == DriverHessian::Lagged && room && !subspace_frame &&
-         (krylov_slow || step_size > options_.refresh_ratio * last_step)))
+        (options_.hessian == DriverHessian::Lagged && factor_room() && !subspace_frame &&
+         (krylov_slow || (!exact_products && step_size > options_.refresh_ratio * last_step))))
       refresh = true;
+    const bool whole = step_length == 1.0 && !restored;
+    if (exact_products && !whole)
+      exact_refused = true;
+    exact_products = exact_allowed && !exact_refused && whole && last_whole && step_size < 0.5 * last_step;
+    last_whole = whole;
     last_step = step_size;
     std::swap(x, trial);
     g = g_next;

@@ -65,6 +65,11 @@ struct QuasiNewtonOptions
   /// Gauss–Newton model says (a kept matrix calls a mechanism's present turn stiff, and a
   /// slide's frames fall behind along it).
   bool follow_motion = true;
+  /// Lagged: Newton–Krylov steps solve with the energy's own Hessian (DrivenFaces::
+  /// hessianProduct), the kept Gauss–Newton factorisation as preconditioner. Gauss–Newton
+  /// leaves out the faces' residual stress and the hinges' curvature, which along a mechanism
+  /// are as large as the hinges' stiffness: its steps converge only linearly.
+  bool exact_hessian = true;
   /// End a frame its limits stopped short of balance with one step of the constant matrix that
   /// restores the faces its last (linear) step stretched; room for it is kept in a time budget.
   bool restore_final_faces = true;
@@ -100,6 +105,10 @@ private:
   // The Gauss–Newton matrix's symbolic analysis, shared with this driver's clones (a commit's
   // fresh clone copies it instead of analysing again; it depends on the pattern alone).
   std::shared_ptr<SpdFactorization::SharedAnalysis> analysis_;
+  // Where each entry of the Gauss–Newton matrix lands in its compressed pattern, shared with
+  // the clones as well (sorting a 10,000-vertex pattern's million entries takes 60 ms).
+  struct AssemblyPlan;
+  std::shared_ptr<AssemblyPlan> assembly_;
 };
 
 }  // namespace virtual_origami::core
