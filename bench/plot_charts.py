@@ -924,12 +924,16 @@ def chart_fold(tables):
     strain.set_title("A slide 30 → 100 % in 30 ms frames: strain shown")
     save(fig, "fold_scaling.png")
 
-    lines = ["| vertices | driver | frame p50 | frame p95 | frame strain | frames balanced | commit | commit strain | "
+    def commit_range(r):
+        low, high = num(r.get("commit_min_s", "")), num(r.get("commit_max_s", ""))
+        return "" if math.isnan(low) or math.isnan(high) else f" ({fmt(low)}–{fmt(high)})"
+
+    lines = ["| vertices | driver | frame p50 | frame p95 | frame strain | frames balanced | commit (median of 3: min–max) | commit strain | "
              "rigid | floor | slide (30 ms frames): p95 | slide strain |", "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in data:
         lines.append(f"| {int(num(r['vertices']))} | {r['driver']} | {fmt(num(r['frame_p50_ms']))} ms | "
                      f"{fmt(num(r['frame_p95_ms']))} ms | {fmt(num(r['frame_max_strain']))} | {r['frames_balanced']}/10 | "
-                     f"{fmt(num(r['commit_s']))} s | {fmt(num(r['commit_strain']))} | "
+                     f"{fmt(num(r['commit_s']))} s{commit_range(r)} | {fmt(num(r['commit_strain']))} | "
                      f"{'yes' if r['commit_rigid'] == '1' else 'no'} | {fmt(num(r['floor_ms']))} ms | "
                      f"{fmt(num(r.get('slide_p95_ms', '')))} ms | {fmt(num(r.get('slide_max_strain', '')))} |")
     text = []

@@ -404,7 +404,6 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
   // The Gauss–Newton matrix at x; nothing held, its null space (rigid motions) is shifted away
   // by far less than the faces' stiffness, and a failed factorisation (a degenerate face) is
   // retried with more.
-  bool factor_fresh = false;  // the kept matrix is the one at x
   // A factorisation is paid for only where the budget has room for it (twice what the last
   // one took): in a preview frame the kept matrix serves until it fails outright.
   const auto factor_room = [&]() {
@@ -414,7 +413,6 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
     const SolveBudget clock(SolveLimits{});
     const auto timed = [&](bool ok) {
       s.factor_seconds = clock.seconds();
-      factor_fresh = ok;
       return ok;
     };
     energy.gaussNewtonTriplets(x, s.free_index, s.triplets);
@@ -491,7 +489,6 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
   // Newton–Krylov: the Gauss–Newton system at x solved by conjugate gradients, preconditioned
   // by the kept factorisation (the matrix of a nearby state, so a few iterations do).
   bool krylov_slow = false;
-  bool krylov_restart = false;  // newtonKrylovStep gave up on the kept matrix
   bool krylov_cut = false;  // the budget ended the last step's conjugate gradients
   Positions spread = Positions::Zero(3, x.cols()), product;
   // Newton–Krylov steps multiply by the energy's own Hessian (exact_hessian) once the steps
@@ -530,7 +527,6 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
     const double goal = options_.krylov_tolerance * std::sqrt(dot(r, r));
     krylov_slow = true;
     krylov_cut = false;
-    krylov_restart = false;
     for (int k = 0; k < options_.krylov_iterations; ++k)
     {
       const Eigen::MatrixX3d ap = multiply(l, p);
@@ -559,16 +555,6 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
       if (!fits(solve_seconds))
       {
         krylov_cut = true;
-        break;
-      }
-      // Half the iterations spent short of the goal after a whole step: the kept matrix is
-      // from a state too far (a long first step turned the mechanism). A fresh one, where the
-      // budget has room for it, does in one or two iterations what the rest would not. Not
-      // after a shortened or restored step: that far from balance a fresh matrix's step is
-      // no better.
-      if (k + 1 == options_.krylov_iterations / 2 && last_whole && !factor_fresh && factor_room())
-      {
-        krylov_restart = true;
         break;
       }
       z = precondition(r);
@@ -722,8 +708,6 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
     {
       const DrivenFaces::Linearization linearization = energy.linearize(x);
       direction = newtonKrylovStep(linearization, rigid ? &*rigid : nullptr);
-      if (krylov_restart && refactor())
-        direction = newtonKrylovStep(linearization, rigid ? &*rigid : nullptr);
       if (options_.follow_motion && motion.size() > 0)
         followMotion(linearization, rigid ? &*rigid : nullptr, direction);
     }
@@ -836,7 +820,6 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
       }
     }
     // The kept matrix pays while the steps shrink fast; when they stop, factor afresh.
-    factor_fresh = false;
     if (options_.hessian == DriverHessian::Exact ||
         (options_.hessian == DriverHessian::Lagged && factor_room() && !subspace_frame &&
          (krylov_slow || (!exact_products && step_size > options_.refresh_ratio * last_step))))
