@@ -90,6 +90,33 @@ Paper degree4(int mode)
   return paper;
 }
 
+/// Two drives of the same paper to the same targets, by drivers that differ in one option (the
+/// second has it): the steps each took, and how far apart their balances lie over the sheet's size.
+struct TwoDrives
+{
+  int steps[2] = { 0, 0 };
+  double distance = 0.0;
+};
+
+TwoDrives driveBoth(const Paper& start, const std::vector<double>& target, const std::vector<char>& held,
+                    const QuasiNewtonOptions (&options)[2], const SolveLimits& limits)
+{
+  TwoDrives out;
+  Paper balance[2] = { start, start };
+  for (int k = 0; k < 2; ++k)
+  {
+    QuasiNewtonDriver d(options[k]);
+    d.setLimits(limits);
+    const SolveReport report = d.drive(balance[k], target, held);
+    EXPECT_TRUE(report.converged) << "driver " << k << ": " << report.message;
+    out.steps[k] = report.iterations;
+  }
+  for (size_t v = 0; v < start.vertices.size(); ++v)
+    out.distance = std::max(out.distance, (balance[0].vertices[v].folded - balance[1].vertices[v].folded).norm());
+  out.distance /= start.scale();
+  return out;
+}
+
 TEST(DrivenFaces, GradientMatchesFiniteDifferences)
 {
   Paper paper = miuraTessellationFolded(3, 2, 1.0, 1.2, 1.0, 0.8).value().paper;
@@ -513,25 +540,15 @@ TEST(AssignmentFold, RestoredTrialsReachATurnsBalanceInFewerSteps)
   std::vector<char> held(flat.vertices.size(), 0);
   for (int v : flat.faces[flat.edges[axis].otherFace(0)].vertices)
     held[v] = 1;
-  std::vector<Paper> balance;
-  std::vector<int> steps;
-  for (const bool restore : { false, true })
+  QuasiNewtonOptions options[2];
+  for (int k = 0; k < 2; ++k)
   {
-    QuasiNewtonOptions options;
-    options.restore_trial_faces = restore;
-    options.face_stiffness = 100.0;  // the guide's (TurnGuide)
-    QuasiNewtonDriver d(options);
-    Paper paper = flat;
-    const SolveReport report = d.drive(paper, target, held);
-    ASSERT_TRUE(report.converged) << "restore " << restore << ": " << report.message;
-    balance.push_back(paper);
-    steps.push_back(report.iterations);
+    options[k].restore_trial_faces = k == 1;
+    options[k].face_stiffness = 100.0;  // the guide's (TurnGuide)
   }
-  EXPECT_LT(steps[1], steps[0]);
-  double distance = 0.0;
-  for (size_t v = 0; v < flat.vertices.size(); ++v)
-    distance = std::max(distance, (balance[0].vertices[v].folded - balance[1].vertices[v].folded).norm());
-  EXPECT_LE(distance / flat.scale(), 1e-7) << "steps " << steps[0] << " → " << steps[1];
+  const TwoDrives drives = driveBoth(flat, target, held, options, QuasiNewtonDriver().limits());
+  EXPECT_LT(drives.steps[1], drives.steps[0]);
+  EXPECT_LE(drives.distance, 1e-7) << "steps " << drives.steps[0] << " → " << drives.steps[1];
 }
 
 /// A commit a percent on from a balanced Miura-ori: with the energy's own Hessian the
@@ -552,25 +569,12 @@ TEST(AssignmentFold, ExactHessianReachesACommitsBalanceInFewerSteps)
   for (double& t : target)
     t *= 0.41;
   const std::vector<char> held(start.vertices.size(), 0);
-  std::vector<Paper> balance;
-  std::vector<int> steps;
-  for (const bool exact : { false, true })
-  {
-    QuasiNewtonOptions options;
-    options.exact_hessian = exact;
-    QuasiNewtonDriver d(options);
-    d.setLimits(SolveLimits{ 1e-10, 5000, 0.0 });
-    Paper paper = start;
-    const SolveReport report = d.drive(paper, target, held);
-    ASSERT_TRUE(report.converged) << "exact " << exact << ": " << report.message;
-    balance.push_back(paper);
-    steps.push_back(report.iterations);
-  }
-  EXPECT_LT(steps[1], steps[0]);
-  double distance = 0.0;
-  for (size_t v = 0; v < start.vertices.size(); ++v)
-    distance = std::max(distance, (balance[0].vertices[v].folded - balance[1].vertices[v].folded).norm());
-  EXPECT_LE(distance / start.scale(), 1e-8) << "steps " << steps[0] << " → " << steps[1];
+  QuasiNewtonOptions options[2];
+  options[0].exact_hessian = false;
+  options[1].exact_hessian = true;
+  const TwoDrives drives = driveBoth(start, target, held, options, SolveLimits{ 1e-10, 5000, 0.0 });
+  EXPECT_LT(drives.steps[1], drives.steps[0]);
+  EXPECT_LE(drives.distance, 1e-8) << "steps " << drives.steps[0] << " → " << drives.steps[1];
 }
 
 TEST(AssignmentFold, BadInputChangesNothing)
