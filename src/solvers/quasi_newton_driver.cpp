@@ -404,11 +404,6 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
   // The Gauss–Newton matrix at x; nothing held, its null space (rigid motions) is shifted away
   // by far less than the faces' stiffness, and a failed factorisation (a degenerate face) is
   // retried with more.
-  // A factorisation is paid for only where the budget has room for it (twice what the last
-  // one took): in a preview frame the kept matrix serves until it fails outright.
-  const auto factor_room = [&]() {
-    return limits_.max_seconds <= 0 || limits_.max_seconds - budget.seconds() > 2 * s.factor_seconds;
-  };
   const auto refactor = [&]() {
     const SolveBudget clock(SolveLimits{});
     const auto timed = [&](bool ok) {
@@ -820,8 +815,12 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
       }
     }
     // The kept matrix pays while the steps shrink fast; when they stop, factor afresh.
+    // A factorisation is paid for only where the budget has room for it (twice what the last
+    // one took): in a preview frame the kept matrix serves until it fails outright.
+    const bool room = limits_.max_seconds <= 0 ||
+                      limits_.max_seconds - budget.seconds() > 2 * s.factor_seconds;
     if (options_.hessian == DriverHessian::Exact ||
-        (options_.hessian == DriverHessian::Lagged && factor_room() && !subspace_frame &&
+        (options_.hessian == DriverHessian::Lagged && room && !subspace_frame &&
          (krylov_slow || (!exact_products && step_size > options_.refresh_ratio * last_step))))
       refresh = true;
     const bool whole = step_length == 1.0 && !restored;

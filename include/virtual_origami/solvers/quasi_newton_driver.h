@@ -7,7 +7,8 @@
 //   system at the current state (each face's rotation eliminated, never assembled) by
 //   conjugate gradients, preconditioned by that matrix factorised at an earlier state and
 //   kept across iterations and frames; refactorised when the iterations grow (not within a
-//   frame's time budget);
+//   frame's time budget). Once the steps converge, the conjugate gradients run on the
+//   energy's own Hessian instead (exact_hessian: quadratic convergence near the balance);
 // - exact ("newton", the reference): that matrix refactorised every iteration (damped
 //   Gauss–Newton).
 // Each frame starts from a prediction along the motion of the frames before it. Anytime.
