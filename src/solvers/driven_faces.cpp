@@ -214,11 +214,16 @@ void DrivenFaces::setTargets(const std::vector<double>& targets)
   }
 }
 
+double DrivenFaces::unwrappedAngle(const Hinge& h, const Positions& x) const
+{
+  return unwrapNear(hingeAngle(h, x), reference_[h.edge]);
+}
+
 std::vector<double> DrivenFaces::angles(const Positions& x) const
 {
   std::vector<double> out(reference_.size(), kNaN);
   for (const Hinge& h : hinges_)
-    out[h.edge] = unwrapNear(hingeAngle(h, x), reference_[h.edge]);
+    out[h.edge] = unwrappedAngle(h, x);
   return out;
 }
 
@@ -253,7 +258,7 @@ DrivenFaces::Evaluation DrivenFaces::evaluate(const Positions& x, Positions* gra
     if (!std::isfinite(target_[i]))
       continue;
     const Hinge& h = hinges_[i];
-    const double angle = unwrapNear(hingeAngle(h, x), reference_[h.edge]);
+    const double angle = unwrappedAngle(h, x);
     const double miss = angle - target_[i];
     out.hinge_energy += 0.5 * h.weight * miss * miss;
     if (gradient || l)
@@ -287,7 +292,7 @@ double DrivenFaces::hingeEnergy(const Positions& x) const
     if (std::isfinite(target_[i]))
     {
       const Hinge& h = hinges_[i];
-      const double miss = unwrapNear(hingeAngle(h, x), reference_[h.edge]) - target_[i];
+      const double miss = unwrappedAngle(h, x) - target_[i];
       energy += 0.5 * h.weight * miss * miss;
     }
   return energy;
@@ -438,31 +443,34 @@ DrivenFaces::Linearization DrivenFaces::linearize(const Positions& x) const
     {
       const Hinge& h = hinges_[i];
       l.hinge_gradient.push_back(hingeAngleGradient(h, x));
-      l.hinge_miss.push_back(unwrapNear(hingeAngle(h, x), reference_[h.edge]) - target_[i]);
+      l.hinge_miss.push_back(unwrappedAngle(h, x) - target_[i]);
     }
   l.at = x;
   return l;
+}
+
+void DrivenFaces::addFaceGaussNewtonProduct(size_t f, const Linearization& l, const Positions& v, Positions& out) const
+{
+  const std::vector<int>& vs = faces_[f].vertices;
+  const auto q = l.turned_rest.middleCols(face_offset_[f], static_cast<Eigen::Index>(vs.size()));
+  Eigen::Vector3d turn = Eigen::Vector3d::Zero(), mean = Eigen::Vector3d::Zero();
+  for (size_t k = 0; k < vs.size(); ++k)
+  {
+    turn += q.col(static_cast<Eigen::Index>(k)).cross(v.col(vs[k]));
+    mean += v.col(vs[k]);
+  }
+  mean /= static_cast<double>(vs.size());
+  // Σ_l block(k, l) v_l = v_k − mean + q_k × (D⁻¹ Σ_l q_l × v_l), the face's turn taken out.
+  const Eigen::Vector3d spin = l.inertia_inverse[f] * turn;
+  for (size_t k = 0; k < vs.size(); ++k)
+    out.col(vs[k]) += face_weight_[f] * (v.col(vs[k]) - mean + q.col(static_cast<Eigen::Index>(k)).cross(spin));
 }
 
 void DrivenFaces::gaussNewtonProduct(const Linearization& l, const Positions& v, Positions& out) const
 {
   out.setZero(3, v.cols());
   for (size_t f = 0; f < faces_.size(); ++f)
-  {
-    const std::vector<int>& vs = faces_[f].vertices;
-    const auto q = l.turned_rest.middleCols(face_offset_[f], static_cast<Eigen::Index>(vs.size()));
-    Eigen::Vector3d turn = Eigen::Vector3d::Zero(), mean = Eigen::Vector3d::Zero();
-    for (size_t k = 0; k < vs.size(); ++k)
-    {
-      turn += q.col(static_cast<Eigen::Index>(k)).cross(v.col(vs[k]));
-      mean += v.col(vs[k]);
-    }
-    mean /= static_cast<double>(vs.size());
-    // Σ_l block(k, l) v_l = v_k − mean + q_k × (D⁻¹ Σ_l q_l × v_l), the face's turn taken out.
-    const Eigen::Vector3d spin = l.inertia_inverse[f] * turn;
-    for (size_t k = 0; k < vs.size(); ++k)
-      out.col(vs[k]) += face_weight_[f] * (v.col(vs[k]) - mean + q.col(static_cast<Eigen::Index>(k)).cross(spin));
-  }
+    addFaceGaussNewtonProduct(f, l, v, out);
   size_t driven = 0;
   for (size_t i = 0; i < hinges_.size(); ++i)
   {
@@ -484,25 +492,19 @@ void DrivenFaces::hessianProduct(const Linearization& l, const Positions& v, Pos
   out.setZero(3, v.cols());
   for (size_t f = 0; f < faces_.size(); ++f)
   {
+    const double trace = l.stretch_trace[f];
+    if (!(trace > 0))
+    {
+      // A sliver face: its polar factor has no derivative; turned as a rigid body instead.
+      addFaceGaussNewtonProduct(f, l, v, out);
+      continue;
+    }
     const RigidFace& face = faces_[f];
     const std::vector<int>& vs = face.vertices;
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
     for (int w : vs)
       mean += v.col(w);
     mean /= static_cast<double>(vs.size());
-    const double trace = l.stretch_trace[f];
-    if (!(trace > 0))
-    {
-      // A sliver face: its polar factor has no derivative; turned as a rigid body instead.
-      const auto q = l.turned_rest.middleCols(face_offset_[f], static_cast<Eigen::Index>(vs.size()));
-      Eigen::Vector3d turn = Eigen::Vector3d::Zero();
-      for (size_t k = 0; k < vs.size(); ++k)
-        turn += q.col(static_cast<Eigen::Index>(k)).cross(v.col(vs[k]));
-      const Eigen::Vector3d spin = l.inertia_inverse[f] * turn;
-      for (size_t k = 0; k < vs.size(); ++k)
-        out.col(vs[k]) += face_weight_[f] * (v.col(vs[k]) - mean + q.col(static_cast<Eigen::Index>(k)).cross(spin));
-      continue;
-    }
     // The face's gradient is w (x_v − x̄ − Q p̃_v) with Q the polar factor of M = Σ x_v p̃_vᵀ;
     // M = Q S gives dQ = Q Ω + (I − Q Qᵀ) dM S⁻¹, with Ω = ω J skew and
     // ω tr S = (QᵀdM)₀₁ − (QᵀdM)₁₀.

@@ -11,8 +11,9 @@
 #include "virtual_origami/core/face_springs.h"
 #include "virtual_origami/curved/spd_factorization.h"
 #include "virtual_origami/solvers/rigid_faces.h"
-#include "../curved/nested_dissection.h"
 #include "virtual_origami/solvers/solve_budget.h"
+
+#include "../curved/nested_dissection.h"
 
 namespace virtual_origami::core
 {

@@ -117,6 +117,11 @@ public:
 
 private:
   void prepare(Linearization& linearization) const;
+  /// A hinge's fold angle at x on the branch nearest its reference.
+  double unwrappedAngle(const Hinge& hinge, const Positions& x) const;
+  /// Adds face f's block row of the Gauss–Newton matrix times v to out.
+  void addFaceGaussNewtonProduct(size_t face, const Linearization& linearization, const Positions& v,
+                                 Positions& out) const;
   void linearizeFace(size_t face, const Eigen::Matrix3d& rotation, const Positions& x,
                      Linearization& linearization) const;
 
