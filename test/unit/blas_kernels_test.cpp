@@ -1,0 +1,62 @@
+// The core library names OpenBLAS's kernels by the CPU's instruction sets when it loads
+// (src/curved/blas_kernels.cpp): Debian's OpenBLAS falls back to SSE3 on CPUs newer than it.
+#include <cctype>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "virtual_origami/curved/blas_kernels.h"
+#include "virtual_origami/curved/spd_factorization.h"
+
+using namespace virtual_origami::core;
+
+namespace
+{
+std::string lowerCase(std::string s)
+{
+  for (char& c : s)
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+}  // namespace
+
+TEST(BlasKernels, FactorisationsRunOnTheKernelsForTheCpu)
+{
+  // A factorisation with supernodes (each a BLAS call): the 2-D Laplacian of a 40 × 40 grid
+  // plus the identity, solved against a known solution.
+  const int side = 40, n = side * side;
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int i = 0; i < side; ++i)
+    for (int j = 0; j < side; ++j)
+    {
+      const int k = i * side + j;
+      entries.emplace_back(k, k, 5.0);
+      if (i + 1 < side)
+        entries.emplace_back(k + side, k, -1.0);
+      if (j + 1 < side)
+        entries.emplace_back(k + 1, k, -1.0);
+    }
+  Eigen::SparseMatrix<double> lower(n, n);
+  lower.setFromTriplets(entries.begin(), entries.end());
+  const Eigen::SparseMatrix<double> full = lower.selfadjointView<Eigen::Lower>();
+  const Eigen::VectorXd solution = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
+  SpdFactorization factor;
+  ASSERT_TRUE(factor.factorize(lower, 0.0));
+  EXPECT_LT((factor.solve(full * solution) - solution).cwiseAbs().maxCoeff(), 1e-12);
+
+  const std::string running = blasKernels();
+  if (running.empty())
+    GTEST_SKIP() << "the BLAS in this process is not OpenBLAS (scripts/install_deps.sh installs libopenblas0-serial)";
+  // Named by the caller, that choice; otherwise never the SSE3 fallback where the CPU has more.
+  if (const char* named = std::getenv("OPENBLAS_CORETYPE"))
+  {
+    EXPECT_EQ(lowerCase(running), lowerCase(named));
+  }
+  if (!blasKernelsForThisCpu().empty())
+  {
+    EXPECT_NE(running, "Prescott") << "OpenBLAS runs its SSE3 kernels on a CPU with " << blasKernelsForThisCpu()
+                                   << "'s instruction sets";
+  }
+}
