@@ -116,6 +116,8 @@ struct QuasiNewtonDriver::Setup
   bool constant_tried = false, factored = false;
   int free_count = 0;
   SpdFactorization gauss_newton;  // the lagged or exact matrix, 3 rows per free vertex
+  // Each face's fitted frame where gauss_newton was factorised (Lagged: how far they turned since).
+  std::vector<Eigen::Matrix<double, 3, 2>> factor_frames;
   Eigen::SparseMatrix<double> gauss_newton_matrix;
   std::vector<Eigen::Triplet<double>> triplets;
   std::vector<int> slots;  // where each of the triplets lands among the matrix's values
@@ -265,7 +267,11 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
   const double scale = energy.scale();
   Positions x = start / scale;
   const std::vector<Spring>& springs = s.springs;
-  if (s.free_vertices.empty() || (options_.hessian == DriverHessian::Constant && !s.factorConstant()))
+  const bool constant_unfactored = !s.constant_tried;
+  const bool constant_refused =
+      !s.free_vertices.empty() && options_.hessian == DriverHessian::Constant && !s.factorConstant();
+  report.factorizations += constant_unfactored && s.constant_tried ? 1 : 0;
+  if (s.free_vertices.empty() || constant_refused)
   {
     report.max_strain = springStrain(springs, start).max;
     report.converged = s.free_vertices.empty();
@@ -335,12 +341,20 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
   // A subspace frame's rigid motions, made once where it starts (they only keep the steps from
   // drifting the floating sheet: a frame's small motion does not change them measurably).
   std::optional<RigidMotions> frame_rigid;
+  // The constant matrix's solve, counted (and its factorisation, where this frame makes it).
+  const auto solveConstant = [&](const Eigen::MatrixX3d& rhs) {
+    const bool unfactored = !s.constant_tried;
+    Eigen::MatrixX3d solved = s.solveConstant(rhs);
+    report.factorizations += unfactored ? 1 : 0;
+    report.back_substitutions += s.factored ? 1 : 0;
+    return solved;
+  };
   // One step of the constant matrix from `at` (rotations fitted, the faces' shapes restored),
   // taken where it lowers the energy: what a linear step along turning faces stretched, taken
   // out for about one back-substitution.
   const auto restoreFaces = [&](Positions& at, Positions& at_gradient, DrivenFaces::Evaluation& at_energy) {
     const SolveBudget clock(SolveLimits{});
-    Eigen::MatrixX3d restore = -s.solveConstant(gather(at_gradient, free));
+    Eigen::MatrixX3d restore = -solveConstant(gather(at_gradient, free));
     if (frame_rigid)
       frame_rigid->remove(restore);
     else if (!anchored)
@@ -445,13 +459,17 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
         if (it.row() == it.col())
           largest = std::max(largest, it.value());
     for (double shift = largest * (anchored ? 1e-12 : 1e-9); shift <= largest; shift *= 100)
+    {
+      ++report.factorizations;
       if (s.gauss_newton.factorize(m, shift))
         return timed(true);
+    }
     return timed(false);
   };
   const auto precondition = [&](const Eigen::MatrixX3d& q) -> Eigen::MatrixX3d {
     if (options_.hessian == DriverHessian::Constant || !s.gauss_newton.valid())
-      return s.solveConstant(q);
+      return solveConstant(q);
+    ++report.back_substitutions;
     const Eigen::MatrixX3d qt = q;  // row per vertex: flattened row-major it is 3i + axis
     Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> rows = qt;
     const Eigen::VectorXd solved =
@@ -649,12 +667,29 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
         break;
       }
       const double add_from = budget.seconds();
-      add(s.solveConstant(r));
+      add(solveConstant(r));
       subspace_add_seconds = budget.seconds() - add_from;
     }
     solve_seconds = budget.seconds() - step_from;  // what the next iteration's step will cost
     return step;
   };
+  // A factorisation is paid for only where the budget has room for it (twice what the last
+  // one took): in a preview frame the kept matrix serves until it fails outright.
+  const auto roomForFactor = [&]() {
+    return limits_.max_seconds <= 0 || limits_.max_seconds - budget.seconds() > 2 * s.factor_seconds;
+  };
+  // How far the faces turned since the kept matrix was factorised, as K·δ² for the face that
+  // turned most (δ its turn in radians, K the face stiffness): what that matrix's face term
+  // charges along the mechanism's present turn, against the hinges' stiffness (about 1).
+  const auto turnedSinceFactor = [&](const DrivenFaces::Linearization& l) -> double {
+    if (s.factor_frames.size() != l.frame.size())
+      return INFINITY;
+    double largest = 0.0;
+    for (size_t f = 0; f < l.frame.size(); ++f)
+      largest = std::max(largest, (l.frame[f] - s.factor_frames[f]).squaredNorm());
+    return energy.faceStiffness() * largest;
+  };
+  bool frames_pending = false;
   Positions trial = x, trial_gradient;
   std::string stuck;
   bool diverged = !std::isfinite(now.energy);
@@ -680,6 +715,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
     if (refresh)
     {
       refresh = false;
+      frames_pending = true;
       if (refactor())
       {
         steps.clear();
@@ -702,6 +738,22 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
     else if (options_.hessian == DriverHessian::Lagged)
     {
       const DrivenFaces::Linearization linearization = energy.linearize(x);
+      if (frames_pending)
+      {
+        s.factor_frames = linearization.frame;
+        frames_pending = false;
+      }
+      else if (options_.refactor_turn > 0 && s.gauss_newton.valid() && roomForFactor() &&
+               turnedSinceFactor(linearization) > options_.refactor_turn)
+      {
+        if (refactor())
+        {
+          steps.clear();
+          changes.clear();
+          rho.clear();
+        }
+        s.factor_frames = linearization.frame;
+      }
       direction = newtonKrylovStep(linearization, rigid ? &*rigid : nullptr);
       if (options_.follow_motion && motion.size() > 0)
         followMotion(linearization, rigid ? &*rigid : nullptr, direction);
@@ -814,14 +866,14 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
         rho.pop_front();
       }
     }
-    // The kept matrix pays while the steps shrink fast; when they stop, factor afresh.
-    // A factorisation is paid for only where the budget has room for it (twice what the last
-    // one took): in a preview frame the kept matrix serves until it fails outright.
-    const bool room = limits_.max_seconds <= 0 ||
-                      limits_.max_seconds - budget.seconds() > 2 * s.factor_seconds;
+    // The kept matrix pays while the steps shrink fast; when they stop, factor afresh. Not
+    // for slow conjugate gradients in a Newton step that shrank the step a hundredfold: the
+    // next step, converging quadratically, is the last or nearly.
+    const bool room = roomForFactor();
+    const bool quadratic = exact_products && step_size < 0.01 * last_step;
     if (options_.hessian == DriverHessian::Exact ||
         (options_.hessian == DriverHessian::Lagged && room && !subspace_frame &&
-         (krylov_slow || (!exact_products && step_size > options_.refresh_ratio * last_step))))
+         ((krylov_slow && !quadratic) || (!exact_products && step_size > options_.refresh_ratio * last_step))))
       refresh = true;
     const bool whole = step_length == 1.0 && !restored;
     if (exact_products && !whole)

@@ -95,6 +95,7 @@ Paper degree4(int mode)
 struct TwoDrives
 {
   int steps[2] = { 0, 0 };
+  SolveReport reports[2];
   double distance = 0.0;
 };
 
@@ -110,6 +111,7 @@ TwoDrives driveBoth(const Paper& start, const std::vector<double>& target, const
     const SolveReport report = d.drive(balance[k], target, held);
     EXPECT_TRUE(report.converged) << "driver " << k << ": " << report.message;
     out.steps[k] = report.iterations;
+    out.reports[k] = report;
   }
   for (size_t v = 0; v < start.vertices.size(); ++v)
     out.distance = std::max(out.distance, (balance[0].vertices[v].folded - balance[1].vertices[v].folded).norm());
@@ -575,6 +577,34 @@ TEST(AssignmentFold, ExactHessianReachesACommitsBalanceInFewerSteps)
   const TwoDrives drives = driveBoth(start, target, held, options, SolveLimits{ 1e-10, 5000, 0.0 });
   EXPECT_LT(drives.steps[1], drives.steps[0]);
   EXPECT_LE(drives.distance, 1e-8) << "steps " << drives.steps[0] << " → " << drives.steps[1];
+}
+
+/// A commit a percent on from a balanced 12 × 12 Miura-ori: its first step turns the faces by
+/// about a degree, and a matrix factorised before that calls the mechanism's new turn stiff
+/// (its face term charges K·δ², above the hinges' stiffness). Refactorised before the next
+/// step, not after conjugate gradients stalled on the old one: fewer back-substitutions
+/// (measured 12 against 25), no more factorisations, the same balance.
+TEST(AssignmentFold, FacesTurnedSinceTheFactorisationRefactoriseBeforeTheStep)
+{
+  Paper start = miuraTessellation(12, 12).value().paper;
+  {
+    const auto warm = makeCreaseDriver("quasi_newton");
+    warm->setLimits(SolveLimits{ 1e-9, 5000, 0.0 });
+    AssignmentFoldRequest request;
+    request.fraction = 0.4;
+    ASSERT_TRUE(foldByAssignment(start, request, *warm, nullptr));
+  }
+  std::vector<double> target = creaseTargets(start);
+  for (double& t : target)
+    t *= 0.41;
+  const std::vector<char> held(start.vertices.size(), 0);
+  QuasiNewtonOptions options[2];
+  options[0].refactor_turn = 0.0;
+  const TwoDrives drives = driveBoth(start, target, held, options, SolveLimits{ 1e-10, 5000, 0.0 });
+  EXPECT_LT(drives.reports[1].back_substitutions, drives.reports[0].back_substitutions);
+  EXPECT_LE(drives.reports[1].factorizations, drives.reports[0].factorizations);
+  EXPECT_LE(drives.distance, 1e-8) << "back-substitutions " << drives.reports[0].back_substitutions << " → "
+                                   << drives.reports[1].back_substitutions;
 }
 
 TEST(AssignmentFold, BadInputChangesNothing)

@@ -40,6 +40,10 @@ struct QuasiNewtonOptions
   /// Lagged: refactorise when an iteration leaves more than this share of the step it started
   /// from (the kept matrix no longer predicts the energy well).
   double refresh_ratio = 0.5;
+  /// Lagged: refactorise before a step where some face has turned by δ since the kept
+  /// factorisation with K·δ² above this (K the face stiffness; 0: never). That matrix's face
+  /// term then charges the mechanism's present turn more than the hinges do.
+  double refactor_turn = 1.0;
   /// Lagged: conjugate-gradient iterations per Newton step, and the residual (relative to the
   /// gradient) that ends them early. 1 %: at 5 % a 40 × 40 Miura-ori's first corner turn from
   /// the flat sheet took 22 steps (linear convergence), at 1 % it takes 12 like the later ones.
