@@ -767,7 +767,11 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
     // the budget cut short (one or two iterations on a matrix kept from another state) can be
     // small far from balance: it does not tell.
     const double step_size = direction.cwiseAbs().maxCoeff();
-    if (step_size <= tolerance && !krylov_cut)
+    // Newton steps on the energy's own Hessian that stopped shrinking within ten times the
+    // tolerance: a degenerate balance (the Hessian singular along a mechanism there, where
+    // Newton only halves its distance per step) or the rounding floor. Balanced as far as it goes.
+    const bool stalled = exact_products && step_size <= 10 * tolerance && step_size >= 0.5 * last_step;
+    if ((step_size <= tolerance || stalled) && !krylov_cut)
     {
       report.converged = true;
       break;
