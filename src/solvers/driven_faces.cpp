@@ -471,19 +471,32 @@ void DrivenFaces::gaussNewtonProduct(const Linearization& l, const Positions& v,
   out.setZero(3, v.cols());
   for (size_t f = 0; f < faces_.size(); ++f)
     addFaceGaussNewtonProduct(f, l, v, out);
+  addHingeProducts(l, v, false, out);
+}
+
+void DrivenFaces::addHingeProducts(const Linearization& l, const Positions& v, bool curvature, Positions& out) const
+{
   size_t driven = 0;
   for (size_t i = 0; i < hinges_.size(); ++i)
   {
     if (!std::isfinite(target_[i]))
       continue;
     const Hinge& h = hinges_[i];
-    const Eigen::Matrix<double, 3, 4>& g = l.hinge_gradient[driven++];
+    const size_t k = driven++;
+    const Eigen::Matrix<double, 3, 4>& g = l.hinge_gradient[k];
     const int vs[4] = { h.a, h.b, h.left, h.right };
     double along = 0.0;
     for (int p = 0; p < 4; ++p)
       along += g.col(p).dot(v.col(vs[p]));
-    for (int p = 0; p < 4; ++p)
-      out.col(vs[p]) += h.weight * along * g.col(p);
+    if (curvature)
+    {
+      const Eigen::Matrix<double, 3, 4> change = hingeAngleGradientChange(h, l.at, v);
+      for (int p = 0; p < 4; ++p)
+        out.col(vs[p]) += h.weight * (along * g.col(p) + l.hinge_miss[k] * change.col(p));
+    }
+    else
+      for (int p = 0; p < 4; ++p)
+        out.col(vs[p]) += h.weight * along * g.col(p);
   }
 }
 
@@ -521,22 +534,7 @@ void DrivenFaces::hessianProduct(const Linearization& l, const Positions& v, Pos
       out.col(vs[k]) +=
           face_weight_[f] * (v.col(vs[k]) - mean - frame_change * face.rest.col(static_cast<Eigen::Index>(k)));
   }
-  size_t driven = 0;
-  for (size_t i = 0; i < hinges_.size(); ++i)
-  {
-    if (!std::isfinite(target_[i]))
-      continue;
-    const Hinge& h = hinges_[i];
-    const Eigen::Matrix<double, 3, 4>& g = l.hinge_gradient[driven];
-    const double miss = l.hinge_miss[driven++];
-    const int vs[4] = { h.a, h.b, h.left, h.right };
-    double along = 0.0;
-    for (int p = 0; p < 4; ++p)
-      along += g.col(p).dot(v.col(vs[p]));
-    const Eigen::Matrix<double, 3, 4> change = hingeAngleGradientChange(h, l.at, v);
-    for (int p = 0; p < 4; ++p)
-      out.col(vs[p]) += h.weight * (along * g.col(p) + miss * change.col(p));
-  }
+  addHingeProducts(l, v, true, out);
 }
 
 }  // namespace virtual_origami::core

@@ -482,6 +482,15 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
   Eigen::MatrixX3d g = gather(gradient, free);
   std::deque<Eigen::MatrixX3d> steps, changes;  // s_k, y_k
   std::deque<double> rho;
+  // A fresh factorisation; the curvature pairs gathered against the old one go with it.
+  const auto refactorAfresh = [&]() {
+    if (refactor())
+    {
+      steps.clear();
+      changes.clear();
+      rho.clear();
+    }
+  };
   // L-BFGS: the two-loop recursion with the factorised matrix's inverse as the initial Hessian.
   const auto lbfgsStep = [&]() -> Eigen::MatrixX3d {
     Eigen::MatrixX3d q = g;
@@ -716,12 +725,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
     {
       refresh = false;
       frames_pending = true;
-      if (refactor())
-      {
-        steps.clear();
-        changes.clear();
-        rho.clear();
-      }
+      refactorAfresh();
     }
     Eigen::MatrixX3d direction;
     if (subspace_frame && !anchored && !frame_rigid)
@@ -746,12 +750,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
       else if (options_.refactor_turn > 0 && s.gauss_newton.valid() && roomForFactor() &&
                turnedSinceFactor(linearization) > options_.refactor_turn)
       {
-        if (refactor())
-        {
-          steps.clear();
-          changes.clear();
-          rho.clear();
-        }
+        refactorAfresh();
         s.factor_frames = linearization.frame;
       }
       direction = newtonKrylovStep(linearization, rigid ? &*rigid : nullptr);

@@ -122,6 +122,9 @@ private:
   /// Adds face f's block row of the Gauss–Newton matrix times v to out.
   void addFaceGaussNewtonProduct(size_t face, const Linearization& linearization, const Positions& v,
                                  Positions& out) const;
+  /// Adds the driven hinges' w ∇θ ∇θᵀ v to out, and with `curvature` their w (θ − θ*) ∇²θ v.
+  void addHingeProducts(const Linearization& linearization, const Positions& v, bool curvature,
+                        Positions& out) const;
   void linearizeFace(size_t face, const Eigen::Matrix3d& rotation, const Positions& x,
                      Linearization& linearization) const;
 
