@@ -1,15 +1,13 @@
-// Helpers the benchmark programs share: a wall clock, the machine's memory bandwidth (the
-// floor of an explicit step), a structured sheet mesh of any size and the best rigid fit of
-// two shapes.
+// Helpers the benchmark programs share: a wall clock and a CPU clock, the machine's memory
+// bandwidth (the floor of an explicit step) and a structured sheet mesh of any size.
 #pragma once
 
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
+#include <ctime>
 #include <iostream>
 #include <vector>
-
-#include <Eigen/SVD>
 
 #include "virtual_origami/curved/curved_mesh.h"
 
@@ -20,6 +18,12 @@ using namespace virtual_origami::core;
 inline double now()
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+/// This process's CPU seconds (all its threads), for times on one core of a shared machine.
+inline double cpuNow()
+{
+  return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
 }
 
 /// Sustained memory bandwidth in bytes per second: the STREAM triad a = b + s·c, best of five,
@@ -97,20 +101,6 @@ inline CurvedMesh gridMesh(const Paper& paper, int n)
     std::exit(1);
   }
   return mesh;
-}
-
-/// `points` moved by the rigid motion that best fits them onto `target` (Kabsch): with only two
-/// corners pinned the sheet may turn freely about the line through them, so shapes are
-/// compared, not poses.
-inline Positions alignedTo(const Positions& points, const Positions& target)
-{
-  const Vec3 pc = points.rowwise().mean(), tc = target.rowwise().mean();
-  const Eigen::Matrix3d cov = (points.colwise() - pc) * (target.colwise() - tc).transpose();
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(cov, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
-  d(2, 2) = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0 ? -1.0 : 1.0;
-  const Eigen::Matrix3d rotation = svd.matrixV() * d * svd.matrixU().transpose();
-  return (rotation * (points.colwise() - pc)).colwise() + tc;
 }
 
 }  // namespace virtual_origami::bench

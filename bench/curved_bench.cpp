@@ -7,7 +7,6 @@
 //   curved_bench [output.csv] [rk4 budget seconds per case, default 4]
 //   curved_bench elastica [output directory, default docs/bench] [budget seconds per RK4 or
 //                quasi-Newton solve, default 20]   (that part alone)
-//   curved_bench seed_resolution [output directory, default docs/bench] [bend q/k, default 1e-3]
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -15,12 +14,7 @@
 #include <fstream>
 #include <iostream>
 
-#include <ctime>
-
-#include <Eigen/SVD>
-
 #include "virtual_origami/curved/bubble_mesh.h"
-#include "virtual_origami/curved/cgal_mesh.h"
 #include "virtual_origami/curved/elastica.h"
 #include "virtual_origami/curved/paper_material.h"
 #include "virtual_origami/curved/seed_scenes.h"
@@ -28,14 +22,12 @@
 #include "bench_common.h"
 
 using namespace virtual_origami::core;
-using virtual_origami::bench::alignedTo;
+using virtual_origami::bench::cpuNow;
 using virtual_origami::bench::gridMesh;
 using virtual_origami::bench::now;
 
 namespace
 {
-double cpuNow() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
-
 /// Speed against accuracy for curved paper: a 20 × 2 cm strip of ν = 0 copy paper (the scene of
 /// Elastica.StripTurned45DegreesConvergesToTheElastica), clamped at one end, the other end
 /// turned by 45° and held at (0.8, 0.3) × its length, solved from the balance of the end
@@ -102,133 +94,10 @@ int elasticaSpeed(const std::string& directory, double budget)
   return 0;
 }
 
-/// Seed scene 1 (corner a pulled towards c) against a reference that is itself balanced and
-/// converged: the pull to a fifth in four steps (the corner turned 36°, which brings it 5 %
-/// nearer c) with bending `bend` (q/k in side²; mesh_bench's sweep uses 1e-2, at which the sheet
-/// stays flat and takes the 5 % as compression: bending energy ~1e-26; at 1e-3 it curls), as a
-/// plate of ν = 0.3, smoothing 3, every balance tested for stability and solved to 1e-11, on each
-/// mesher at spacings 0.2 … 0.025. Every solution is
-/// compared (RMS and largest distance over a 21 × 21 grid of points, after the best rigid fit,
-/// over the side) with the finest of its own mesher and with the next finer one: the reference
-/// is converged when those distances keep falling with the spacing.
-int seedResolution(const std::string& directory, double bend)
-{
-  const std::string out_path = directory + "/curved_seed_resolution.csv";
-  std::ofstream csv(out_path);
-  const Expected<SeedScene> scene = seedScene(1);
-  if (!csv || !scene.ok())
-  {
-    std::cerr << "cannot write " << out_path << "\n";
-    return 1;
-  }
-  CurvedMesh probes;
-  for (int i = 0; i <= 20; ++i)
-    for (int j = 0; j <= 20; ++j)
-    {
-      MeshNode node;
-      // Inset by a thousandth: a probe on the sheet's edge may lie in no triangle by rounding.
-      node.crease_pattern = Vec2(0.001 + 0.0499 * i, 0.001 + 0.0499 * j);
-      probes.nodes.push_back(node);
-    }
-  SeedSceneOptions options;
-  options.steps = 4;
-  options.until = 0.2;
-  options.material.bend = bend;
-  // Bending as a plate (the closed forms converge with it); the seed's hinges cost a bend by
-  // the triangles' shapes, which differ from mesh to mesh, so their solutions need not converge.
-  options.material.plate_bending = true;
-  options.material.poisson_ratio = 0.3;
-  options.material.plate_smoothing = kPaperPlateSmoothing;
-  options.solve.max_iterations = 2000;
-  options.solve.tolerance = 1e-11;
-  options.solve.check_stability = true;
-  csv << "mesher,spacing,nodes,balanced,largest_force,cpu_seconds,stretch_energy,bend_energy,rms_to_finest,"
-         "max_to_finest,rms_to_next,max_to_next\n";
-  const std::vector<double> spacings = { 0.2, 0.14, 0.1, 0.07, 0.05, 0.035, 0.025 };
-  Positions other_finest;  // the first mesher's finest solution, to compare the meshers'
-  for (const StripMesher mesher : { StripMesher::Bubble, StripMesher::Cgal })
-  {
-    struct Solution
-    {
-      Positions at_probes;
-      size_t nodes = 0;
-      bool balanced = false;
-      double force = 0, cpu = 0, stretch = 0, bend = 0;
-    };
-    std::vector<Solution> solutions;
-    for (double spacing : spacings)
-    {
-      Expected<CurvedMesh> mesh = Expected<CurvedMesh>::failure("");
-      if (mesher == StripMesher::Cgal)
-      {
-        CgalMeshOptions mesh_options;
-        mesh_options.spacing = spacing;
-        mesh = cgalMesh(scene->paper, mesh_options);
-      }
-      else
-      {
-        BubbleMeshOptions mesh_options;
-        mesh_options.spacing = spacing;
-        mesh = bubbleMesh(scene->paper, mesh_options);
-      }
-      if (!mesh.ok())
-      {
-        std::cerr << mesh.message() << "\n";
-        return 1;
-      }
-      const double start = cpuNow();
-      const SeedSceneRun run = runSeedSceneOn(*scene, *mesh, options);
-      Solution s;
-      s.cpu = cpuNow() - start;
-      s.balanced = run.passed();
-      for (const SeedSceneStep& step : run.steps)
-        s.force = std::max(s.force, step.report.max_force);
-      s.nodes = run.mesh.nodes.size();
-      if (!run.steps.empty())
-      {
-        s.stretch = run.steps.back().report.energy.stretch;
-        s.bend = run.steps.back().report.energy.bend;
-      }
-      s.at_probes = transferNodes(run.mesh, run.positions, probes, Positions::Zero(3, probes.nodes.size()));
-      solutions.push_back(s);
-      std::printf("seed 1 %-6s h %.3f: %5zu nodes, balanced %d (largest force %.1e), %.2f s CPU, energy: stretch %.2e "
-                  "bend %.2e\n",
-                  mesher == StripMesher::Cgal ? "cgal" : "bubble", spacing, s.nodes, s.balanced, s.force, s.cpu,
-                  s.stretch, s.bend);
-      std::fflush(stdout);
-    }
-    const auto distance = [](const Positions& a, const Positions& b) {
-      const Eigen::VectorXd d = (alignedTo(a, b) - b).colwise().norm();
-      return std::make_pair(std::sqrt(d.squaredNorm() / static_cast<double>(d.size())), d.maxCoeff());
-    };
-    for (size_t k = 0; k < spacings.size(); ++k)
-    {
-      const Solution& s = solutions[k];
-      const auto to_finest = distance(s.at_probes, solutions.back().at_probes);
-      const auto to_next = k + 1 < spacings.size() ? distance(s.at_probes, solutions[k + 1].at_probes) :
-                                                     std::make_pair(double(NAN), double(NAN));
-      csv << (mesher == StripMesher::Cgal ? "cgal," : "bubble,") << spacings[k] << "," << s.nodes << ","
-          << s.balanced << "," << s.force << "," << s.cpu << "," << s.stretch << "," << s.bend << "," << to_finest.first << "," << to_finest.second << ","
-          << to_next.first << "," << to_next.second << "\n";
-      std::printf("  h %.3f: to the finest rms %.2e max %.2e, to the next rms %.2e max %.2e\n", spacings[k],
-                  to_finest.first, to_finest.second, to_next.first, to_next.second);
-    }
-    if (other_finest.size() == 0)
-      other_finest = solutions.back().at_probes;
-    else
-    {
-      const auto between = distance(solutions.back().at_probes, other_finest);
-      std::printf("the two meshers' finest solutions: rms %.2e max %.2e apart\n", between.first, between.second);
-    }
-  }
-  return 0;
-}
 }  // namespace
 
 int main(int argc, char** argv)
 {
-  if (argc > 1 && std::string(argv[1]) == "seed_resolution")
-    return seedResolution(argc > 2 ? argv[2] : "docs/bench", argc > 3 ? std::atof(argv[3]) : 1e-3);
   if (argc > 1 && std::string(argv[1]) == "elastica")
     return elasticaSpeed(argc > 2 ? argv[2] : "docs/bench", argc > 3 ? std::atof(argv[3]) : 20.0);
   const std::string out_path = argc > 1 ? argv[1] : "docs/bench/curved_solvers.csv";

@@ -16,13 +16,14 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.ticker  # noqa: E402
 
 ARGS = [a for a in sys.argv[1:] if not a.startswith("--")]
 ONLY = sys.argv[sys.argv.index("--only") + 1] if "--only" in sys.argv else None
 if ONLY:
     ARGS.remove(ONLY)
-    if ONLY not in ("wall_time", "fold"):
-        sys.exit("plot_charts.py: --only takes wall_time or fold")
+    if ONLY not in ("wall_time", "fold", "meshers"):
+        sys.exit("plot_charts.py: --only takes wall_time, fold or meshers")
 BENCH = ARGS[0] if len(ARGS) > 0 else "docs/bench"
 IMAGES = ARGS[1] if len(ARGS) > 1 else "docs/images/bench"
 DOC = ARGS[2] if len(ARGS) > 2 else "docs/BENCHMARKS.md"
@@ -291,40 +292,12 @@ def chart_curved_elastica(tables):
     lines.append("On the Pareto front: " + ", ".join(f"{r['method']} b/{r['per_width']} (tolerance {r['tolerance']})"
                                                      for r in sorted(on_front, key=lambda r: num(r["cpu_seconds"]))) + ".")
     tables["curved_elastica"] = "\n".join(lines)
-    chart_curved_seed_resolution(tables)
-
-
-def chart_curved_seed_resolution(tables):
-    """curved_bench seed_resolution: seed scene 1 on each mesher, each solution's distance from
-    its mesher's finest (balanced, stability checked) and from the next finer one, over the side."""
-    data = rows("curved_seed_resolution.csv")
-    if not data:
-        return
-    fig, ax = plt.subplots(figsize=(7, 4.5))
-    for mesher, color in (("bubble", "C0"), ("cgal", "C1")):
-        pts = [r for r in data if r["mesher"] == mesher and num(r["rms_to_next"]) == num(r["rms_to_next"])]
-        ax.loglog([num(r["spacing"]) for r in pts], [num(r["rms_to_finest"]) for r in pts], "o-", c=color,
-                  label=f"{mesher}: RMS distance to its finest mesh")
-        ax.loglog([num(r["spacing"]) for r in pts], [num(r["rms_to_next"]) for r in pts], "s--", c=color, alpha=0.6,
-                  label=f"{mesher}: RMS distance to the next finer mesh")
-    finish(fig, ax, "mesh spacing / side", "distance / side (21 × 21 points, best rigid fit)",
-           "Seed scene 1 (q/k = 1e-3): refinement against its own finest mesh",
-           "curved_seed_resolution.png")
-    lines = ["| mesher | spacing | nodes | balanced | largest force | CPU time | stretch energy | bend energy | "
-             "RMS to finest | max to finest | RMS to next | max to next |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
-    for r in data:
-        lines.append(f"| {r['mesher']} | {r['spacing']} | {r['nodes']} | {'yes' if r['balanced'] == '1' else 'no'} | "
-                     f"{fmt(num(r['largest_force']))} | {fmt(num(r['cpu_seconds']))} s | "
-                     f"{fmt(num(r['stretch_energy']))} | {fmt(num(r['bend_energy']))} | "
-                     f"{fmt(num(r['rms_to_finest']))} | {fmt(num(r['max_to_finest']))} | "
-                     f"{fmt(num(r['rms_to_next']))} | {fmt(num(r['max_to_next']))} |")
-    tables["curved_seed_resolution"] = "\n".join(lines)
 
 
 def chart_meshers(tables):
-    """Mesh quality of both meshers (meshers.csv) and mesh resolution against error and time on
-    seed scene 1 (mesh_resolution.csv)."""
+    """Mesh quality of both meshers (meshers.csv), and mesh resolution against error and time on
+    seed scene 1 bending (mesh_resolution.csv): each solution's distance from its mesher's finest
+    (balanced, stability checked) solution and from the next finer one, over the side."""
     quality = rows("meshers.csv")
     if quality:
         lines = ["| pattern | mesher | spacing | nodes | triangles | min angle | mean 2r/R | share 45–75° | time |",
@@ -337,32 +310,60 @@ def chart_meshers(tables):
     data = rows("mesh_resolution.csv")
     if not data:
         return
-    fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
+    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.5))
     for mesher, color in (("bubble", "C1"), ("cgal", "C0")):
-        pts = sorted((r for r in data if r["mesher"] == mesher and num(r["rms_error"]) > 0), key=lambda r: num(r["nodes"]))
+        # The finest row is the reference (its distance to itself is round-off): left out.
+        pts = sorted((r for r in data if r["mesher"] == mesher and math.isfinite(num(r["rms_to_next"]))),
+                     key=lambda r: -num(r["spacing"]))
         if not pts:
             continue
-        left.plot([num(r["nodes"]) for r in pts], [num(r["rms_error"]) for r in pts], "o-", c=color, label=mesher)
-        right.plot([num(r["solve_seconds"]) for r in pts], [num(r["rms_error"]) for r in pts], "o-", c=color,
+        left.plot([num(r["spacing"]) for r in pts], [num(r["rms_to_finest"]) for r in pts], "o-", c=color,
+                  label=mesher)
+        right.plot([num(r["cpu_seconds"]) for r in pts], [num(r["rms_to_finest"]) for r in pts], "o-", c=color,
                    label=mesher)
-        for r in pts:
-            right.annotate(f"h {r['spacing']}", (num(r["solve_seconds"]), num(r["rms_error"])), fontsize=6)
+        for r in pts:  # bubble's labels below its points, CGAL's above: the two lines run close
+            right.annotate(f"h {r['spacing']}", (num(r["cpu_seconds"]), num(r["rms_to_finest"])),
+                           textcoords="offset points", xytext=(4, -9 if mesher == "bubble" else 4), fontsize=6,
+                           color=color)
+    measured = [r for r in data if math.isfinite(num(r["rms_to_next"]))]
+    if measured:
+        # First order: the distance in proportion to the spacing, through the coarsest points' mean.
+        h = sorted({num(r["spacing"]) for r in measured})
+        coarsest = [num(r["rms_to_finest"]) for r in measured if num(r["spacing"]) == h[-1]]
+        e0 = sum(coarsest) / len(coarsest)
+        left.plot([h[0], h[-1]], [e0 * h[0] / h[-1], e0], "k--", lw=1, label="first order (∝ spacing)")
     for ax in (left, right):
         ax.set_xscale("log")
         ax.set_yscale("log")
-        ax.set_ylabel("RMS error against the finest mesh / side")
+        ax.yaxis.set_minor_formatter(matplotlib.ticker.LogFormatterSciNotation(labelOnlyBase=False,
+                                                                               minor_thresholds=(2, 0.5)))
+        ax.set_ylabel("RMS distance to the mesher's finest solution / side")
+        ax.margins(0.08)
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=8)
-    left.set_xlabel("nodes")
-    right.set_xlabel("solve time of the pull [s]")
-    fig.suptitle("Seed scene 1: mesh resolution against error and time, both meshers")
+    spacings = sorted({num(r["spacing"]) for r in measured})
+    left.xaxis.set_major_locator(matplotlib.ticker.FixedLocator(spacings))
+    left.xaxis.set_major_formatter(matplotlib.ticker.FixedFormatter([f"{h:g}" for h in spacings]))
+    left.xaxis.set_minor_locator(matplotlib.ticker.NullLocator())
+    left.set_xlabel("mesh spacing / side")
+    right.set_xlabel("CPU time of the pull [s] (one solve per spacing)")
+    finest = sorted({min(num(r["spacing"]) for r in data if r["mesher"] == m) for m in {r["mesher"] for r in data}})
+    turned = 180 * num(data[0]["pull"])
+    fig.suptitle(f"Seed scene 1, corner turned {turned:g}°, bending q/k = {data[0]['bend_q_over_k']}: mesh resolution "
+                 "against error and time\nReference: each "
+                 f"mesher's own finest solution (spacing {', '.join(f'{h:g}' for h in finest)}), not drawn",
+                 fontsize=10)
     save(fig, "mesh_resolution.png")
-    lines = ["| mesher | spacing | nodes | balanced | solve time | RMS error | max error |", "|---|---|---|---|---|---|---|"]
+    lines = ["| mesher | spacing | nodes | balanced | largest force | CPU time | RMS to finest | max to finest | "
+             "RMS to next | max to next |",
+             "|---|---|---|---|---|---|---|---|---|---|"]
     for r in data:
-        reference = num(r["rms_error"]) == 0
-        lines.append(f"| {r['mesher']} | {r['spacing']} | {r['nodes']} | {'yes' if r['passed'] == '1' else 'no'} | "
-                     f"{fmt(num(r['solve_seconds']))} s | {'reference' if reference else fmt(num(r['rms_error']))} | "
-                     f"{'–' if reference else fmt(num(r['max_error']))} |")
+        reference = not math.isfinite(num(r["rms_to_next"]))
+        lines.append(f"| {r['mesher']} | {r['spacing']} | {r['nodes']} | {'yes' if r['balanced'] == '1' else 'no'} | "
+                     f"{fmt(num(r['largest_force']))} | {fmt(num(r['cpu_seconds']))} s | "
+                     f"{'reference' if reference else fmt(num(r['rms_to_finest']))} | "
+                     f"{'–' if reference else fmt(num(r['max_to_finest']))} | "
+                     f"{fmt(num(r['rms_to_next']))} | {fmt(num(r['max_to_next']))} |")
     tables["mesh_resolution"] = "\n".join(lines)
 
 
@@ -640,19 +641,32 @@ def conclusions(tables):
                    "(docs/CURVED.md, Meshing).")
     mr = rows("mesh_resolution.csv")
     if mr:
-        errs = {m: [num(r["rms_error"]) for r in mr if r["mesher"] == m and num(r["rms_error"]) > 0]
-                for m in ("bubble", "cgal")}
-        out.append(f"- Mesh resolution: RMS error against the finest mesh {fmt(min(errs['bubble']), 2)}–"
-                   f"{fmt(max(errs['bubble']), 2)} (bubble) and {fmt(min(errs['cgal']), 2)}–{fmt(max(errs['cgal']), 2)} "
-                   "(CGAL) over the same spacings: the solve prefers neither mesher.")
-        bubble = [r for r in mr if r["mesher"] == "bubble" and num(r["rms_error"]) > 0]
+        # The finest row of each mesher is its reference (no next finer mesh): left out.
+        measured = {m: sorted((r for r in mr if r["mesher"] == m and math.isfinite(num(r["rms_to_next"]))),
+                              key=lambda r: -num(r["spacing"])) for m in ("bubble", "cgal")}
+        if all(measured.values()):
+            def fall(m):
+                pts = measured[m]
+                return (f"{fmt(num(pts[0]['rms_to_finest']), 2)} → {fmt(num(pts[-1]['rms_to_finest']), 2)} "
+                        f"({m}, {nice(num(pts[0]['rms_to_finest']) / num(pts[-1]['rms_to_finest']))}-fold)")
+            rises = [f"{m} {a['spacing']} → {b['spacing']}" for m, pts in measured.items() for a, b in zip(pts, pts[1:])
+                     if num(b["rms_to_finest"]) > num(a["rms_to_finest"])]
+            unbalanced = [f"{r['mesher']} {r['spacing']}" for r in mr if r["balanced"] != "1"]
+            out.append(f"- Mesh resolution: on seed scene 1 pulled until its corner has turned {180 * num(mr[0]['pull']):g}° "
+                       f"(bending q/k = {mr[0]['bend_q_over_k']}) the RMS distance to each mesher's finest "
+                       f"solution falls from spacing {measured['bubble'][0]['spacing']} to "
+                       f"{measured['bubble'][-1]['spacing']}: {fall('bubble')}, {fall('cgal')} of the side" +
+                       (f"; it rises on {', '.join(rises)}" if rises else ", at every refinement") +
+                       (f". Not balanced: {', '.join(unbalanced)}." if unbalanced else "; every solve balanced."))
+        bubble = measured["bubble"]
         default = next((r for r in bubble if abs(num(r["spacing"]) - 0.1) < 1e-9), None)
-        best = min(bubble, key=lambda r: num(r["rms_error"])) if bubble else None
+        best = min(bubble, key=lambda r: num(r["rms_to_finest"])) if bubble else None
         if default and best:
-            out.append(f"- Resolution: at the default spacing 0.1 the bubble mesh's error is "
-                       f"{fmt(num(default['rms_error']), 2)} of the side in {nice(num(default['solve_seconds']))} s; "
-                       f"the sweep's least error, {fmt(num(best['rms_error']), 2)} at spacing {best['spacing']}, takes "
-                       f"{nice(num(best['solve_seconds']) / num(default['solve_seconds']))}× as long. Spacing 0.1 is "
+            out.append(f"- Resolution: at the default spacing 0.1 the bubble mesh is "
+                       f"{fmt(num(default['rms_to_finest']), 2)} of the side from its finest solution in "
+                       f"{nice(num(default['cpu_seconds']))} s of CPU; the sweep's least distance, "
+                       f"{fmt(num(best['rms_to_finest']), 2)} at spacing {best['spacing']}, takes "
+                       f"{nice(num(best['cpu_seconds']) / num(default['cpu_seconds']))}× as long. Spacing 0.1 is "
                        "kept for interactive display; ask for a finer one "
                        "(`spacing`) where millimetres matter.")
     rp = rows("replay.csv")
@@ -1044,6 +1058,10 @@ def main():
         return
     if ONLY == "fold":  # fold_bench alone, rerun
         chart_fold(tables)
+        write_tables(tables)
+        return
+    if ONLY == "meshers":  # mesh_bench alone, rerun
+        chart_meshers(tables)
         write_tables(tables)
         return
     chart_error_time(tables)

@@ -1,10 +1,12 @@
 #include "virtual_origami/curved/seed_scenes.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "virtual_origami/core/crease.h"
 #include "virtual_origami/core/geometry.h"
 #include "virtual_origami/core/rotate.h"
+#include "virtual_origami/curved/paper_material.h"
 
 namespace virtual_origami::core
 {
@@ -94,6 +96,21 @@ SeedSceneRun runSeedSceneOn(const SeedScene& scene, CurvedMesh mesh, const SeedS
       break;
   }
   return run;
+}
+
+SeedSceneOptions refinementPullOptions(double bend, double pull)
+{
+  SeedSceneOptions options;
+  options.until = pull;
+  options.steps = std::max(1, static_cast<int>(std::lround(pull / 0.05)));
+  options.material.bend = bend;
+  options.material.plate_bending = true;
+  options.material.poisson_ratio = 0.3;
+  options.material.plate_smoothing = kPaperPlateSmoothing;
+  options.solve.max_iterations = 2000;
+  options.solve.tolerance = 1e-11;
+  options.solve.check_stability = true;
+  return options;
 }
 
 }  // namespace virtual_origami::core

@@ -68,4 +68,13 @@ Expected<SeedSceneRun> runSeedScene(const SeedScene& scene, const SeedSceneOptio
 /// The same pull on a mesh of the scene's paper made by any mesher (options.mesh unused).
 SeedSceneRun runSeedSceneOn(const SeedScene& scene, CurvedMesh mesh, const SeedSceneOptions& options = {});
 
+/// Scene 1 as its mesh-refinement study runs it (mesh_bench, docs/CURVED.md): pulled to `pull`
+/// of the half turn in steps of 0.05, bending `bend` (q/k in side²) as a plate (ν = 0.3,
+/// smoothing kPaperPlateSmoothing: the seed's hinges cost a bend by the triangles' shapes, which
+/// differ from mesh to mesh), every balance solved to 1e-11 and tested for stability. The
+/// default, 72° with q/k = 1e-3, is far past the sheet's buckling, so every mesh curls alike and
+/// the curl converges; at 36° the sheet has only just buckled, and how far it curls depends on
+/// where each mesh puts the buckling load.
+SeedSceneOptions refinementPullOptions(double bend = 1e-3, double pull = 0.4);
+
 }  // namespace virtual_origami::core
