@@ -26,6 +26,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "virtual_origami/curved/blas_kernels.h"
 #include "virtual_origami/curved/seed_scenes.h"
 #include "virtual_origami/curved/spd_factorization.h"
 #include "bench_common.h"
@@ -412,6 +413,8 @@ int main(int argc, char** argv)
 {
   const std::string dir = argc > 1 ? argv[1] : "docs/bench";
   const std::string part = argc > 2 ? argv[2] : "";
+  // The factorisations' and back-substitutions' speed is the BLAS kernels'.
+  std::cout << "BLAS kernels: " << blasKernels() << "\n";
   if (part.empty() || part == "pulls")
     smallPulls(dir);
   if (part.empty() || part == "stability")
