@@ -9,6 +9,7 @@
 #include <Eigen/LU>
 #include <Eigen/QR>
 
+#include "virtual_origami/solvers/lbfgs_history.h"
 #include "virtual_origami/solvers/solve_budget.h"
 
 namespace virtual_origami::core
@@ -697,8 +698,7 @@ CurvedReport CurvedSolver::quasiNewton(Positions& x, const std::vector<int>& fre
   // The correction pairs s = Δx, y = Δ∇E of this solve's last iterations, oldest first (kept
   // from one solve of a drag to the next they made no difference: 1.73 against 1.79 solves
   // per CPU second at 10,000 vertices).
-  std::vector<Eigen::VectorXd> s_pairs, y_pairs;
-  std::vector<double> rho;
+  LbfgsHistory<Eigen::VectorXd> history(options_.lbfgs_memory);
   Positions trial = x;
   Eigen::VectorXd g(n), g_next(n), direction(n);
   std::string stuck;
@@ -726,15 +726,8 @@ CurvedReport CurvedSolver::quasiNewton(Positions& x, const std::vector<int>& fre
     const auto lbfgsDirection = [&] {
       Eigen::VectorXd q = g;
       removeFreeMotions(free_motions, q);
-      std::vector<double> a(s_pairs.size());
-      for (size_t i = s_pairs.size(); i-- > 0;)
-      {
-        a[i] = rho[i] * s_pairs[i].dot(q);
-        q -= a[i] * y_pairs[i];
-      }
-      Eigen::VectorXd r = constantInverse(q, turns, free_index);
-      for (size_t i = 0; i < s_pairs.size(); ++i)
-        r += (a[i] - rho[i] * y_pairs[i].dot(r)) * s_pairs[i];
+      Eigen::VectorXd r =
+          history.apply(q, [&](const Eigen::VectorXd& v) { return constantInverse(v, turns, free_index); });
       removeFreeMotions(free_motions, r);
       return Eigen::VectorXd(-r);
     };
@@ -772,13 +765,11 @@ CurvedReport CurvedSolver::quasiNewton(Positions& x, const std::vector<int>& fre
       direction = lbfgsDirection();
       alpha = search(direction);
     }
-    if (alpha == 0 && !s_pairs.empty())
+    if (alpha == 0 && !history.empty())
     {
       // The pairs mislead (contact came, the shape moved far from where they were taken):
       // forget them, and step with the constant matrix alone.
-      s_pairs.clear();
-      y_pairs.clear();
-      rho.clear();
+      history.clear();
       direction = lbfgsDirection();
       alpha = search(direction);
     }
@@ -794,20 +785,7 @@ CurvedReport CurvedSolver::quasiNewton(Positions& x, const std::vector<int>& fre
     Eigen::VectorXd s_new = alpha * direction, y_new = g_next - g;
     removeFreeMotions(free_motions, y_new);
     g.swap(g_next);
-    // Only pairs of positive curvature keep the inverse positive definite.
-    const double sy = s_new.dot(y_new);
-    if (sy > 1e-12 * s_new.norm() * y_new.norm() && options_.lbfgs_memory > 0)
-    {
-      s_pairs.push_back(std::move(s_new));
-      y_pairs.push_back(std::move(y_new));
-      rho.push_back(1.0 / sy);
-      if (static_cast<int>(s_pairs.size()) > options_.lbfgs_memory)
-      {
-        s_pairs.erase(s_pairs.begin());
-        y_pairs.erase(y_pairs.begin());
-        rho.erase(rho.begin());
-      }
-    }
+    history.add(std::move(s_new), std::move(y_new));
   }
   if (!report.converged && !report.diverged && options_.hand_over)
   {

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <deque>
 #include <optional>
 
 #include <Eigen/CholmodSupport>
@@ -11,6 +10,7 @@
 #include "virtual_origami/core/positions.h"
 #include "virtual_origami/curved/spd_factorization.h"
 #include "virtual_origami/solvers/driven_faces.h"
+#include "virtual_origami/solvers/lbfgs_history.h"
 #include "virtual_origami/solvers/solve_budget.h"
 
 namespace virtual_origami::core
@@ -28,11 +28,6 @@ Eigen::MatrixX3d gather(const Positions& x, const std::vector<int>& free_vertice
   for (size_t i = 0; i < free_vertices.size(); ++i)
     out.row(static_cast<Eigen::Index>(i)) = x.col(free_vertices[i]).transpose();
   return out;
-}
-
-double dot(const Eigen::MatrixX3d& a, const Eigen::MatrixX3d& b)
-{
-  return (a.array() * b.array()).sum();
 }
 
 /// The six rigid motions of the sheet at x over the free vertices (every vertex free), made
@@ -58,8 +53,8 @@ public:
         b.row(i) = (axis < 3 ? unit : unit.cross(x.col(free[i]) - centre)).transpose();
       }
       for (const Eigen::MatrixX3d& c : basis_)
-        b -= dot(c, b) * c;
-      const double norm = std::sqrt(dot(b, b));
+        b -= innerProduct(c, b) * c;
+      const double norm = std::sqrt(innerProduct(b, b));
       if (norm > 1e-12)
         basis_.push_back(b / norm);
     }
@@ -68,7 +63,7 @@ public:
   void remove(Eigen::MatrixX3d& step) const
   {
     for (const Eigen::MatrixX3d& c : basis_)
-      step -= dot(c, step) * c;
+      step -= innerProduct(c, step) * c;
   }
 
 private:
@@ -480,34 +475,14 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
                  (options_.hessian == DriverHessian::Exact || !s.gauss_newton.valid());
 
   Eigen::MatrixX3d g = gather(gradient, free);
-  std::deque<Eigen::MatrixX3d> steps, changes;  // s_k, y_k
-  std::deque<double> rho;
+  LbfgsHistory<Eigen::MatrixX3d> history(options_.memory);
   // A fresh factorisation; the curvature pairs gathered against the old one go with it.
   const auto refactorAfresh = [&]() {
     if (refactor())
-    {
-      steps.clear();
-      changes.clear();
-      rho.clear();
-    }
+      history.clear();
   };
   // L-BFGS: the two-loop recursion with the factorised matrix's inverse as the initial Hessian.
-  const auto lbfgsStep = [&]() -> Eigen::MatrixX3d {
-    Eigen::MatrixX3d q = g;
-    std::vector<double> alpha(steps.size());
-    for (size_t k = steps.size(); k-- > 0;)
-    {
-      alpha[k] = rho[k] * dot(steps[k], q);
-      q -= alpha[k] * changes[k];
-    }
-    Eigen::MatrixX3d direction = precondition(q);
-    for (size_t k = 0; k < steps.size(); ++k)
-    {
-      const double beta = rho[k] * dot(changes[k], direction);
-      direction += (alpha[k] - beta) * steps[k];
-    }
-    return -direction;
-  };
+  const auto lbfgsStep = [&]() -> Eigen::MatrixX3d { return -history.apply(g, precondition); };
   // Newton–Krylov: the Gauss–Newton system at x solved by conjugate gradients, preconditioned
   // by the kept factorisation (the matrix of a nearby state, so a few iterations do).
   bool krylov_slow = false;
@@ -545,14 +520,14 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
       rigid->remove(z);
     Eigen::MatrixX3d p = z;
     const Eigen::MatrixX3d first = z;
-    double rz = dot(r, z);
-    const double goal = options_.krylov_tolerance * std::sqrt(dot(r, r));
+    double rz = innerProduct(r, z);
+    const double goal = options_.krylov_tolerance * std::sqrt(innerProduct(r, r));
     krylov_slow = true;
     krylov_cut = false;
     for (int k = 0; k < options_.krylov_iterations; ++k)
     {
       const Eigen::MatrixX3d ap = multiply(l, p);
-      const double curvature = dot(p, ap);
+      const double curvature = innerProduct(p, ap);
       if (!(curvature > 0))
       {
         // The Hessian is not positive along p (away from a stable balance): the steps so far
@@ -568,7 +543,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
       d += a * p;
       step_product += a * ap;
       r -= a * ap;
-      if (std::sqrt(dot(r, r)) <= goal)
+      if (std::sqrt(innerProduct(r, r)) <= goal)
       {
         krylov_slow = k + 1 > options_.krylov_iterations / 2;
         break;
@@ -582,7 +557,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
       z = precondition(r);
       if (rigid)
         rigid->remove(z);
-      const double rz_next = dot(r, z);
+      const double rz_next = innerProduct(r, z);
       p = z + (rz_next / rz) * p;
       rz = rz_next;
     }
@@ -610,8 +585,8 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
       rigid->remove(m);
     const Eigen::MatrixX3d hm = multiply(l, m);
     Eigen::Matrix2d model;
-    model << dot(direction, step_product), dot(direction, hm), dot(m, step_product), dot(m, hm);
-    const Eigen::Vector2d slope(-dot(g, direction), -dot(g, m));
+    model << innerProduct(direction, step_product), innerProduct(direction, hm), innerProduct(m, step_product), innerProduct(m, hm);
+    const Eigen::Vector2d slope(-innerProduct(g, direction), -innerProduct(g, m));
     // Only where the two directions are independent under the model (m may be d again).
     if (!(model(0, 0) > 0 && model(1, 1) > 0 &&
           model.determinant() > 1e-6 * model(0, 0) * model(1, 1)))
@@ -632,7 +607,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
     Eigen::MatrixX3d r = -g;
     if (rigid)
       rigid->remove(r);
-    const double goal = options_.krylov_tolerance * std::sqrt(dot(r, r));
+    const double goal = options_.krylov_tolerance * std::sqrt(innerProduct(r, r));
     std::vector<Eigen::MatrixX3d> basis, basis_product;  // H-orthonormal u_i and H u_i
     Eigen::MatrixX3d step = Eigen::MatrixX3d::Zero(r.rows(), 3);
     step_product = Eigen::MatrixX3d::Zero(r.rows(), 3);
@@ -640,20 +615,20 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
       if (rigid)
         rigid->remove(v);
       Eigen::MatrixX3d hv = multiply(l, v);
-      const double before = dot(v, hv);
+      const double before = innerProduct(v, hv);
       for (size_t i = 0; i < basis.size(); ++i)
       {
-        const double c = dot(basis_product[i], v);
+        const double c = innerProduct(basis_product[i], v);
         v -= c * basis[i];
         hv -= c * basis_product[i];
       }
-      const double norm2 = dot(v, hv);
+      const double norm2 = innerProduct(v, hv);
       if (!(norm2 > 1e-10 * before))
         return;
       const double norm = std::sqrt(norm2);
       basis.push_back(v / norm);
       basis_product.push_back(hv / norm);
-      const double c = dot(basis.back(), r);
+      const double c = innerProduct(basis.back(), r);
       step += c * basis.back();
       step_product += c * basis_product.back();
       r -= c * basis_product.back();
@@ -668,7 +643,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
     krylov_cut = false;
     for (int k = 0; k < options_.subspace_directions; ++k)
     {
-      if (std::sqrt(dot(r, r)) <= goal)
+      if (std::sqrt(innerProduct(r, r)) <= goal)
         break;
       if (k > 0 && !fits(subspace_add_seconds))
       {
@@ -776,17 +751,15 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
       break;
     }
     ++report.iterations;
-    double slope = dot(g, direction);
+    double slope = innerProduct(g, direction);
     if (!(slope < 0))
     {
       // Curvature pairs gone stale: restart from the matrix alone.
-      steps.clear();
-      changes.clear();
-      rho.clear();
+      history.clear();
       direction = -precondition(g);
       if (drift)
         drift->remove(direction);
-      slope = dot(g, direction);
+      slope = innerProduct(g, direction);
       if (!(slope < 0))
       {
         stuck = "no descent direction";
@@ -841,7 +814,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
     if (!accepted)
     {
       // A fresh matrix may still find a way down.
-      if (options_.hessian == DriverHessian::Lagged && !subspace_frame && !steps.empty())
+      if (options_.hessian == DriverHessian::Lagged && !subspace_frame && !history.empty())
       {
         refresh = true;
         continue;
@@ -854,21 +827,8 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
     const Eigen::MatrixX3d g_next = gather(trial_gradient, free);
     Eigen::MatrixX3d step =
         restored ? Eigen::MatrixX3d(gather(trial - x, free)) : Eigen::MatrixX3d(step_length * direction);
-    Eigen::MatrixX3d change = g_next - g;
-    const double curvature = dot(step, change);
-    if (options_.hessian != DriverHessian::Exact &&
-        curvature > 1e-12 * std::sqrt(dot(step, step) * dot(change, change)))
-    {
-      steps.push_back(std::move(step));
-      changes.push_back(std::move(change));
-      rho.push_back(1.0 / curvature);
-      if (static_cast<int>(steps.size()) > options_.memory)
-      {
-        steps.pop_front();
-        changes.pop_front();
-        rho.pop_front();
-      }
-    }
+    if (options_.hessian != DriverHessian::Exact)
+      history.add(std::move(step), g_next - g);
     // The kept matrix pays while the steps shrink fast; when they stop, factor afresh. Not
     // for slow conjugate gradients in a Newton step that shrank the step a hundredfold: the
     // next step, converging quadratically, is the last or nearly.
