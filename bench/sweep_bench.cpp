@@ -155,7 +155,7 @@ void sweepStability(const std::string& dir)
           << options.d * lambda * options.dt * options.dt << ',' << report.converged << ',' << report.diverged << ','
           << report.iterations << '\n';
     }
-    for (const std::string& name : { "newton", "shape_matching" })
+    for (const char* name : { "newton", "shape_matching" })
     {
       std::unique_ptr<ShapeSolver> solver = makeSolver(name);
       solver->setLimits({ 1e-9, 20000, 0.0 });

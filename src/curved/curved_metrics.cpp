@@ -25,7 +25,7 @@ CurvedMetrics measureCurved(const CurvedMesh& mesh, const Paper& paper, const Po
   {
     if (!e.isHinge())
       continue;
-    int opposite[2];
+    int opposite[2] = { -1, -1 };  // each triangle's node off the hinge (always found)
     for (int side = 0; side < 2; ++side)
       for (int node : mesh.triangles[e.triangles[side]].nodes)
         if (node != e.nodes[0] && node != e.nodes[1])

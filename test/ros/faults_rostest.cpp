@@ -186,7 +186,9 @@ TEST_F(Faults, CreaseFieldsNonFiniteOrHuge)
       const std::string context = "crease field " + std::to_string(f) + " = " + show(bad);
       const Crease c = client_.call<Crease>("crease", r);
       if (!std::isfinite(bad))
+      {
         EXPECT_FALSE(c.response.success) << context;
+      }
       done += refusedOrValid(c.response, before, context);
       ++cases;
     }
@@ -220,9 +222,13 @@ TEST_F(Faults, RotateFieldsNonFiniteHugeOrOutOfRange)
                                     " = " + show(bad);
         const Rotate res = client_.call<Rotate>("rotate", r);
         if (!std::isfinite(bad) || f == 3)
+        {
           EXPECT_FALSE(res.response.success) << context;  // ±1e300 rad is no angle either
+        }
         if (!commit)
+        {
           EXPECT_EQ(res.response.revision, before.revision) << context;
+        }
         else
           refusedOrValid(res.response, before, context);
       }
@@ -481,7 +487,9 @@ TEST_F(Faults, ConcurrentClients)
   std::set<uint64_t> revisions;
   for (uint64_t r : committed)
     if (r != 0)
+    {
       EXPECT_TRUE(revisions.insert(r).second) << "two changes answered revision " << r;
+    }
   const uint64_t end = start + committed.size();
   const PaperState& last = client_.stateAt(end);
   EXPECT_EQ(last.revision, end);

@@ -213,7 +213,9 @@ TEST(PinFollow, RecordedPullsAndPinsApplyAgainThroughTheServices)
   EXPECT_LE((toVec3(after.vertices_folded[corner]) - toVec3(pulled.positions[0])).norm(), 1e-12);
   for (const Edge& e : after.edges)
     if (e.face_left >= 0 && e.face_right >= 0)
+    {
       EXPECT_NEAR(e.fold_angle, angle, 1e-9);
+    }
 
   // Refused, changing nothing: lengths that differ, a target out of reach of rigid faces.
   Pull::Request uneven;

@@ -197,9 +197,13 @@ TEST(DrivenFaces, GaussNewtonProductIsItsMatrix)
   const Eigen::VectorXd expected = full * flat;
   for (size_t vertex = 0; vertex < free_index.size(); ++vertex)
     if (free_index[vertex] >= 0)
+    {
       for (int a = 0; a < 3; ++a)
+      {
         EXPECT_NEAR(product(a, static_cast<Eigen::Index>(vertex)), expected(3 * free_index[vertex] + a),
                     1e-9 * expected.cwiseAbs().maxCoeff());
+      }
+    }
 }
 
 /// The energy's own Hessian against central differences of its gradient, on a folded Miura-ori
@@ -363,7 +367,9 @@ TEST(AssignmentFold, SquareTwistFoldsFlatAtFullFraction)
   EXPECT_LE(folded->max_strain, 1e-9);
   for (size_t e = 0; e < paper.edges.size(); ++e)
     if (paper.edges[e].isCrease())
+    {
       EXPECT_NEAR(paper.edges[e].fold_angle, t.target_fold_angle[e], 1e-6) << "edge " << e;
+    }
   // The same shape up to a rigid motion: every distance between vertices as in the closed form.
   for (size_t a = 0; a < paper.vertices.size(); ++a)
     for (size_t b = a + 1; b < paper.vertices.size(); ++b)

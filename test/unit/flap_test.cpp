@@ -182,7 +182,9 @@ TEST(Flap, FoldingTheTopFlapOverMovesExactlyItsLayers)
   for (int a : staying)
     for (int b : staying)
       if (a != b)
+      {
         EXPECT_EQ(worldSide(paper, a, b), worldSide(before, a, b));
+      }
   EXPECT_EQ(worldSide(paper, flap[0], flap[1]), -worldSide(before, flap[0], flap[1]));
   for (int s : q.rest)
     for (int m : flap)
@@ -215,7 +217,9 @@ TEST(Flap, FoldingTheTopLayerUnderCarriesEveryLayerBelowIt)
   for (int a : q.strips)
     for (int b : q.strips)
       if (a != b)
+      {
         EXPECT_EQ(worldSide(paper, a, b), -worldSide(before, a, b));
+      }
 }
 
 TEST(Flap, WithoutCarryingTheFaceTakesOnlyWhatItIsJoinedTo)

@@ -134,7 +134,9 @@ TEST(Session, InvariantsHoldAfterThousandsOfRandomCreasesAndRotations)
   for (int step = 0; creases + rotations < 1200 && step < 8000; ++step)
   {
     if (session.paper().faces.size() > 200)
+    {
       ASSERT_TRUE(session.reset(1.0).ok());  // keep the sheet at a size folding keeps to
+    }
     const Paper before = session.paper();
     const uint64_t revision = session.revision();
     const size_t logged = session.log().size();

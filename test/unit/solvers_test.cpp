@@ -277,7 +277,7 @@ TEST(Solvers, AConcaveFaceOfAFileStaysOneRigidFace)
       else if (!fixed[v] && v != hinge.vertices[0] && v != hinge.vertices[1])
         bent.vertices[v].folded = a + turn * (flat.vertices[v].folded - a);
     }
-  for (const std::string& name : { "newton", "shape_matching" })
+  for (const char* name : { "newton", "shape_matching" })
   {
     Paper solved = bent;
     const std::unique_ptr<ShapeSolver> solver = makeSolver(name);
