@@ -75,13 +75,6 @@ Expected<CurvedMesh> cgal(const Paper& paper, double spacing)
   return cgalMesh(paper, options);
 }
 
-/// The solution's positions at probe points of the crease pattern (a grid over the sheet),
-/// interpolated in the triangles that hold them.
-Positions probe(const CurvedMesh& mesh, const Positions& positions, const CurvedMesh& probes)
-{
-  return transferNodes(mesh, positions, probes, Positions::Zero(3, static_cast<Eigen::Index>(probes.nodes.size())));
-}
-
 using Meshers = std::vector<std::pair<std::string, Mesher>>;
 
 /// Quality and time of each mesher on each pattern, spacing relative to the sheet.
@@ -147,15 +140,6 @@ bool resolutionSweep(const std::string& path, const Meshers& meshers, double ben
     std::cerr << "cannot write " << path << " or " << scene.message() << "\n";
     return false;
   }
-  CurvedMesh probes;
-  for (int i = 0; i <= 20; ++i)
-    for (int j = 0; j <= 20; ++j)
-    {
-      MeshNode node;
-      // Inset by a thousandth: a probe on the sheet's edge may lie in no triangle by rounding.
-      node.crease_pattern = Vec2(0.001 + 0.0499 * i, 0.001 + 0.0499 * j);
-      probes.nodes.push_back(node);
-    }
   const SeedSceneOptions options = refinementPullOptions(bend, pull);
   csv << "bend_q_over_k,pull,mesher,spacing,nodes,balanced,largest_force,cpu_seconds,stretch_energy,bend_energy,rms_to_finest,"
          "max_to_finest,rms_to_next,max_to_next\n";
@@ -192,7 +176,7 @@ bool resolutionSweep(const std::string& path, const Meshers& meshers, double ben
         s.stretch = run.steps.back().report.energy.stretch;
         s.bend = run.steps.back().report.energy.bend;
       }
-      s.at_probes = probe(run.mesh, run.positions, probes);
+      s.at_probes = sheetOnGrid(run.mesh, run.positions, scene->paper.scale());
       solutions.push_back(s);
       std::printf("seed 1 %-6s h %.3f: %5zu nodes, balanced %d (largest force %.1e), %.2f s CPU, energy: stretch %.2e "
                   "bend %.2e\n",

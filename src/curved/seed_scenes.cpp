@@ -113,4 +113,18 @@ SeedSceneOptions refinementPullOptions(double bend, double pull)
   return options;
 }
 
+Positions sheetOnGrid(const CurvedMesh& mesh, const Positions& positions, double side, int per_side)
+{
+  CurvedMesh points;
+  const double inset = 1e-3 * side, step = (side - 2 * inset) / std::max(1, per_side - 1);
+  for (int i = 0; i < per_side; ++i)
+    for (int j = 0; j < per_side; ++j)
+    {
+      MeshNode node;
+      node.crease_pattern = Vec2(inset + step * i, inset + step * j);
+      points.nodes.push_back(node);
+    }
+  return transferNodes(mesh, positions, points, Positions::Zero(3, static_cast<Eigen::Index>(points.nodes.size())));
+}
+
 }  // namespace virtual_origami::core

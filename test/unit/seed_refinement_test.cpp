@@ -29,16 +29,7 @@ Positions curlAt(double spacing)
     EXPECT_LE(step.report.max_force, 1e-11) << "spacing " << spacing << " at " << step.fraction;
   // The sheet has curled (a plate kept flat costs no bending).
   EXPECT_GT(run.steps.back().report.energy.bend, 1e-4) << "spacing " << spacing;
-  CurvedMesh probes;
-  for (int i = 0; i <= 20; ++i)
-    for (int j = 0; j <= 20; ++j)
-    {
-      MeshNode node;
-      // Inset by a thousandth: a point on the sheet's edge may lie in no triangle by rounding.
-      node.crease_pattern = Vec2(0.001 + 0.0499 * i, 0.001 + 0.0499 * j);
-      probes.nodes.push_back(node);
-    }
-  return transferNodes(run.mesh, run.positions, probes, Positions::Zero(3, probes.nodes.size()));
+  return sheetOnGrid(run.mesh, run.positions, scene->paper.scale());
 }
 
 TEST(SeedSceneRefinement, EachFinerMeshBringsTheCurlNearerAtFirstOrder)

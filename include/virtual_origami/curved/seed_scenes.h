@@ -77,4 +77,9 @@ SeedSceneRun runSeedSceneOn(const SeedScene& scene, CurvedMesh mesh, const SeedS
 /// where each mesh puts the buckling load.
 SeedSceneOptions refinementPullOptions(double bend = 1e-3, double pull = 0.4);
 
+/// A sheet at a per_side × per_side grid of points of its paper (the square [0, side]², inset by
+/// a thousandth of the side: a point on the edge may lie in no triangle by rounding), wherever
+/// its nodes are: solutions on different meshes compared point for point (shapeDistance).
+Positions sheetOnGrid(const CurvedMesh& mesh, const Positions& positions, double side, int per_side = 21);
+
 }  // namespace virtual_origami::core
