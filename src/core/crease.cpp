@@ -62,25 +62,25 @@ int faceUnderLine(const Paper& paper, const Vec3& start, const Vec3& end)
   return -1;
 }
 
-Expected<CutRegion> makeRegion(const Paper& paper, const CreaseRequest& request)
+Expected<CutRegion> makeRegion(const Paper& paper, const Vec3& start, const Vec3& end, const std::optional<Vec3>& eye_point)
 {
-  const Vec3 line = request.end - request.start;
+  const Vec3 line = end - start;
   CutRegion region;
-  region.origin = request.start;
-  if (request.eye)
+  region.origin = start;
+  if (eye_point)
   {
-    const Vec3& eye = *request.eye;
+    const Vec3& eye = *eye_point;
     region.wedge = true;
     region.origin = eye;
-    region.ray_a = (request.start - eye).normalized();
-    region.ray_b = (request.end - eye).normalized();
+    region.ray_a = (start - eye).normalized();
+    region.ray_b = (end - eye).normalized();
     const Vec3 n = region.ray_a.cross(region.ray_b);
     if (n.norm() < 1e-9)
       return Expected<CutRegion>::failure("the eye point lies on the crease line: the two rays coincide");
     region.normal = n.normalized();
     return region;
   }
-  const int top = faceUnderLine(paper, request.start, request.end);
+  const int top = faceUnderLine(paper, start, end);
   if (top < 0)
     return Expected<CutRegion>::failure("the crease line misses the paper");
   const Vec3 face_normal = paper.faceNormal(top);
@@ -488,18 +488,19 @@ Expected<CreaseResult> crease(Paper& paper, const CreaseRequest& request, const 
     problem = unusablePoint(paper, *request.eye, "the eye point");
   if (!problem.empty())
     return Expected<CreaseResult>::failure(problem);
-  CreaseRequest snapped = request;
+  // The line's ends, snapped when asked (the eye point is never snapped).
+  Vec3 start = request.start, end = request.end;
   Snap start_snap, end_snap;
   if (request.snap)
   {
     start_snap = snapPoint(paper, request.start, snap_settings);
-    snapped.start = start_snap.point;
+    start = start_snap.point;
     end_snap = snapPoint(paper, request.end, snap_settings, start_snap.kind == SnapKind::Vertex ? start_snap.vertex : -1);
-    snapped.end = end_snap.point;
+    end = end_snap.point;
   }
-  if ((snapped.end - snapped.start).norm() < 1e-9 * paper.scale())
+  if ((end - start).norm() < 1e-9 * paper.scale())
     return Expected<CreaseResult>::failure("the crease line has zero length");
-  const Expected<CutRegion> region = makeRegion(paper, snapped);
+  const Expected<CutRegion> region = makeRegion(paper, start, end, request.eye);
   if (!region)
     return Expected<CreaseResult>::failure(region.message());
   Paper next = paper;

@@ -55,7 +55,9 @@ TEST_F(DataFolderTest, PathsOutsideAreRefused)
     const Expected<std::string> resolved = folder_->resolve(path);
     EXPECT_FALSE(resolved) << path << " resolved to " << (resolved ? *resolved : "");
     if (!resolved)
+    {
       EXPECT_FALSE(resolved.message().empty());
+    }
   }
 }
 

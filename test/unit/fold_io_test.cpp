@@ -48,7 +48,10 @@ Paper halfFoldedSquare(double angle)
   for (const Vec2& c : corners)
     paper.vertices.push_back({ c, Vec3(c.x(), c.y(), 0.0) });
   const auto addEdge = [&](int a, int b, Assignment assignment) {
-    paper.edges.push_back({ { a, b }, assignment, 0.0, { -1, -1 } });
+    Edge edge;  // flat, no faces yet
+    edge.vertices = { a, b };
+    edge.assignment = assignment;
+    paper.edges.push_back(edge);
   };
   for (auto [a, b] : { std::pair{ 0, 1 }, { 1, 2 }, { 2, 3 }, { 3, 4 }, { 4, 5 }, { 5, 0 } })
     addEdge(a, b, Assignment::Boundary);
