@@ -141,8 +141,8 @@ bool resolutionSweep(const std::string& path, const Meshers& meshers, double ben
     return false;
   }
   const SeedSceneOptions options = refinementPullOptions(bend, pull);
-  csv << "bend_q_over_k,pull,mesher,spacing,nodes,balanced,largest_force,cpu_seconds,stretch_energy,bend_energy,rms_to_finest,"
-         "max_to_finest,rms_to_next,max_to_next\n";
+  csv << "bend_q_over_k,pull,mesher,spacing,nodes,balanced,largest_force,cpu_seconds,stretch_energy,bend_energy,"
+         "rms_to_finest,max_to_finest,rms_to_next,max_to_next\n";
   const std::vector<double> spacings = { 0.2, 0.14, 0.1, 0.07, 0.05, 0.035, 0.025 };
   struct Solution
   {
@@ -187,11 +187,11 @@ bool resolutionSweep(const std::string& path, const Meshers& meshers, double ben
     {
       const Solution& s = solutions[k];
       const ShapeDistance to_finest = shapeDistance(s.at_probes, solutions.back().at_probes);
-      const ShapeDistance to_next = k + 1 < spacings.size() ? shapeDistance(s.at_probes, solutions[k + 1].at_probes) :
-                                                              ShapeDistance{ NAN, NAN };
-      csv << bend << "," << pull << "," << name << "," << spacings[k] << "," << s.nodes << "," << s.balanced << "," << s.force << "," << s.cpu << ","
-          << s.stretch << "," << s.bend << "," << to_finest.rms << "," << to_finest.largest << ","
-          << to_next.rms << "," << to_next.largest << "\n";
+      const ShapeDistance to_next =
+          k + 1 < spacings.size() ? shapeDistance(s.at_probes, solutions[k + 1].at_probes) : ShapeDistance{ NAN, NAN };
+      csv << bend << "," << pull << "," << name << "," << spacings[k] << "," << s.nodes << "," << s.balanced << ","
+          << s.force << "," << s.cpu << "," << s.stretch << "," << s.bend << "," << to_finest.rms << ","
+          << to_finest.largest << "," << to_next.rms << "," << to_next.largest << "\n";
       std::printf("  h %.3f: to the finest rms %.2e max %.2e, to the next rms %.2e max %.2e\n", spacings[k],
                   to_finest.rms, to_finest.largest, to_next.rms, to_next.largest);
     }

@@ -62,7 +62,8 @@ int faceUnderLine(const Paper& paper, const Vec3& start, const Vec3& end)
   return -1;
 }
 
-Expected<CutRegion> makeRegion(const Paper& paper, const Vec3& start, const Vec3& end, const std::optional<Vec3>& eye_point)
+Expected<CutRegion> makeRegion(const Paper& paper, const Vec3& start, const Vec3& end,
+                               const std::optional<Vec3>& eye_point)
 {
   const Vec3 line = end - start;
   CutRegion region;

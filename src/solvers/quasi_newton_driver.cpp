@@ -585,7 +585,8 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
       rigid->remove(m);
     const Eigen::MatrixX3d hm = multiply(l, m);
     Eigen::Matrix2d model;
-    model << innerProduct(direction, step_product), innerProduct(direction, hm), innerProduct(m, step_product), innerProduct(m, hm);
+    model << innerProduct(direction, step_product), innerProduct(direction, hm), innerProduct(m, step_product),
+        innerProduct(m, hm);
     const Eigen::Vector2d slope(-innerProduct(g, direction), -innerProduct(g, m));
     // Only where the two directions are independent under the model (m may be d again).
     if (!(model(0, 0) > 0 && model(1, 1) > 0 &&
