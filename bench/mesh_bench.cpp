@@ -22,10 +22,10 @@
 
 #include "bench_common.h"
 #include "virtual_origami/core/crease.h"
+#include "virtual_origami/core/geometry.h"
 #include "virtual_origami/core/reference_patterns.h"
 #include "virtual_origami/curved/bubble_mesh.h"
 #include "virtual_origami/curved/cgal_mesh.h"
-#include "virtual_origami/curved/curved_metrics.h"
 #include "virtual_origami/curved/seed_scenes.h"
 
 using namespace virtual_origami::core;

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include <Eigen/Geometry>
+#include <Eigen/SVD>
 
 namespace virtual_origami::core
 {
@@ -85,5 +86,25 @@ int faceAt(const Paper& paper, const Vec3& point, double max_distance)
 }
 
 bool allFinite(const Vec3& v) { return v.allFinite(); }
+
+Eigen::Matrix3d bestFitRotation(const Eigen::Matrix3d& covariance)
+{
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(covariance, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
+  d(2, 2) = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0 ? -1.0 : 1.0;
+  return svd.matrixV() * d * svd.matrixU().transpose();
+}
+
+ShapeDistance shapeDistance(const Positions& points, const Positions& target)
+{
+  const Vec3 pc = points.rowwise().mean(), tc = target.rowwise().mean();
+  const Eigen::Matrix3d cov = (points.colwise() - pc) * (target.colwise() - tc).transpose();
+  const Eigen::Matrix3d rotation = bestFitRotation(cov);
+  const Eigen::VectorXd distance = ((rotation * (points.colwise() - pc)).colwise() + tc - target).colwise().norm();
+  ShapeDistance out;
+  out.rms = std::sqrt(distance.squaredNorm() / static_cast<double>(distance.size()));
+  out.largest = distance.maxCoeff();
+  return out;
+}
 
 }  // namespace virtual_origami::core

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <sstream>
 
-#include <Eigen/SVD>
+#include "virtual_origami/core/geometry.h"
 
 namespace virtual_origami::core
 {
@@ -26,11 +26,8 @@ Eigen::Isometry3d facePose(const Paper& paper, int face)
     h += (Vec3(c.x(), c.y(), 0.0) - p_mean) * (paper.vertices[v].folded - q_mean).transpose();
   }
   // The crease pattern is planar, so h has rank 2; the determinant fix picks the proper rotation.
-  Eigen::JacobiSVD<Eigen::Matrix3d> svd(h, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
-  d(2, 2) = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0 ? -1.0 : 1.0;
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.linear() = svd.matrixV() * d * svd.matrixU().transpose();
+  pose.linear() = bestFitRotation(h);
   pose.translation() = q_mean - pose.linear() * p_mean;
   return pose;
 }

@@ -2,8 +2,6 @@
 
 #include <cmath>
 
-#include <Eigen/SVD>
-
 #include "virtual_origami/curved/contact.h"
 #include "virtual_origami/curved/curved_forces.h"
 
@@ -57,21 +55,6 @@ CurvedMetrics measureCurved(const CurvedMesh& mesh, const Paper& paper, const Po
       m.crease_angles[e] /= hinges_on[e];
   m.penetrations = countTriangleCrossings(mesh, x, penetration_tolerance > 0 ? penetration_tolerance : 1e-9 * paper.scale());
   return m;
-}
-
-ShapeDistance shapeDistance(const Positions& points, const Positions& target)
-{
-  const Vec3 pc = points.rowwise().mean(), tc = target.rowwise().mean();
-  const Eigen::Matrix3d cov = (points.colwise() - pc) * (target.colwise() - tc).transpose();
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(cov, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
-  d(2, 2) = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0 ? -1.0 : 1.0;
-  const Eigen::Matrix3d rotation = svd.matrixV() * d * svd.matrixU().transpose();
-  const Eigen::VectorXd distance = ((rotation * (points.colwise() - pc)).colwise() + tc - target).colwise().norm();
-  ShapeDistance out;
-  out.rms = std::sqrt(distance.squaredNorm() / static_cast<double>(distance.size()));
-  out.largest = distance.maxCoeff();
-  return out;
 }
 
 }  // namespace virtual_origami::core

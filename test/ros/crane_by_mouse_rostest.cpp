@@ -51,25 +51,13 @@ double rigidFitDistance(const core::Paper& a, const core::Paper& b)
       return INFINITY;
     pairs.emplace_back(static_cast<int>(i), match);
   }
-  core::Vec3 ca = core::Vec3::Zero(), cb = core::Vec3::Zero();
-  for (const auto& [i, j] : pairs)
+  core::Positions pa(3, static_cast<Eigen::Index>(pairs.size())), pb(3, static_cast<Eigen::Index>(pairs.size()));
+  for (size_t k = 0; k < pairs.size(); ++k)
   {
-    ca += a.vertices[i].folded;
-    cb += b.vertices[j].folded;
+    pa.col(static_cast<Eigen::Index>(k)) = a.vertices[pairs[k].first].folded;
+    pb.col(static_cast<Eigen::Index>(k)) = b.vertices[pairs[k].second].folded;
   }
-  ca /= static_cast<double>(pairs.size());
-  cb /= static_cast<double>(pairs.size());
-  Eigen::Matrix3d h = Eigen::Matrix3d::Zero();
-  for (const auto& [i, j] : pairs)
-    h += (a.vertices[i].folded - ca) * (b.vertices[j].folded - cb).transpose();
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(h, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
-  d(2, 2) = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0 ? -1.0 : 1.0;
-  const Eigen::Matrix3d r = svd.matrixV() * d * svd.matrixU().transpose();
-  double worst = 0.0;
-  for (const auto& [i, j] : pairs)
-    worst = std::max(worst, (r * (a.vertices[i].folded - ca) + cb - b.vertices[j].folded).norm());
-  return worst;
+  return core::shapeDistance(pa, pb).largest;
 }
 
 /// The crease edges lying on a crease-pattern segment (as flat_fold names them).

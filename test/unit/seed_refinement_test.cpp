@@ -6,8 +6,8 @@
 #include <cmath>
 #include <vector>
 
+#include "virtual_origami/core/geometry.h"
 #include "virtual_origami/curved/bubble_mesh.h"
-#include "virtual_origami/curved/curved_metrics.h"
 #include "virtual_origami/curved/seed_scenes.h"
 
 namespace virtual_origami::core

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "virtual_origami/core/paper.h"
+#include "virtual_origami/core/positions.h"
 
 namespace virtual_origami::core
 {
@@ -27,5 +28,20 @@ FaceProjection projectOntoFace(const Paper& paper, int face, const Vec3& point);
 int faceAt(const Paper& paper, const Vec3& point, double max_distance);
 
 bool allFinite(const Vec3& v);
+
+/// The rotation that best turns centred points onto centred targets (least squares, Kabsch),
+/// from their covariance Σ (p − p̄)(q − q̄)ᵀ: a proper one (no mirror), also where the points lie
+/// in a plane.
+Eigen::Matrix3d bestFitRotation(const Eigen::Matrix3d& covariance);
+
+/// How far apart two shapes of the same points are, wherever each lies (two pins leave a sheet
+/// free to turn about their line): the distances of corresponding points (columns) after the
+/// rigid motion that best fits `points` onto `target` (Kabsch).
+struct ShapeDistance
+{
+  double rms = 0.0;
+  double largest = 0.0;
+};
+ShapeDistance shapeDistance(const Positions& points, const Positions& target);
 
 }  // namespace virtual_origami::core

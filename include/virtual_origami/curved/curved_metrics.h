@@ -25,14 +25,4 @@ struct CurvedMetrics
 CurvedMetrics measureCurved(const CurvedMesh& mesh, const Paper& paper, const Positions& x,
                             double penetration_tolerance = 0.0);
 
-/// How far apart two shapes of the same points are, wherever each lies (two pins leave a sheet
-/// free to turn about their line): the distances of corresponding points (columns) after the
-/// rigid motion that best fits `points` onto `target` (Kabsch).
-struct ShapeDistance
-{
-  double rms = 0.0;
-  double largest = 0.0;
-};
-ShapeDistance shapeDistance(const Positions& points, const Positions& target);
-
 }  // namespace virtual_origami::core
