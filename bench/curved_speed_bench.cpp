@@ -32,6 +32,7 @@
 #include "bench_common.h"
 
 using namespace virtual_origami::core;
+namespace numerics = virtual_origami::numerics;
 using virtual_origami::bench::gridMesh;
 using virtual_origami::bench::now;
 

@@ -28,6 +28,7 @@
 #include "virtual_origami/solvers/solver_factory.h"
 
 using namespace virtual_origami::core;
+namespace numerics = virtual_origami::numerics;
 
 namespace
 {
