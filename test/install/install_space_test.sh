@@ -12,9 +12,14 @@ trap 'rm -rf "$prefix"' EXIT
 cmake --install "$build" --prefix "$prefix" >"$prefix/install.log"
 
 mkdir -p "$prefix/home" "$prefix/data"
+# The environment an install space's setup gives (a package built on its own installs none):
+# only the install prefix and Debian's ROS under /usr.
 run_installed() {
-  env -i HOME="$prefix/home" PATH=/usr/bin:/bin ROS_HOME="$prefix/home" VO_INSTALL_TEST_DATA="$prefix/data" \
-    bash -c "source '$prefix/setup.bash' && $1"
+  env -i HOME="$prefix/home" PATH="$prefix/bin:/usr/bin:/bin" ROS_HOME="$prefix/home" \
+    VO_INSTALL_TEST_DATA="$prefix/data" ROS_PACKAGE_PATH="$prefix/share" CMAKE_PREFIX_PATH="$prefix:/usr" \
+    LD_LIBRARY_PATH="$prefix/lib" PYTHONPATH="$prefix/lib/python3/dist-packages" \
+    PKG_CONFIG_PATH="$prefix/lib/pkgconfig" ROS_ETC_DIR=/etc/ros ROS_PYTHON_VERSION=3 ROS_VERSION=1 \
+    ROS_DISTRO=Debian ROS_MASTER_URI=http://localhost:11311 bash -c "$1"
 }
 
 share="$(run_installed 'rospack find virtual_origami')"
@@ -33,6 +38,7 @@ for file in launch/origami.launch launch/replay.launch launch/gripper_example.la
   [ -f "$share/$file" ] || missing+=("$file")
 done
 [ -f "$prefix/lib/libvirtual_origami_rviz.so" ] || missing+=("the rviz plugin library")
+[ -f "$prefix/lib/python3/dist-packages/virtual_origami/msg/__init__.py" ] || missing+=("the Python messages")
 plugins="$(run_installed 'rospack plugins --attrib=plugin rviz' | grep '^virtual_origami ' || true)"
 [ "$plugins" = "virtual_origami $share/src/rviz_plugin/plugin_description.xml" ] || missing+=("rviz's entry for the plugin (got: $plugins)")
 if [ "${#missing[@]}" -gt 0 ]; then
