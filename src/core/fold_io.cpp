@@ -28,6 +28,7 @@
 #include <nlohmann/json.hpp>
 
 #include "virtual_origami/core/kinematics.h"
+#include "virtual_origami/core/planar_geometry.h"
 
 namespace virtual_origami::core
 {
@@ -406,30 +407,6 @@ FrameData readFrame(const json& frame)
 // ---------------------------------------------------------------------------------------------
 // Crease-pattern geometry
 
-double boundingDiagonal(const std::vector<Vec2>& points)
-{
-  Vec2 low = points.front(), high = points.front();
-  for (const Vec2& p : points)
-  {
-    low = low.cwiseMin(p);
-    high = high.cwiseMax(p);
-  }
-  return (high - low).norm();
-}
-
-double cross2(const Vec2& a, const Vec2& b)
-{
-  return a.x() * b.y() - a.y() * b.x();
-}
-
-double signedArea(const std::vector<Vec2>& polygon)
-{
-  double twice = 0;
-  for (size_t i = 0; i < polygon.size(); ++i)
-    twice += cross2(polygon[i], polygon[(i + 1) % polygon.size()]);
-  return 0.5 * twice;
-}
-
 /// The coordinates in their own plane when they lie in one, else nothing.
 std::optional<std::vector<Vec2>> planarCoordinates(const std::vector<Vec3>& coords)
 {
@@ -667,23 +644,6 @@ void orientCounterClockwise(Paper& paper)
   if (cw >= 0)
     for (Vertex& v : paper.vertices)
       v.crease_pattern.x() = -v.crease_pattern.x();
-}
-
-/// The least distance between two segments: 0 when they cross.
-double segmentDistance(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d)
-{
-  const auto pointToSegment = [](const Vec2& p, const Vec2& s, const Vec2& t) {
-    const Vec2 st = t - s;
-    const double length2 = st.squaredNorm();
-    const double u = length2 > 0 ? std::clamp((p - s).dot(st) / length2, 0.0, 1.0) : 0.0;
-    return (s + u * st - p).norm();
-  };
-  const double abc = cross2(b - a, c - a), abd = cross2(b - a, d - a);
-  const double cda = cross2(d - c, a - c), cdb = cross2(d - c, b - c);
-  if (((abc > 0 && abd < 0) || (abc < 0 && abd > 0)) && ((cda > 0 && cdb < 0) || (cda < 0 && cdb > 0)))
-    return 0.0;
-  return std::min(
-      { pointToSegment(a, c, d), pointToSegment(b, c, d), pointToSegment(c, a, b), pointToSegment(d, a, b) });
 }
 
 /// Convex pieces of a simple counter-clockwise polygon (indices into it), and the diagonals

@@ -19,6 +19,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "virtual_origami/core/planar_geometry.h"
 #include "virtual_origami/core/reference_patterns.h"
 #include "virtual_origami/core/validity.h"
 
@@ -411,18 +412,6 @@ bool finite(const Vec2& p)
   return std::isfinite(p.x()) && std::isfinite(p.y());
 }
 
-double cross(const Vec2& a, const Vec2& b)
-{
-  return a.x() * b.y() - a.y() * b.x();
-}
-
-double pointSegmentDistance(const Vec2& p, const Vec2& a, const Vec2& b)
-{
-  const Vec2 d = b - a;
-  const double t = std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
-  return (a + t * d - p).norm();
-}
-
 /// Points merged within a tolerance, found through a hash grid of that cell size.
 class PointSet
 {
@@ -540,10 +529,10 @@ Pieces splitSegments(const std::vector<CreaseSegment>& segments, PointSet& point
       touch(t, s.ib);
       // A proper crossing, away from every end (ends are the touches above).
       const Vec2 d1 = s.b - s.a, d2 = t.b - t.a;
-      const double denominator = cross(d1, d2);
+      const double denominator = cross2(d1, d2);
       if (std::abs(denominator) <= 1e-12 * d1.norm() * d2.norm())
         continue;
-      const double u = cross(t.a - s.a, d2) / denominator, v = cross(t.a - s.a, d1) / denominator;
+      const double u = cross2(t.a - s.a, d2) / denominator, v = cross2(t.a - s.a, d1) / denominator;
       const double margin_u = tolerance / d1.norm(), margin_v = tolerance / d2.norm();
       if (u > margin_u && u < 1 - margin_u && v > margin_v && v < 1 - margin_v)
       {
@@ -765,7 +754,7 @@ Paper buildPaper(const std::vector<CreaseSegment>& input, double size)
     for (int h : cycle)
     {
       face.push_back(edges[h / 2][h % 2]);
-      twice_area += cross(vertices[edges[h / 2][h % 2]], vertices[edges[h / 2][1 - h % 2]]);
+      twice_area += cross2(vertices[edges[h / 2][h % 2]], vertices[edges[h / 2][1 - h % 2]]);
     }
     if (twice_area <= 2 * min_area)
       continue;
@@ -782,7 +771,7 @@ Paper buildPaper(const std::vector<CreaseSegment>& input, double size)
       const Vec2& b = vertices[face[(k + 1) % n]];
       const Vec2& c = vertices[face[(k + 2) % n]];
       // The same slack as checkValidity's, so what loads is valid.
-      if (cross(b - a, c - b) < -1e-12 * size * size)
+      if (cross2(b - a, c - b) < -1e-12 * size * size)
         failAt(edge_piece[cycle[(k + 1) % n] / 2].line, "a face bordered by this line is not convex");
     }
     for (int h : cycle)
