@@ -29,6 +29,7 @@
 
 #include "virtual_origami/core/kinematics.h"
 #include "virtual_origami/core/planar_geometry.h"
+#include "virtual_origami/core/planar_graph.h"
 
 namespace virtual_origami::core
 {
@@ -443,50 +444,12 @@ std::optional<std::vector<Vec2>> planarCoordinates(const std::vector<Vec3>& coor
   return flat;
 }
 
-/// The bounded faces of the planar graph the edges draw: each traced with the face on its left,
-/// so cycles come out counter-clockwise and the outer face (clockwise) is dropped.
+/// The bounded faces of the planar graph the edges draw, counter-clockwise.
 std::vector<std::vector<int>> traceFaces(const std::vector<Vec2>& points, const std::vector<std::array<int, 2>>& edges)
 {
-  // Half-edge 2e + s runs from edges[e][s] to edges[e][1 - s]; its twin is h ^ 1.
-  const auto from = [&](int h) { return edges[h / 2][h % 2]; };
-  const auto to = [&](int h) { return edges[h / 2][1 - h % 2]; };
-  const auto direction = [&](int h) {
-    const Vec2 d = points[to(h)] - points[from(h)];
-    return std::atan2(d.y(), d.x());
-  };
-  const int half_count = 2 * static_cast<int>(edges.size());
-  std::vector<std::vector<int>> outgoing(points.size());
-  for (int h = 0; h < half_count; ++h)
-    outgoing[from(h)].push_back(h);
-  std::vector<int> slot(half_count);
-  for (std::vector<int>& around : outgoing)
-  {
-    std::sort(around.begin(), around.end(), [&](int a, int b) { return direction(a) < direction(b); });
-    for (size_t i = 0; i < around.size(); ++i)
-      slot[around[i]] = static_cast<int>(i);
-  }
-  // Arriving along h, the face on the left continues along the first edge clockwise from the twin.
-  const auto next = [&](int h) {
-    const std::vector<int>& around = outgoing[to(h)];
-    const int n = static_cast<int>(around.size());
-    return around[(slot[h ^ 1] + n - 1) % n];
-  };
-  const double min_area = 1e-12 * std::pow(boundingDiagonal(points), 2);
-  std::vector<char> visited(half_count, 0);
   std::vector<std::vector<int>> faces;
-  for (int start = 0; start < half_count; ++start)
-  {
-    std::vector<int> cycle;
-    std::vector<Vec2> polygon;
-    for (int h = start; !visited[h]; h = next(h))
-    {
-      visited[h] = 1;
-      cycle.push_back(from(h));
-      polygon.push_back(points[from(h)]);
-    }
-    if (!cycle.empty() && signedArea(polygon) > min_area)
-      faces.push_back(cycle);
-  }
+  for (TracedFace& face : boundedFaces(points, edges, 1e-12 * std::pow(boundingDiagonal(points), 2)))
+    faces.push_back(std::move(face.vertices));
   return faces;
 }
 
