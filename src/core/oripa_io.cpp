@@ -8,17 +8,15 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <cstdint>
 #include <fstream>
 #include <limits>
 #include <map>
 #include <optional>
 #include <set>
-#include <stdexcept>
 #include <string_view>
-#include <unordered_map>
 #include <utility>
 
+#include "format_error.h"
 #include "virtual_origami/core/planar_geometry.h"
 #include "virtual_origami/core/planar_graph.h"
 #include "virtual_origami/core/reference_patterns.h"
@@ -34,42 +32,9 @@ constexpr size_t kMaxFileBytes = size_t{ 64 } << 20;
 /// 1e-6 on a 400-unit sheet, so its files agree far better than this.
 constexpr double kMergeTolerance = 1e-8;
 
-/// Malformed input. The readers nest deeply, so they throw this; the public functions turn it
-/// into a failure, and nothing is thrown across the library boundary.
-struct FormatError : std::runtime_error
-{
-  using std::runtime_error::runtime_error;
-};
-
-[[noreturn]] void fail(const std::string& message)
-{
-  throw FormatError(message);
-}
-
 [[noreturn]] void failAt(int line, const std::string& message)
 {
   fail("line " + std::to_string(line) + ": " + message);
-}
-
-template <class T, class Body>
-Expected<T> guarded(const Body& body)
-{
-  try
-  {
-    return body();
-  }
-  catch (const FormatError& e)
-  {
-    return Expected<T>::failure(e.what());
-  }
-  catch (const std::bad_alloc&)
-  {
-    return Expected<T>::failure("out of memory");
-  }
-  catch (const std::exception& e)  // a bug here, not the file's fault: still no throw across the API
-  {
-    return Expected<T>::failure(std::string("internal error: ") + e.what());
-  }
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -1,32 +1,26 @@
-// FOLD read and write. Reading resolves every frame (inheritance, a crease pattern for folded
-// forms by unfolding) into a Paper; writing stores the crease pattern and the folded form.
+// FOLD read: every frame resolved (inheritance, a crease pattern for folded forms by unfolding)
+// into a Paper. Malformed input is refused by naming the field, never by quoting the file.
 #include "virtual_origami/core/fold_io.h"
 
 #include <algorithm>
 #include <array>
 #include <cerrno>
-#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <deque>
 #include <filesystem>
-#include <functional>
 #include <map>
 #include <optional>
-#include <random>
-#include <set>
 #include <sstream>
-#include <stdexcept>
-
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
+#include "fold_format.h"
+#include "format_error.h"
+#include "virtual_origami/core/convex_partition.h"
 #include "virtual_origami/core/kinematics.h"
 #include "virtual_origami/core/planar_geometry.h"
 #include "virtual_origami/core/planar_graph.h"
@@ -36,13 +30,6 @@ namespace virtual_origami::core
 namespace
 {
 using json = nlohmann::json;
-using ordered_json = nlohmann::ordered_json;
-
-/// Our own frame field: the crease pattern of a standalone folded-form frame.
-const char* const kCreasePatternKey = "virtual_origami:vertices_creasePattern";
-// Where each crease is meant to go (Edge::target_angle), degrees or null: kept apart from
-// edges_foldAngle, which says where the creases are in the frame written.
-const char* const kTargetAngleKey = "virtual_origami:edges_targetFoldAngle";
 
 /// The faces around a vertex must unfold it to one place within this (relative to the sheet
 /// scale): other tools round their coordinates to about 6 digits.
@@ -55,18 +42,6 @@ constexpr double kConvexityTolerance = 1e-6;
 constexpr size_t kMaxFoldFileBytes = size_t{ 64 } << 20;
 /// A measured fold angle this close to ±180° takes its sign from the assignment.
 constexpr double kFlatFoldTolerance = 1e-4;
-
-/// A malformed file. Field checks nest deeply, so they throw this; parseFold turns it into a
-/// failure, and nothing is thrown across the library boundary.
-struct FormatError : std::runtime_error
-{
-  using std::runtime_error::runtime_error;
-};
-
-[[noreturn]] void fail(const std::string& message)
-{
-  throw FormatError(message);
-}
 
 std::string indexed(const std::string& name, size_t i)
 {
@@ -268,11 +243,6 @@ std::optional<std::vector<Assignment>> readAssignments(const json& frame, const 
   return assignments;
 }
 
-double toRadians(double degrees)
-{
-  return degrees * (M_PI / 180.0);
-}
-
 std::optional<std::vector<double>> readFoldAngles(const json& frame, const std::optional<size_t>& edge_count)
 {
   // FOLD 1.0 called the field edges_foldAngles.
@@ -292,7 +262,7 @@ std::optional<std::vector<double>> readFoldAngles(const json& frame, const std::
 }
 
 std::optional<std::vector<std::optional<double>>> readTargetAngles(const json& frame,
-                                                                    const std::optional<size_t>& edge_count)
+                                                                   const std::optional<size_t>& edge_count)
 {
   const json* field = edgeField(frame, kTargetAngleKey, edge_count);
   if (!field)
@@ -609,105 +579,6 @@ void orientCounterClockwise(Paper& paper)
       v.crease_pattern.x() = -v.crease_pattern.x();
 }
 
-/// Convex pieces of a simple counter-clockwise polygon (indices into it), and the diagonals
-/// between them. Ear clipping cuts it into triangles, then each diagonal whose removal leaves
-/// a convex piece is removed (Hertel–Mehlhorn: at most four times the fewest pieces). Corners
-/// turning right by less than `slack` (a cross product) count as straight. Empty when no ear
-/// is found (the polygon is not simple).
-struct ConvexPieces
-{
-  std::vector<std::vector<int>> pieces;
-  std::vector<std::array<int, 2>> diagonals;
-};
-
-bool convexCycle(const std::vector<Vec2>& polygon, const std::vector<int>& cycle, double slack)
-{
-  const size_t n = cycle.size();
-  for (size_t i = 0; i < n; ++i)
-  {
-    const Vec2& a = polygon[cycle[i]];
-    const Vec2& b = polygon[cycle[(i + 1) % n]];
-    const Vec2& c = polygon[cycle[(i + 2) % n]];
-    if (cross2(b - a, c - b) < -slack)
-      return false;
-  }
-  return true;
-}
-
-/// `cycle` turned to start at `first`.
-std::vector<int> startingAt(const std::vector<int>& cycle, int first)
-{
-  std::vector<int> turned = cycle;
-  std::rotate(turned.begin(), std::find(turned.begin(), turned.end(), first), turned.end());
-  return turned;
-}
-
-ConvexPieces convexPieces(const std::vector<Vec2>& polygon, double slack)
-{
-  ConvexPieces result;
-  std::vector<int> remaining(polygon.size());
-  for (size_t i = 0; i < remaining.size(); ++i)
-    remaining[i] = static_cast<int>(i);
-  while (remaining.size() > 3)
-  {
-    const size_t m = remaining.size();
-    bool clipped = false;
-    for (size_t k = 0; k < m && !clipped; ++k)
-    {
-      const int p = remaining[(k + m - 1) % m], i = remaining[k], q = remaining[(k + 1) % m];
-      const Vec2 &a = polygon[p], &b = polygon[i], &c = polygon[q];
-      if (cross2(b - a, c - b) <= slack)
-        continue;  // reflex or straight: no ear
-      bool empty = true;
-      for (int r : remaining)
-        if (r != p && r != i && r != q && cross2(b - a, polygon[r] - a) >= -slack &&
-            cross2(c - b, polygon[r] - b) >= -slack && cross2(a - c, polygon[r] - c) >= -slack)
-          empty = false;
-      if (!empty)
-        continue;
-      result.pieces.push_back({ p, i, q });
-      result.diagonals.push_back({ p, q });
-      remaining.erase(remaining.begin() + static_cast<long>(k));
-      clipped = true;
-    }
-    if (!clipped)
-      return {};
-  }
-  result.pieces.push_back(remaining);
-  // Join the pieces across every diagonal that leaves them convex, the last cut first.
-  std::vector<std::array<int, 2>> kept;
-  for (auto d = result.diagonals.rbegin(); d != result.diagonals.rend(); ++d)
-  {
-    const auto [u, v] = *d;
-    const auto hasSide = [](const std::vector<int>& cycle, int from, int to) {
-      const size_t n = cycle.size();
-      for (size_t i = 0; i < n; ++i)
-        if (cycle[i] == from && cycle[(i + 1) % n] == to)
-          return true;
-      return false;
-    };
-    auto first = std::find_if(result.pieces.begin(), result.pieces.end(),
-                              [&](const std::vector<int>& c) { return hasSide(c, u, v); });
-    auto second = std::find_if(result.pieces.begin(), result.pieces.end(),
-                               [&](const std::vector<int>& c) { return hasSide(c, v, u); });
-    if (first == result.pieces.end() || second == result.pieces.end())
-      return {};  // every diagonal has a piece on each side: never happens
-    // From v, the first piece ends at u; from u, the second ends at v: joined, v … u … back to v.
-    std::vector<int> joined = startingAt(*first, v);
-    const std::vector<int> rest = startingAt(*second, u);
-    joined.insert(joined.end(), rest.begin() + 1, rest.end() - 1);
-    if (!convexCycle(polygon, joined, slack))
-    {
-      kept.push_back(*d);
-      continue;
-    }
-    *first = joined;
-    result.pieces.erase(second);
-  }
-  result.diagonals.assign(kept.rbegin(), kept.rend());
-  return result;
-}
-
 /// Every face must be a simple polygon, counter-clockwise in the crease pattern; a concave one
 /// is split into convex pieces (SPEC: faces are convex) joined by new flat edges marked
 /// `split`, which formatFold leaves out again. The first piece keeps the face's number and
@@ -932,7 +803,8 @@ std::vector<std::vector<int>> facesOf(const FrameData& data, const std::optional
     return *data.faces;
   if (!crease_pattern)
     fail("faces_vertices is missing: a folded form needs faces_vertices to be unfolded");
-  std::vector<std::vector<int>> faces = traceFaces(*crease_pattern, *data.edges);  // readFrame made sure there are edges
+  // readFrame made sure there are edges.
+  std::vector<std::vector<int>> faces = traceFaces(*crease_pattern, *data.edges);
   // A dangling edge or two faces touching at a single vertex traces a face through one vertex
   // twice: no polygon the model can hold, and the FOLD written from it would not read back.
   for (size_t f = 0; f < faces.size(); ++f)
@@ -1008,8 +880,7 @@ BuiltFrame buildFrame(const json& frame, const BuiltFrame* parent)
       continue;
     if (data.target_angles)
       edge.target_angle = (*data.target_angles)[e];
-    else if (built.crease_pattern && fold_angles &&
-             ((*fold_angles)[e] != 0.0 || edge.assignment == Assignment::Flat))
+    else if (built.crease_pattern && fold_angles && ((*fold_angles)[e] != 0.0 || edge.assignment == Assignment::Flat))
       edge.target_angle = (*fold_angles)[e];
   }
   if (built.crease_pattern)
@@ -1135,252 +1006,6 @@ FoldDocument readDocument(const json& root)
   return document;
 }
 
-// ---------------------------------------------------------------------------------------------
-// Writing
-
-/// The degrees whose conversion back by toRadians gives exactly `radians` when a nearby double
-/// does, so fold angles survive a write and read bit for bit.
-double toDegrees(double radians)
-{
-  const double degrees = radians * (180.0 / M_PI);
-  double up = degrees, down = degrees;
-  for (int step = 0; step < 8; ++step)
-  {
-    if (toRadians(up) == radians)
-      return up;
-    if (toRadians(down) == radians)
-      return down;
-    up = std::nextafter(up, HUGE_VAL);
-    down = std::nextafter(down, -HUGE_VAL);
-  }
-  return degrees;
-}
-
-ordered_json creasePatternCoords(const Paper& paper)
-{
-  ordered_json coords = ordered_json::array();
-  for (const Vertex& v : paper.vertices)
-    coords.push_back({ v.crease_pattern.x(), v.crease_pattern.y() });
-  return coords;
-}
-
-ordered_json foldedCoords(const Paper& paper)
-{
-  ordered_json coords = ordered_json::array();
-  for (const Vertex& v : paper.vertices)
-    coords.push_back({ v.folded.x(), v.folded.y(), v.folded.z() });
-  return coords;
-}
-
-/// The faces and edges a file gets: faces joined by split edges that are still flat (F) are
-/// merged back into the face they were split from, and those edges left out. A group whose
-/// outline is not one simple cycle (creased since in a way that pinches it) stays in pieces,
-/// with its split edges, which is still a valid FOLD.
-struct FileTopology
-{
-  std::vector<std::vector<int>> faces;
-  std::vector<int> edges;    // the paper's edges the file keeps, in order
-  std::vector<int> face_of;  // for each paper face, the file face it is (part of)
-};
-
-/// The outline of a group of faces joined across `inside` edges, counter-clockwise from the
-/// first face's first vertex; empty unless it is one cycle through every vertex of the group.
-std::vector<int> outline(const Paper& paper, const std::vector<int>& group, const std::vector<char>& inside)
-{
-  std::map<int, int> next;
-  std::vector<int> vertices;
-  size_t sides = 0;
-  for (int f : group)
-  {
-    const Face& face = paper.faces[f];
-    for (size_t i = 0; i < face.vertices.size(); ++i)
-    {
-      vertices.push_back(face.vertices[i]);
-      if (inside[face.edges[i]])
-        continue;
-      if (!next.emplace(face.vertices[i], face.vertices[(i + 1) % face.vertices.size()]).second)
-        return {};  // the outline passes a vertex twice
-      ++sides;
-    }
-  }
-  const int start = paper.faces[group.front()].vertices.front();
-  std::vector<int> cycle;
-  for (int v = start; cycle.size() <= sides; v = next.at(v))
-  {
-    if (!next.count(v))
-      return {};
-    cycle.push_back(v);
-    if (next.at(v) == start)
-      break;
-  }
-  std::sort(vertices.begin(), vertices.end());
-  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
-  if (cycle.size() != sides || cycle.size() != vertices.size())
-    return {};
-  return cycle;
-}
-
-FileTopology fileTopology(const Paper& paper)
-{
-  const size_t face_count = paper.faces.size();
-  // Union-find of the faces across flat split edges; each group's root is its first face.
-  std::vector<int> root(face_count);
-  for (size_t f = 0; f < face_count; ++f)
-    root[f] = static_cast<int>(f);
-  const std::function<int(int)> find = [&](int f) { return root[f] == f ? f : root[f] = find(root[f]); };
-  std::vector<char> inside(paper.edges.size(), 0);
-  for (size_t e = 0; e < paper.edges.size(); ++e)
-  {
-    const Edge& edge = paper.edges[e];
-    if (!edge.split || !edge.isCrease() || edge.assignment != Assignment::Flat)
-      continue;
-    inside[e] = 1;
-    const int a = find(edge.faces[0]), b = find(edge.faces[1]);
-    root[std::max(a, b)] = std::min(a, b);
-  }
-  std::vector<std::vector<int>> groups(face_count);
-  for (size_t f = 0; f < face_count; ++f)
-    groups[find(static_cast<int>(f))].push_back(static_cast<int>(f));
-  FileTopology file;
-  file.face_of.assign(face_count, -1);
-  std::vector<char> merged(face_count, 0);
-  for (size_t f = 0; f < face_count; ++f)
-  {
-    const std::vector<int>& group = groups[f];
-    if (group.empty())
-      continue;  // f is in an earlier face's group
-    std::vector<int> cycle = group.size() > 1 ? outline(paper, group, inside) : std::vector<int>{};
-    if (cycle.empty())
-    {
-      for (int g : group)  // in pieces: each face its own, in order
-        merged[g] = 0;
-      continue;
-    }
-    for (int g : group)
-      merged[g] = 1;
-    file.face_of[f] = static_cast<int>(file.faces.size());
-    file.faces.push_back(cycle);
-  }
-  for (size_t f = 0; f < face_count; ++f)
-  {
-    if (merged[f])
-    {
-      file.face_of[f] = file.face_of[find(static_cast<int>(f))];
-      continue;
-    }
-    file.face_of[f] = static_cast<int>(file.faces.size());
-    file.faces.push_back(paper.faces[f].vertices);
-  }
-  for (size_t e = 0; e < paper.edges.size(); ++e)
-    if (!inside[e] || !merged[paper.edges[e].faces[0]])
-      file.edges.push_back(static_cast<int>(e));
-  return file;
-}
-
-/// Edges, faces and layer order: everything but the coordinates.
-void addTopology(ordered_json& frame, const Paper& paper)
-{
-  const FileTopology file = fileTopology(paper);
-  ordered_json edges = ordered_json::array(), assignments = ordered_json::array(), angles = ordered_json::array();
-  for (int e : file.edges)
-  {
-    const Edge& edge = paper.edges[e];
-    edges.push_back({ edge.vertices[0], edge.vertices[1] });
-    assignments.push_back(std::string(1, assignmentLetter(edge.assignment)));
-    angles.push_back(toDegrees(edge.fold_angle));
-  }
-  ordered_json faces = ordered_json::array();
-  for (const std::vector<int>& face : file.faces)
-    faces.push_back(face);
-  frame["edges_vertices"] = edges;
-  frame["edges_assignment"] = assignments;
-  frame["edges_foldAngle"] = angles;
-  if (std::any_of(file.edges.begin(), file.edges.end(), [&](int e) { return paper.edges[e].target_angle.has_value(); }))
-  {
-    ordered_json targets = ordered_json::array();
-    for (int e : file.edges)
-    {
-      const std::optional<double>& target = paper.edges[e].target_angle;
-      targets.push_back(target ? ordered_json(toDegrees(*target)) : ordered_json(nullptr));
-    }
-    frame[kTargetAngleKey] = targets;
-  }
-  frame["faces_vertices"] = faces;
-  // Pieces of one face share its orders: each pair once, none of a face with itself.
-  ordered_json orders = ordered_json::array();
-  std::set<std::pair<int, int>> written;
-  for (const FaceOrder& order : paper.face_orders)
-  {
-    const int face = file.face_of[order.face], other = file.face_of[order.other];
-    if (face != other && written.emplace(face, other).second)
-      orders.push_back({ other, face, order.above });  // see faceOrdersOf
-  }
-  if (!orders.empty())
-    frame["faceOrders"] = orders;
-}
-
-ordered_json fileHeader(const std::string& title, const std::string& file_class)
-{
-  ordered_json file;
-  file["file_spec"] = 1.1;
-  file["file_creator"] = "virtual_origami";
-  file["file_classes"] = { file_class };
-  if (!title.empty())
-    file["file_title"] = title;
-  return file;
-}
-
-/// A standalone folded-form frame: 3D coordinates, with the crease pattern in our own field.
-ordered_json foldedFormFrame(const Paper& paper)
-{
-  ordered_json frame;
-  frame["frame_classes"] = { "foldedForm" };
-  frame["frame_attributes"] = { "3D" };
-  frame["vertices_coords"] = foldedCoords(paper);
-  frame[kCreasePatternKey] = creasePatternCoords(paper);
-  addTopology(frame, paper);
-  return frame;
-}
-
-/// JSON with one object key or nested array entry per line and the innermost arrays on one
-/// line: readable and diffable, and close to what other FOLD tools write. Numbers come out
-/// in the shortest form that reads back to the same double.
-void appendJson(const ordered_json& value, const std::string& indent, std::string& out)
-{
-  const std::string inner = indent + "  ";
-  if (value.is_object() && !value.empty())
-  {
-    out += "{";
-    bool first = true;
-    for (const auto& [key, item] : value.items())
-    {
-      out += (first ? "\n" : ",\n") + inner + ordered_json(key).dump() + ": ";
-      appendJson(item, inner, out);
-      first = false;
-    }
-    out += "\n" + indent + "}";
-  }
-  else if (value.is_array() && !value.empty() && value.front().is_structured())
-  {
-    out += "[";
-    for (size_t i = 0; i < value.size(); ++i)
-    {
-      out += (i == 0 ? "\n" : ",\n") + inner;
-      appendJson(value[i], inner, out);
-    }
-    out += "\n" + indent + "]";
-  }
-  else
-    out += value.dump();
-}
-
-std::string dumpFold(const ordered_json& file)
-{
-  std::string out;
-  appendJson(file, "", out);
-  return out + "\n";
-}
-
 /// "line L, column C (byte B)" for the 1-based byte offset nlohmann's parse errors give.
 std::string placeIn(const std::string& text, size_t byte)
 {
@@ -1390,11 +1015,6 @@ std::string placeIn(const std::string& text, size_t byte)
   const size_t column = line_start == std::string::npos || end == 0 ? end + 1 : end - line_start;
   return "syntax error at line " + std::to_string(line) + ", column " + std::to_string(column) + " (byte " +
          std::to_string(byte) + ")";
-}
-
-std::string errnoText()
-{
-  return std::strerror(errno);
 }
 
 }  // namespace
@@ -1435,7 +1055,7 @@ Expected<FoldDocument> readFoldFile(const std::string& path)
     return Expected<FoldDocument>::failure("cannot load " + path + ": not a regular file");
   std::FILE* file = std::fopen(path.c_str(), "rb");
   if (!file)
-    return Expected<FoldDocument>::failure("cannot open " + path + ": " + errnoText());
+    return Expected<FoldDocument>::failure("cannot open " + path + ": " + std::strerror(errno));
   std::string text;
   char buffer[1 << 16];
   size_t got = 0;
@@ -1448,125 +1068,11 @@ Expected<FoldDocument> readFoldFile(const std::string& path)
                                            std::to_string(kMaxFoldFileBytes >> 20) + " MiB");
   }
   const bool read_error = std::ferror(file) != 0;
-  const std::string reason = read_error ? errnoText() : "";
+  const std::string reason = read_error ? std::strerror(errno) : "";
   std::fclose(file);
   if (read_error)
     return Expected<FoldDocument>::failure("cannot read " + path + ": " + reason);
   return parseFold(text);
-}
-
-std::string formatFold(const Paper& paper, const std::string& title)
-{
-  ordered_json file = fileHeader(title, "singleModel");
-  file["frame_classes"] = { "creasePattern" };
-  file["frame_attributes"] = { "2D" };
-  file["vertices_coords"] = creasePatternCoords(paper);
-  addTopology(file, paper);
-  ordered_json folded;
-  folded["frame_classes"] = { "foldedForm" };
-  folded["frame_attributes"] = { "3D" };
-  folded["frame_inherit"] = true;
-  folded["frame_parent"] = 0;
-  folded["vertices_coords"] = foldedCoords(paper);
-  file["file_frames"] = ordered_json::array({ folded });
-  return dumpFold(file);
-}
-
-std::string formatFoldSequence(const std::vector<Paper>& steps, const std::string& title)
-{
-  // Steps may differ in topology (creases get added), so every frame stands alone.
-  ordered_json file = fileHeader(title, "diagrams");
-  if (steps.empty())
-    return dumpFold(file);
-  const ordered_json key_frame = foldedFormFrame(steps.front());
-  for (const auto& [key, value] : key_frame.items())
-    file[key] = value;
-  ordered_json frames = ordered_json::array();
-  for (size_t i = 1; i < steps.size(); ++i)
-    frames.push_back(foldedFormFrame(steps[i]));
-  if (!frames.empty())
-    file["file_frames"] = frames;
-  return dumpFold(file);
-}
-
-Status writeTextFile(const std::string& path, const std::string& text)
-{
-  // Replace only a regular file the user may write: never a link (rename would replace the
-  // link, not what it points to), a device or folder, or a read-only file (rename would
-  // replace it anyway, as the folder is writable). As root access() calls every file
-  // writable, so a file with no write permission at all counts as read-only too.
-  struct stat target;
-  const bool replacing = ::lstat(path.c_str(), &target) == 0;
-  if (!replacing && errno != ENOENT)
-    return failure("cannot write " + path + ": " + errnoText());
-  if (replacing && S_ISLNK(target.st_mode))
-    return failure("cannot write " + path + ": it is a symbolic link (not followed, not replaced)");
-  if (replacing && !S_ISREG(target.st_mode))
-    return failure("cannot write " + path + ": not a regular file");
-  if (replacing && ((target.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0 || ::access(path.c_str(), W_OK) != 0))
-    return failure("cannot write " + path + ": the file is read-only");
-  const std::filesystem::path target_path(path);
-  const std::string name = target_path.filename().string();
-  if (name.empty() || name == "." || name == "..")
-    return failure("cannot write " + path + ": not a file name");
-  const std::string folder = target_path.has_parent_path() ? target_path.parent_path().string() : ".";
-
-  // Write beside the target, then rename: readers never see a half-written file. The
-  // temporary file gets a new name and is created exclusively, without following links,
-  // so nothing planted in the folder (a link at <name>.tmp) is written through.
-  thread_local std::mt19937_64 random{ std::random_device{}() };
-  std::string temporary;
-  int fd = -1;
-  for (int attempt = 0; fd < 0; ++attempt)
-  {
-    std::ostringstream unique;
-    unique << folder << "/." << name << "." << ::getpid() << "." << std::hex << random() << ".tmp";
-    temporary = unique.str();
-    fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
-    if (fd < 0 && (errno != EEXIST || attempt == 100))
-      return failure("cannot write " + path + ": " + errnoText());
-  }
-  const auto abandon = [&](const std::string& reason) {
-    ::close(fd);
-    ::unlink(temporary.c_str());
-    return failure("cannot write " + path + ": " + reason);
-  };
-  // The new file keeps the permissions of the one it replaces.
-  if (replacing && ::fchmod(fd, target.st_mode & 07777) != 0)
-    return abandon(errnoText());
-  for (size_t done = 0; done < text.size();)
-  {
-    const ssize_t wrote = ::write(fd, text.data() + done, text.size() - done);
-    if (wrote < 0 && errno == EINTR)
-      continue;
-    if (wrote <= 0)
-      return abandon(errnoText());
-    done += static_cast<size_t>(wrote);
-  }
-  // On disk before the rename makes it the file: a crash then leaves the old file or the
-  // whole new one, never an empty one.
-  if (::fsync(fd) != 0)
-    return abandon(errnoText());
-  if (::close(fd) != 0)
-  {
-    const std::string reason = errnoText();
-    ::unlink(temporary.c_str());
-    return failure("cannot write " + path + ": " + reason);
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0)
-  {
-    const std::string reason = errnoText();
-    ::unlink(temporary.c_str());
-    return failure("cannot rename " + temporary + " to " + path + ": " + reason);
-  }
-  // The rename itself on disk too (best effort: some file systems refuse to sync a folder).
-  const int folder_fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (folder_fd >= 0)
-  {
-    ::fsync(folder_fd);
-    ::close(folder_fd);
-  }
-  return success();
 }
 
 Expected<Paper> loadPaper(const std::string& path)
