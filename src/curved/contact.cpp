@@ -134,10 +134,8 @@ double patternDistance(const CurvedMesh& mesh, int triangle, const Vec2& p)
   {
     const Vec2& a = mesh.nodes[t[k]].crease_pattern;
     const Vec2& b = mesh.nodes[t[(k + 1) % 3]].crease_pattern;
-    const Vec2 ab = b - a;
-    const double s = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-    nearest = std::min(nearest, (a + s * ab - p).norm());
-    inside = std::min(inside, ab.x() * (p - a).y() - ab.y() * (p - a).x());
+    nearest = std::min(nearest, pointSegmentDistance(p, a, b));
+    inside = std::min(inside, cross2(b - a, p - a));
   }
   return inside >= 0 ? 0.0 : nearest;
 }
