@@ -26,12 +26,13 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "virtual_origami/curved/blas_kernels.h"
+#include "virtual_origami/numerics/blas_kernels.h"
 #include "virtual_origami/curved/seed_scenes.h"
-#include "virtual_origami/curved/spd_factorization.h"
+#include "virtual_origami/numerics/spd_factorization.h"
 #include "bench_common.h"
 
 using namespace virtual_origami::core;
+namespace numerics = virtual_origami::numerics;
 using virtual_origami::bench::gridMesh;
 using virtual_origami::bench::now;
 
@@ -217,7 +218,7 @@ void methods(const std::string& dir, const std::vector<int>& sizes, const std::v
     Eigen::VectorXd g = Eigen::VectorXd::Zero(3 * free_count);
     BlockHessian blocks{ &matrix };
     evaluateCurved(terms, x, { &free_index, &g, nullptr, &blocks });
-    SpdFactorization factorization;
+    numerics::SpdFactorization factorization;
     double shift = 1e-11;
     while (!factorization.factorize(matrix, shift) && shift < 1e3)
       shift *= 100;
@@ -329,7 +330,7 @@ void scaling(const std::string& dir)
     Eigen::VectorXd g = Eigen::VectorXd::Zero(3 * free_count);
     BlockHessian blocks{ &hessian };
     evaluateCurved(terms, x, { &free_index, &g, nullptr, &blocks });
-    SpdFactorization factorization;
+    numerics::SpdFactorization factorization;
     double shift = 1e-6;
     while (!factorization.factorize(hessian, shift) && shift < 1e3)
       shift *= 10;
@@ -414,7 +415,7 @@ int main(int argc, char** argv)
   const std::string dir = argc > 1 ? argv[1] : "docs/bench";
   const std::string part = argc > 2 ? argv[2] : "";
   // The factorisations' and back-substitutions' speed is the BLAS kernels'.
-  std::cout << "BLAS kernels: " << blasKernels() << "\n";
+  std::cout << "BLAS kernels: " << numerics::blasKernels() << "\n";
   if (part.empty() || part == "pulls")
     smallPulls(dir);
   if (part.empty() || part == "stability")

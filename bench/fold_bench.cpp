@@ -22,12 +22,13 @@
 #include "virtual_origami/core/positions.h"
 #include "virtual_origami/core/rotate.h"
 #include "virtual_origami/core/tessellations.h"
-#include "virtual_origami/curved/blas_kernels.h"
+#include "virtual_origami/numerics/blas_kernels.h"
 #include "virtual_origami/solvers/crease_driver_factory.h"
 #include "virtual_origami/solvers/driven_faces.h"
 #include "virtual_origami/solvers/solver_factory.h"
 
 using namespace virtual_origami::core;
+namespace numerics = virtual_origami::numerics;
 
 namespace
 {
@@ -115,7 +116,7 @@ int main(int argc, char** argv)
     return 2;
   }
   const std::string out = argv[1];
-  std::cout << "BLAS kernels: " << blasKernels() << "\n";
+  std::cout << "BLAS kernels: " << numerics::blasKernels() << "\n";
   const long max_vertices = argc > 2 ? std::atol(argv[2]) : 10000;
   const double start_fraction = 0.3;
   const int frames = 10;

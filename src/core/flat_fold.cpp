@@ -6,7 +6,9 @@
 #include <sstream>
 
 #include "virtual_origami/core/face_orders.h"
+#include "virtual_origami/core/flat_vertices.h"
 #include "virtual_origami/core/kinematics.h"
+#include "virtual_origami/core/layer_order.h"
 #include "virtual_origami/core/planar_geometry.h"
 
 namespace virtual_origami::core
@@ -93,6 +95,55 @@ Expected<FoldPlan> planFold(const Paper& paper, const FlatFoldRequest& request)
 
 }  // namespace
 
+namespace
+{
+/// The creases whose angle the fold changes on the way from the fixed face to each face (sorted):
+/// faces with the same list turn together, those with an empty one stay.
+std::vector<std::vector<int>> turnsFromFixedFace(const Paper& paper, const FoldPlan& plan)
+{
+  std::vector<std::vector<int>> turns(paper.faces.size());
+  walkFaces(paper, plan.root, [&](int f, int e, int g) {
+    turns[g] = turns[f];
+    if (plan.angles[e] != paper.edges[e].fold_angle)
+    {
+      turns[g].insert(std::lower_bound(turns[g].begin(), turns[g].end(), e), e);
+    }
+  });
+  return turns;
+}
+
+/// The layer order after the fold: the orders of layers that turned together hold, the rest
+/// follow from the creases (layer_order.h). Fails when no order of the layers folds flat.
+Status orderLayers(Paper& next, const Paper& before, const std::vector<std::vector<int>>& turns,
+                   const std::vector<char>& moved, double tolerance)
+{
+  LayerOrderOptions options;
+  options.tolerance = tolerance;
+  for (const FaceOrder& o : before.face_orders)
+    if (o.face >= 0 && o.other >= 0 && o.face < static_cast<int>(turns.size()) &&
+        o.other < static_cast<int>(turns.size()) && turns[o.face] == turns[o.other])
+      options.kept.push_back(o);
+  Expected<LayerOrder> order = solveLayerOrder(next, options);
+  if (!order && !options.kept.empty())
+  {
+    // Orders recorded before may not have been complete or right: what the creases allow decides.
+    options.kept.clear();
+    order = solveLayerOrder(next, options);
+  }
+  if (!order)
+    return failure(order.message());
+  if (!order->complete)
+  {
+    // Too many layers to work out: keep the orders of layers that turned together, as a turn does.
+    clearFaceOrdersAcross(next, moved);
+    pruneFaceOrders(next, tolerance);
+    return success();
+  }
+  next.face_orders = order->orders;
+  return success();
+}
+}  // namespace
+
 Expected<FlatFoldResult> flatFold(Paper& paper, const FlatFoldRequest& request)
 {
   using Failure = Expected<FlatFoldResult>;
@@ -108,25 +159,34 @@ Expected<FlatFoldResult> flatFold(Paper& paper, const FlatFoldRequest& request)
       foldedPositionsFromAngles(paper, angles, root, facePose(paper, root), tolerance);
   if (!placed)
     return Failure::failure("the chosen creases do not fold flat: the fold does not close (" + placed.message() + ")");
+  // Closing is not enough: a vertex with every crease valley closes too (a turn by π is one by −π).
+  if (const Status vertices = checkFlatVertices(paper, angles, plan->changed_edges); !vertices)
+    return Failure::failure("the chosen creases do not fold flat: " + vertices.message());
 
   Paper next = paper;
   for (size_t v = 0; v < next.vertices.size(); ++v)
     next.vertices[v].folded = (*placed)[v];
   for (int v : paper.faces[root].vertices)  // the face that stays, exactly (its pose is a fit)
     next.vertices[v].folded = paper.vertices[v].folded;
+  // A face moves when a crease between it and the fixed face turns, even by a full turn (a
+  // mountain re-marked valley swings its flap round to the other side: same place, new layers).
+  const std::vector<std::vector<int>> turns = turnsFromFixedFace(paper, *plan);
   std::vector<char> moved(paper.faces.size(), 0);
   for (size_t f = 0; f < paper.faces.size(); ++f)
+  {
+    moved[f] = !turns[f].empty();
     for (int v : paper.faces[f].vertices)
       if ((next.vertices[v].folded - paper.vertices[v].folded).norm() > tolerance)
         moved[f] = 1;
+  }
   for (size_t f = 0; f < moved.size(); ++f)
     if (moved[f])
       result.moved_faces.push_back(static_cast<int>(f));
   for (size_t e = 0; e < next.edges.size(); ++e)
     next.edges[e].fold_angle = angles[e];  // the branch to measure against
   updateFoldAngles(next);
-  clearFaceOrdersAcross(next, moved);
-  pruneFaceOrders(next, 1e-7 * paper.scale());
+  if (const Status layers = orderLayers(next, paper, turns, moved, 1e-7 * paper.scale()); !layers)
+    return Failure::failure("the chosen creases do not fold flat: " + layers.message());
   paper = std::move(next);
   return result;
 }

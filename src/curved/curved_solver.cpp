@@ -9,8 +9,8 @@
 #include <Eigen/LU>
 #include <Eigen/QR>
 
-#include "virtual_origami/solvers/lbfgs_history.h"
-#include "virtual_origami/solvers/solve_budget.h"
+#include "virtual_origami/numerics/lbfgs_history.h"
+#include "virtual_origami/numerics/solve_budget.h"
 
 namespace virtual_origami::core
 {
@@ -108,7 +108,7 @@ SolveLimits budgetLimits(const CurvedSolveOptions& options, int max_iterations)
 /// on a non-finite state (diverged, with `nonfinite` as the message), at balance (converged)
 /// or at the end of the budget; else count the step about to be taken.
 bool stopBeforeStep(const Eigen::VectorXd& g, double energy, double force_scale, double tolerance,
-                    const SolveBudget& budget, const char* nonfinite, CurvedReport& report)
+                    const numerics::SolveBudget& budget, const char* nonfinite, CurvedReport& report)
 {
   report.max_force = largestNodeForce(g) / force_scale;
   if (!std::isfinite(energy) || !std::isfinite(report.max_force))
@@ -423,7 +423,7 @@ bool CurvedSolver::predict(Positions& x, const std::vector<CurvedPin>& pins, con
 CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_index, int free_count)
 {
   CurvedReport report;
-  const SolveBudget budget(budgetLimits(options_, options_.max_iterations));
+  const numerics::SolveBudget budget(budgetLimits(options_, options_.max_iterations));
   const double force_scale = material_.stretch * mesh_.spacing;
   const double max_move = options_.max_step * contact_.range();
   const int n = 3 * free_count;
@@ -691,14 +691,14 @@ CurvedReport CurvedSolver::quasiNewton(Positions& x, const std::vector<int>& fre
 {
   CurvedReport report;
   negative_curvature_ = false;
-  const SolveBudget budget(budgetLimits(options_, options_.lbfgs_iterations));
+  const numerics::SolveBudget budget(budgetLimits(options_, options_.lbfgs_iterations));
   const double force_scale = material_.stretch * mesh_.spacing;
   const double max_move = options_.max_step * contact_.range();
   const int n = 3 * free_count;
   // The correction pairs s = Δx, y = Δ∇E of this solve's last iterations, oldest first (kept
   // from one solve of a drag to the next they made no difference: 1.73 against 1.79 solves
   // per CPU second at 10,000 vertices).
-  LbfgsHistory<Eigen::VectorXd> history(options_.lbfgs_memory);
+  numerics::LbfgsHistory<Eigen::VectorXd> history(options_.lbfgs_memory);
   Positions trial = x;
   Eigen::VectorXd g(n), g_next(n), direction(n);
   std::string stuck;
@@ -981,7 +981,7 @@ double CurvedSolver::assembleHessian(const Positions& x, const std::vector<int>&
 CurvedReport CurvedSolver::rk4(Positions& x, const std::vector<int>& free_index, int free_count)
 {
   CurvedReport report;
-  const SolveBudget budget(budgetLimits(options_, options_.max_steps));
+  const numerics::SolveBudget budget(budgetLimits(options_, options_.max_steps));
   const double force_scale = material_.stretch * mesh_.spacing;
   const int n = 3 * free_count;
   Eigen::VectorXd inv_mass(n);

@@ -9,11 +9,11 @@
 #include <Eigen/Sparse>
 
 #include "virtual_origami/core/face_springs.h"
-#include "virtual_origami/curved/spd_factorization.h"
+#include "virtual_origami/numerics/spd_factorization.h"
 #include "virtual_origami/solvers/rigid_faces.h"
-#include "virtual_origami/solvers/solve_budget.h"
+#include "virtual_origami/numerics/solve_budget.h"
 
-#include "../curved/nested_dissection.h"
+#include "../numerics/nested_dissection.h"
 
 namespace virtual_origami::core
 {
@@ -140,7 +140,7 @@ public:
       {
         supernodal_ = std::make_unique<Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Upper>>();
         supernodal_->cholmod().print = 0;  // not definite is an answer (the damping rises)
-        analyzeWithNestedDissection(*supernodal_, matrix_);
+        numerics::analyzeWithNestedDissection(*supernodal_, matrix_);
       }
       else
         solver_.analyzePattern(matrix_);
@@ -148,7 +148,7 @@ public:
     }
     if (supernodal_)
     {
-      const std::unique_lock<std::mutex> blas = lockBlas();
+      const std::unique_lock<std::mutex> blas = numerics::lockBlas();
       supernodal_->factorize(matrix_);
       return supernodal_->info() == Eigen::Success;
     }
@@ -163,7 +163,7 @@ public:
     for (int i = 0; i < size_ / 3; ++i)
       ordered.segment<3>(3 * block_order_[i]) = rhs.segment<3>(3 * i);
     const Eigen::VectorXd solution = supernodal_ ? [&]() {
-      const std::unique_lock<std::mutex> blas = lockBlas();
+      const std::unique_lock<std::mutex> blas = numerics::lockBlas();
       return Eigen::VectorXd(supernodal_->solve(ordered));
     }()
                                                  : Eigen::VectorXd(solver_.solve(ordered));
@@ -284,7 +284,7 @@ NewtonSolver::~NewtonSolver() = default;
 
 SolveReport NewtonSolver::solve(Paper& paper, const std::vector<char>& fixed)
 {
-  SolveBudget budget(limits_);
+  numerics::SolveBudget budget(limits_);
   SolveReport report;
   if (!setup_ || !setup_->matches(paper, fixed))
     setup_ = std::make_unique<Setup>(paper, fixed);

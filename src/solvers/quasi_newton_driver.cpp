@@ -8,10 +8,10 @@
 
 #include "virtual_origami/core/face_springs.h"
 #include "virtual_origami/core/positions.h"
-#include "virtual_origami/curved/spd_factorization.h"
+#include "virtual_origami/numerics/spd_factorization.h"
 #include "virtual_origami/solvers/driven_faces.h"
-#include "virtual_origami/solvers/lbfgs_history.h"
-#include "virtual_origami/solvers/solve_budget.h"
+#include "virtual_origami/numerics/lbfgs_history.h"
+#include "virtual_origami/numerics/solve_budget.h"
 
 namespace virtual_origami::core
 {
@@ -53,8 +53,8 @@ public:
         b.row(i) = (axis < 3 ? unit : unit.cross(x.col(free[i]) - centre)).transpose();
       }
       for (const Eigen::MatrixX3d& c : basis_)
-        b -= innerProduct(c, b) * c;
-      const double norm = std::sqrt(innerProduct(b, b));
+        b -= numerics::innerProduct(c, b) * c;
+      const double norm = std::sqrt(numerics::innerProduct(b, b));
       if (norm > 1e-12)
         basis_.push_back(b / norm);
     }
@@ -63,7 +63,7 @@ public:
   void remove(Eigen::MatrixX3d& step) const
   {
     for (const Eigen::MatrixX3d& c : basis_)
-      step -= innerProduct(c, step) * c;
+      step -= numerics::innerProduct(c, step) * c;
   }
 
 private:
@@ -110,7 +110,7 @@ struct QuasiNewtonDriver::Setup
   Factor factor;  // the constant matrix
   bool constant_tried = false, factored = false;
   int free_count = 0;
-  SpdFactorization gauss_newton;  // the lagged or exact matrix, 3 rows per free vertex
+  numerics::SpdFactorization gauss_newton;  // the lagged or exact matrix, 3 rows per free vertex
   // Each face's fitted frame where gauss_newton was factorised (Lagged: how far they turned since).
   std::vector<Eigen::Matrix<double, 3, 2>> factor_frames;
   Eigen::SparseMatrix<double> gauss_newton_matrix;
@@ -128,7 +128,7 @@ struct QuasiNewtonDriver::Setup
   double last_face_energy = 0.0;  // the face term of the energy at the last frame
 
   Setup(const Paper& paper, const std::vector<char>& held, const std::vector<double>& target, double stiffness,
-        std::shared_ptr<SpdFactorization::SharedAnalysis> analysis)
+        std::shared_ptr<numerics::SpdFactorization::SharedAnalysis> analysis)
     : crease_pattern(creasePattern(paper)), fixed(held), driven_edges(drivenEdges(paper, target)),
       springs(faceSprings(paper)), energy(paper, stiffness)
   {
@@ -163,7 +163,7 @@ struct QuasiNewtonDriver::Setup
       constant_tried = true;
       factor.cholmod().print = 0;  // not definite is answered by the callers, not printed
       {
-        const std::unique_lock<std::mutex> blas = lockBlas();
+        const std::unique_lock<std::mutex> blas = numerics::lockBlas();
         factor.compute(constant_matrix);
       }
       factored = factor.info() == Eigen::Success;
@@ -177,7 +177,7 @@ struct QuasiNewtonDriver::Setup
   {
     if (!factorConstant())
       return Eigen::MatrixX3d::Zero(rhs.rows(), 3);
-    const std::unique_lock<std::mutex> blas = lockBlas();
+    const std::unique_lock<std::mutex> blas = numerics::lockBlas();
     return factor.solve(rhs);
   }
 
@@ -211,7 +211,7 @@ struct QuasiNewtonDriver::Setup
 };
 
 QuasiNewtonDriver::QuasiNewtonDriver(QuasiNewtonOptions options)
-  : options_(options), analysis_(SpdFactorization::makeSharedAnalysis()), assembly_(std::make_shared<AssemblyPlan>())
+  : options_(options), analysis_(numerics::SpdFactorization::makeSharedAnalysis()), assembly_(std::make_shared<AssemblyPlan>())
 {
   face_stiffness_ = options.face_stiffness;
   limits_.tolerance = 1e-9;
@@ -246,7 +246,7 @@ std::unique_ptr<CreaseDriver> QuasiNewtonDriver::clone() const
 SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& target, const std::vector<char>& fixed)
 {
   const std::lock_guard<std::mutex> lock(mutex_);
-  SolveBudget budget(limits_);
+  numerics::SolveBudget budget(limits_);
   SolveReport report;
   if (!setup_ || !setup_->matches(paper, fixed, target) || setup_->energy.faceStiffness() != face_stiffness_)
     setup_ = std::make_unique<Setup>(paper, fixed, target, face_stiffness_, analysis_);
@@ -348,7 +348,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
   // taken where it lowers the energy: what a linear step along turning faces stretched, taken
   // out for about one back-substitution.
   const auto restoreFaces = [&](Positions& at, Positions& at_gradient, DrivenFaces::Evaluation& at_energy) {
-    const SolveBudget clock(SolveLimits{});
+    const numerics::SolveBudget clock(SolveLimits{});
     Eigen::MatrixX3d restore = -solveConstant(gather(at_gradient, free));
     if (frame_rigid)
       frame_rigid->remove(restore);
@@ -414,7 +414,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
   // by far less than the faces' stiffness, and a failed factorisation (a degenerate face) is
   // retried with more.
   const auto refactor = [&]() {
-    const SolveBudget clock(SolveLimits{});
+    const numerics::SolveBudget clock(SolveLimits{});
     const auto timed = [&](bool ok) {
       s.factor_seconds = clock.seconds();
       return ok;
@@ -475,7 +475,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
                  (options_.hessian == DriverHessian::Exact || !s.gauss_newton.valid());
 
   Eigen::MatrixX3d g = gather(gradient, free);
-  LbfgsHistory<Eigen::MatrixX3d> history(options_.memory);
+  numerics::LbfgsHistory<Eigen::MatrixX3d> history(options_.memory);
   // A fresh factorisation; the curvature pairs gathered against the old one go with it.
   const auto refactorAfresh = [&]() {
     if (refactor())
@@ -520,14 +520,14 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
       rigid->remove(z);
     Eigen::MatrixX3d p = z;
     const Eigen::MatrixX3d first = z;
-    double rz = innerProduct(r, z);
-    const double goal = options_.krylov_tolerance * std::sqrt(innerProduct(r, r));
+    double rz = numerics::innerProduct(r, z);
+    const double goal = options_.krylov_tolerance * std::sqrt(numerics::innerProduct(r, r));
     krylov_slow = true;
     krylov_cut = false;
     for (int k = 0; k < options_.krylov_iterations; ++k)
     {
       const Eigen::MatrixX3d ap = multiply(l, p);
-      const double curvature = innerProduct(p, ap);
+      const double curvature = numerics::innerProduct(p, ap);
       if (!(curvature > 0))
       {
         // The Hessian is not positive along p (away from a stable balance): the steps so far
@@ -543,7 +543,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
       d += a * p;
       step_product += a * ap;
       r -= a * ap;
-      if (std::sqrt(innerProduct(r, r)) <= goal)
+      if (std::sqrt(numerics::innerProduct(r, r)) <= goal)
       {
         krylov_slow = k + 1 > options_.krylov_iterations / 2;
         break;
@@ -557,7 +557,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
       z = precondition(r);
       if (rigid)
         rigid->remove(z);
-      const double rz_next = innerProduct(r, z);
+      const double rz_next = numerics::innerProduct(r, z);
       p = z + (rz_next / rz) * p;
       rz = rz_next;
     }
@@ -585,9 +585,9 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
       rigid->remove(m);
     const Eigen::MatrixX3d hm = multiply(l, m);
     Eigen::Matrix2d model;
-    model << innerProduct(direction, step_product), innerProduct(direction, hm), innerProduct(m, step_product),
-        innerProduct(m, hm);
-    const Eigen::Vector2d slope(-innerProduct(g, direction), -innerProduct(g, m));
+    model << numerics::innerProduct(direction, step_product), numerics::innerProduct(direction, hm), numerics::innerProduct(m, step_product),
+        numerics::innerProduct(m, hm);
+    const Eigen::Vector2d slope(-numerics::innerProduct(g, direction), -numerics::innerProduct(g, m));
     // Only where the two directions are independent under the model (m may be d again).
     if (!(model(0, 0) > 0 && model(1, 1) > 0 &&
           model.determinant() > 1e-6 * model(0, 0) * model(1, 1)))
@@ -608,7 +608,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
     Eigen::MatrixX3d r = -g;
     if (rigid)
       rigid->remove(r);
-    const double goal = options_.krylov_tolerance * std::sqrt(innerProduct(r, r));
+    const double goal = options_.krylov_tolerance * std::sqrt(numerics::innerProduct(r, r));
     std::vector<Eigen::MatrixX3d> basis, basis_product;  // H-orthonormal u_i and H u_i
     Eigen::MatrixX3d step = Eigen::MatrixX3d::Zero(r.rows(), 3);
     step_product = Eigen::MatrixX3d::Zero(r.rows(), 3);
@@ -616,20 +616,20 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
       if (rigid)
         rigid->remove(v);
       Eigen::MatrixX3d hv = multiply(l, v);
-      const double before = innerProduct(v, hv);
+      const double before = numerics::innerProduct(v, hv);
       for (size_t i = 0; i < basis.size(); ++i)
       {
-        const double c = innerProduct(basis_product[i], v);
+        const double c = numerics::innerProduct(basis_product[i], v);
         v -= c * basis[i];
         hv -= c * basis_product[i];
       }
-      const double norm2 = innerProduct(v, hv);
+      const double norm2 = numerics::innerProduct(v, hv);
       if (!(norm2 > 1e-10 * before))
         return;
       const double norm = std::sqrt(norm2);
       basis.push_back(v / norm);
       basis_product.push_back(hv / norm);
-      const double c = innerProduct(basis.back(), r);
+      const double c = numerics::innerProduct(basis.back(), r);
       step += c * basis.back();
       step_product += c * basis_product.back();
       r -= c * basis_product.back();
@@ -644,7 +644,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
     krylov_cut = false;
     for (int k = 0; k < options_.subspace_directions; ++k)
     {
-      if (std::sqrt(innerProduct(r, r)) <= goal)
+      if (std::sqrt(numerics::innerProduct(r, r)) <= goal)
         break;
       if (k > 0 && !fits(subspace_add_seconds))
       {
@@ -752,7 +752,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
       break;
     }
     ++report.iterations;
-    double slope = innerProduct(g, direction);
+    double slope = numerics::innerProduct(g, direction);
     if (!(slope < 0))
     {
       // Curvature pairs gone stale: restart from the matrix alone.
@@ -760,7 +760,7 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
       direction = -precondition(g);
       if (drift)
         drift->remove(direction);
-      slope = innerProduct(g, direction);
+      slope = numerics::innerProduct(g, direction);
       if (!(slope < 0))
       {
         stuck = "no descent direction";

@@ -10,7 +10,7 @@
 #include "virtual_origami/core/face_springs.h"
 #include "virtual_origami/core/positions.h"
 #include "virtual_origami/solvers/rigid_faces.h"
-#include "virtual_origami/solvers/solve_budget.h"
+#include "virtual_origami/numerics/solve_budget.h"
 
 namespace virtual_origami::core
 {
@@ -216,7 +216,7 @@ RigidKinematicsSolver::RigidKinematicsSolver(RigidKinematicsOptions options) : o
 
 SolveReport RigidKinematicsSolver::solve(Paper& paper, const std::vector<char>& fixed)
 {
-  SolveBudget budget(limits_);
+  numerics::SolveBudget budget(limits_);
   SolveReport report;
   const std::vector<Spring> springs = faceSprings(paper);
   const Positions start = foldedPositions(paper);

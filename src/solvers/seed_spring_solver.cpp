@@ -3,7 +3,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "virtual_origami/solvers/solve_budget.h"
+#include "virtual_origami/numerics/solve_budget.h"
 
 namespace virtual_origami::core
 {
@@ -53,7 +53,7 @@ SeedSpringSolver::SeedSpringSolver(SeedSpringOptions options) : options_(options
 
 SolveReport SeedSpringSolver::solve(Paper& paper, const std::vector<char>& fixed)
 {
-  SolveBudget budget(limits_);
+  numerics::SolveBudget budget(limits_);
   SolveReport report;
   const std::vector<Spring> springs = faceSprings(paper);  // re-wired from the current faces
   const std::vector<int> free_index = freeIndices(fixed, paper.vertices.size());

@@ -8,7 +8,7 @@
 
 #include "virtual_origami/core/face_springs.h"
 #include "virtual_origami/solvers/rigid_faces.h"
-#include "virtual_origami/solvers/solve_budget.h"
+#include "virtual_origami/numerics/solve_budget.h"
 
 namespace virtual_origami::core
 {
@@ -147,7 +147,7 @@ ShapeMatchingSolver::ShapeMatchingSolver(ShapeMatchingOptions options) : options
 
 SolveReport ShapeMatchingSolver::solve(Paper& paper, const std::vector<char>& fixed)
 {
-  SolveBudget budget(limits_);
+  numerics::SolveBudget budget(limits_);
   SolveReport report;
   const std::vector<RigidFace> faces = rigidFaces(paper);
   const std::vector<Spring> springs = faceSprings(paper);

@@ -1,5 +1,5 @@
 // The core library names OpenBLAS's kernels by the CPU's instruction sets when it loads
-// (src/curved/blas_kernels.cpp): Debian's OpenBLAS falls back to SSE3 on CPUs newer than it.
+// (src/numerics/blas_kernels.cpp): Debian's OpenBLAS falls back to SSE3 on CPUs newer than it.
 #include <cctype>
 #include <cstdlib>
 #include <string>
@@ -7,10 +7,10 @@
 
 #include <gtest/gtest.h>
 
-#include "virtual_origami/curved/blas_kernels.h"
-#include "virtual_origami/curved/spd_factorization.h"
+#include "virtual_origami/numerics/blas_kernels.h"
+#include "virtual_origami/numerics/spd_factorization.h"
 
-using namespace virtual_origami::core;
+using namespace virtual_origami::numerics;
 
 namespace
 {

@@ -68,14 +68,16 @@ TEST(FlatFold, SquashFoldOpensTheFlapIntoASquare)
   Paper paper = creasedSquare();
   const Vec2 fixed(0.9, 0.3);  // in the quadrant x > .5, y < .5, on the lower-right side of the diagonal
   ASSERT_TRUE(flatFold(paper, { { { v2(0, 0), v2(1, 1), M_PI } }, fixed }).ok());
-  ASSERT_TRUE(flatFold(paper, { { { v2(1, 0), v2(0, 1), M_PI } }, fixed }).ok());
+  // The second fold turns the two layers the same way: valley in the lower layer, mountain in the
+  // upper one, which faces down.
+  ASSERT_TRUE(flatFold(paper, { { { v2(1, 0), kCentre, M_PI }, { kCentre, v2(0, 1), -M_PI } }, fixed }).ok());
   EXPECT_EQ(layerCount(paper, p3(0.9, 0.3)), 4);
   EXPECT_EQ(layerCount(paper, p3(0.9, 0.7)), 4);
   EXPECT_EQ(layerCount(paper, p3(0.6, 0.2)), 0);  // outside the triangle (.5,.5), (1,0), (1,1)
 
   const Expected<FlatFoldResult> squashed = flatFold(paper, { { { v2(0, 0), kCentre, 0.0 },        // the flap's spine opens
                                                                 { v2(1, 0), kCentre, 0.0 },        // its hinge in one layer
-                                                                { v2(0.5, 0), kCentre, -M_PI },    // its sides fold
+                                                                { v2(0.5, 0), kCentre, M_PI },     // its sides fold
                                                                 { v2(0, 0.5), kCentre, M_PI } },
                                                               fixed });
   ASSERT_TRUE(squashed.ok()) << squashed.message();
@@ -103,8 +105,9 @@ TEST(FlatFold, SquashFoldOpensTheFlapIntoASquare)
 
 // An inside reverse fold of a two-layer point: the sheet folded on its diagonal, the tip at
 // (0, 0) reversed along x = 0.3 through both layers. The tip lands mirrored across the line,
-// the spine's piece in the tip turns from valley to mountain, and the vertex where the new
-// creases meet the spine keeps Maekawa's |M − V| = 2.
+// the spine's piece in the tip turns from valley to mountain, the new creases fold valley (each
+// layer's own side: the layers face opposite ways), the vertex where they meet the spine keeps
+// Maekawa's |M − V| = 2, and the tip's two layers lie between the body's.
 TEST(FlatFold, InsideReverseFoldMirrorsTheTipAndFlipsItsSpine)
 {
   Paper paper = Paper::square(1.0);
@@ -115,8 +118,8 @@ TEST(FlatFold, InsideReverseFoldMirrorsTheTipAndFlipsItsSpine)
   ASSERT_EQ(paper.faces.size(), 4u);
 
   const Expected<FlatFoldResult> reversed = flatFold(paper, { { { v2(0, 0), v2(0.3, 0.3), -M_PI },
-                                                                { v2(0.3, 0), v2(0.3, 0.3), -M_PI },
-                                                                { v2(0, 0.3), v2(0.3, 0.3), -M_PI } },
+                                                                { v2(0.3, 0), v2(0.3, 0.3), M_PI },
+                                                                { v2(0, 0.3), v2(0.3, 0.3), M_PI } },
                                                               fixed });
   ASSERT_TRUE(reversed.ok()) << reversed.message();
   expectValid(paper);
@@ -128,8 +131,16 @@ TEST(FlatFold, InsideReverseFoldMirrorsTheTipAndFlipsItsSpine)
   for (const Edge& e : paper.edges)
     if (e.isCrease() && (e.vertices[0] == joint || e.vertices[1] == joint))
       (e.fold_angle < 0 ? mountains : valleys) += 1;
-  EXPECT_EQ(mountains, 3);
-  EXPECT_EQ(valleys, 1);
+  EXPECT_EQ(mountains, 1);
+  EXPECT_EQ(valleys, 3);
+  const std::vector<int> levels = stackLevels(paper);
+  const int body_low = std::min(levels[faceContaining(paper, v2(0.8, 0.1))], levels[faceContaining(paper, v2(0.1, 0.8))]);
+  const int body_high = std::max(levels[faceContaining(paper, v2(0.8, 0.1))], levels[faceContaining(paper, v2(0.1, 0.8))]);
+  for (const Vec2& tip : { v2(0.2, 0.1), v2(0.1, 0.2) })
+  {
+    EXPECT_GT(levels[faceContaining(paper, tip)], body_low);
+    EXPECT_LT(levels[faceContaining(paper, tip)], body_high);
+  }
   // Between x = .3 and .6 the tip adds its two layers to the body's two.
   EXPECT_EQ(layerCount(paper, p3(0.5, 0.05)), 4);
   EXPECT_EQ(layerCount(paper, p3(0.8, 0.1)), 2);

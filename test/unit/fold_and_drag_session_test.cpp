@@ -35,12 +35,12 @@ Paper fourLayerTriangle()
 {
   Paper paper = creasedSquare();
   EXPECT_TRUE(flatFold(paper, { { { v2(0, 0), v2(1, 1), M_PI } }, kSquashFixed }).ok());
-  EXPECT_TRUE(flatFold(paper, { { { v2(1, 0), v2(0, 1), M_PI } }, kSquashFixed }).ok());
+  EXPECT_TRUE(flatFold(paper, { { { v2(1, 0), kCentre, M_PI }, { kCentre, v2(0, 1), -M_PI } }, kSquashFixed }).ok());
   return paper;
 }
 FlatFoldRequest squash()
 {
-  return { { { v2(0, 0), kCentre, 0.0 }, { v2(1, 0), kCentre, 0.0 }, { v2(0.5, 0), kCentre, -M_PI },
+  return { { { v2(0, 0), kCentre, 0.0 }, { v2(1, 0), kCentre, 0.0 }, { v2(0.5, 0), kCentre, M_PI },
              { v2(0, 0.5), kCentre, M_PI } },
            kSquashFixed };
 }
@@ -296,7 +296,7 @@ TEST(FoldAndDragSession, ReplayingTheLogReproducesThePaperAndTheJournalKeepsEver
 
   ASSERT_TRUE(session.flatFold({ { { v2(0, 0), v2(1, 1), M_PI } }, kSquashFixed }).ok());
   record();
-  ASSERT_TRUE(session.flatFold({ { { v2(1, 0), v2(0, 1), M_PI } }, kSquashFixed }).ok());
+  ASSERT_TRUE(session.flatFold({ { { v2(1, 0), kCentre, M_PI }, { kCentre, v2(0, 1), -M_PI } }, kSquashFixed }).ok());
   record();
   ASSERT_TRUE(session.flatFold(squash()).ok());
   record();

@@ -27,7 +27,7 @@ using ::testing::HasSubstr;
 
 std::string exampleFile(const std::string& name)
 {
-  return std::string(VO_SHARED_DIR) + "/fold-examples/" + name;
+  return std::string(VO_SOURCE_DIR) + "/test/data/fold-examples/" + name;
 }
 
 /// A fresh empty folder for files a test writes.

@@ -174,15 +174,19 @@ TEST(FoldSequence, TheCraneFoldsAsItDidWhenFlatFoldsWerePulls)
   old.setSolver(std::shared_ptr<ShapeSolver>(makeSolver(sequence->solver)));
   ASSERT_TRUE(old.reset(sequence->size).ok());
   int flat_folds = 0;
+  size_t state = 0;  // states[state]: the paper before the operation
   for (const FoldStep& step : sequence->steps)
   {
     Operation op = step.operation;
     for (int k = 0; k < step.repeat; ++k)
     {
+      ++state;
       if (op.kind == Operation::Kind::FlatFold)
       {
         ++flat_folds;
-        Paper folded = old.paper();
+        // Where the flat fold puts every vertex (a pull knows places, not which side of flat a
+        // crease went to, so the fold is computed on the flat-fold path's own state).
+        Paper folded = (*states)[state - 1];
         ASSERT_TRUE(flatFold(folded, op.flat_fold).ok()) << step.note;
         std::vector<PullTarget> targets;
         for (size_t v = 0; v < folded.vertices.size(); ++v)

@@ -5,9 +5,9 @@
 
 #include <Eigen/Dense>
 
-#include "virtual_origami/solvers/lbfgs_history.h"
+#include "virtual_origami/numerics/lbfgs_history.h"
 
-namespace virtual_origami::core
+namespace virtual_origami::numerics
 {
 namespace
 {
@@ -104,4 +104,4 @@ TEST(LbfgsHistory, PairsWithoutPositiveCurvatureAreRefusedAndTheOldestGoes)
   EXPECT_TRUE(history.empty());
 }
 }  // namespace
-}  // namespace virtual_origami::core
+}  // namespace virtual_origami::numerics

@@ -1,13 +1,13 @@
 // SpdFactorization: the supernodal Cholesky behind the curved solver and the crease drivers, and
 // the symbolic analysis a driver's clones share.
-#include "virtual_origami/curved/spd_factorization.h"
+#include "virtual_origami/numerics/spd_factorization.h"
 
 #include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
 
-namespace virtual_origami::core
+namespace virtual_origami::numerics
 {
 namespace
 {
@@ -105,4 +105,4 @@ TEST(SpdFactorization, FactorisationsSharingAnAnalysisRunOnSeveralThreads)
   }
 }
 
-}  // namespace virtual_origami::core
+}  // namespace virtual_origami::numerics

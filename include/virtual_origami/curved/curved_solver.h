@@ -13,7 +13,7 @@
 
 #include "virtual_origami/curved/contact.h"
 #include "virtual_origami/curved/curved_forces.h"
-#include "virtual_origami/curved/spd_factorization.h"
+#include "virtual_origami/numerics/spd_factorization.h"
 #include "virtual_origami/curved/surroundings.h"
 
 namespace virtual_origami::core
@@ -214,7 +214,7 @@ private:
   Surroundings surroundings_;
   // Newton's Hessian and factorisation, kept across solves, and the free nodes it is for.
   Eigen::SparseMatrix<double> hessian_;
-  SpdFactorization factorization_;
+  numerics::SpdFactorization factorization_;
   std::vector<int> factor_free_;
   double damping_mu_ = -1.0;       // Newton's Levenberg–Marquardt shift where the last solve left it
   double factor_shift_ = 0.0;      // the shift of the kept factorisation
@@ -223,7 +223,7 @@ private:
   bool negative_curvature_ = false;   // the last Newton solve met it (see leave_saddles)
   unsigned saddle_seed_ = 1;          // the random starts of leaveSaddle, reproducible
   // QuasiNewton's constant matrix, factorised, and the free nodes it is for.
-  SpdFactorization constant_factor_;
+  numerics::SpdFactorization constant_factor_;
   std::vector<int> constant_free_;
   std::vector<Eigen::Matrix3d> constant_frames_;  // each node's frame where the matrix was made
   std::vector<int> frame_partner_;                // the neighbour whose edge sets a node's frame

@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "virtual_origami/core/assignment_fold.h"
-#include "virtual_origami/curved/spd_factorization.h"
+#include "virtual_origami/numerics/spd_factorization.h"
 
 namespace virtual_origami::core
 {
@@ -109,7 +109,7 @@ private:
   std::unique_ptr<Setup> setup_;
   // The Gauss–Newton matrix's symbolic analysis, shared with this driver's clones (a commit's
   // fresh clone copies it instead of analysing again; it depends on the pattern alone).
-  std::shared_ptr<SpdFactorization::SharedAnalysis> analysis_;
+  std::shared_ptr<numerics::SpdFactorization::SharedAnalysis> analysis_;
   // Where each entry of the Gauss–Newton matrix lands in its compressed pattern, shared with
   // the clones as well (sorting a 10,000-vertex pattern's million entries takes 60 ms).
   struct AssemblyPlan;

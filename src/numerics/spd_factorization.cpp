@@ -1,4 +1,4 @@
-#include "virtual_origami/curved/spd_factorization.h"
+#include "virtual_origami/numerics/spd_factorization.h"
 
 #include <algorithm>
 #include <mutex>
@@ -7,7 +7,7 @@
 
 #include "nested_dissection.h"
 
-namespace virtual_origami::core
+namespace virtual_origami::numerics
 {
 namespace
 {
@@ -136,4 +136,4 @@ Eigen::VectorXd SpdFactorization::solve(const Eigen::VectorXd& b) const
   return impl_->llt.solve(b);
 }
 
-}  // namespace virtual_origami::core
+}  // namespace virtual_origami::numerics

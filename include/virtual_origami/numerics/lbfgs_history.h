@@ -11,7 +11,7 @@
 
 #include <Eigen/Core>
 
-namespace virtual_origami::core
+namespace virtual_origami::numerics
 {
 /// The inner product of two states' worth of coordinates, per vector type (each solver's own
 /// summation order, so its steps are what they were before the engine was shared).
@@ -84,4 +84,4 @@ private:
   std::deque<double> rho_;
 };
 
-}  // namespace virtual_origami::core
+}  // namespace virtual_origami::numerics

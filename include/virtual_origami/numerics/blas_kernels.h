@@ -9,7 +9,7 @@
 
 #include <string>
 
-namespace virtual_origami::core
+namespace virtual_origami::numerics
 {
 /// The kernels OpenBLAS runs ("SkylakeX", "Haswell", "Prescott", …); empty where the BLAS in
 /// the process is not OpenBLAS.
@@ -17,4 +17,4 @@ std::string blasKernels();
 
 /// The kernels this CPU's instruction sets call for; empty where OpenBLAS's own choice stands.
 std::string blasKernelsForThisCpu();
-}  // namespace virtual_origami::core
+}  // namespace virtual_origami::numerics

@@ -1,10 +1,10 @@
-#include "virtual_origami/curved/blas_kernels.h"
+#include "virtual_origami/numerics/blas_kernels.h"
 
 #include <dlfcn.h>
 
 #include <cstdlib>
 
-namespace virtual_origami::core
+namespace virtual_origami::numerics
 {
 namespace
 {
@@ -55,4 +55,4 @@ std::string blasKernelsForThisCpu()
   return "";
 }
 
-}  // namespace virtual_origami::core
+}  // namespace virtual_origami::numerics

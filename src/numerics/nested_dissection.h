@@ -5,7 +5,7 @@
 
 #include <Eigen/CholmodSupport>
 
-namespace virtual_origami::core
+namespace virtual_origami::numerics
 {
 /// Analyses a's pattern for one of Eigen's CHOLMOD factorisations: nested dissection (METIS)
 /// from 3,000 rows (a large mesh's matrix), where against CHOLMOD's own choice (minimum degree
@@ -26,4 +26,4 @@ void analyzeWithNestedDissection(Factor& factor, const Matrix& a)
   }
 }
 
-}  // namespace virtual_origami::core
+}  // namespace virtual_origami::numerics

@@ -5,12 +5,12 @@
 
 #include "virtual_origami/core/shape_solver.h"
 
-namespace virtual_origami::core
+namespace virtual_origami::numerics
 {
 class SolveBudget
 {
 public:
-  explicit SolveBudget(const SolveLimits& limits) : limits_(limits), start_(std::chrono::steady_clock::now())
+  explicit SolveBudget(const core::SolveLimits& limits) : limits_(limits), start_(std::chrono::steady_clock::now())
   {}
 
   /// True once `iterations` reach the limit or the time budget is spent.
@@ -27,8 +27,8 @@ public:
   }
 
 private:
-  SolveLimits limits_;
+  core::SolveLimits limits_;
   std::chrono::steady_clock::time_point start_;
 };
 
-}  // namespace virtual_origami::core
+}  // namespace virtual_origami::numerics

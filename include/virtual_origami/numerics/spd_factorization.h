@@ -10,7 +10,7 @@
 
 #include <Eigen/Sparse>
 
-namespace virtual_origami::core
+namespace virtual_origami::numerics
 {
 /// The BLAS the supernodal factorisations call (Debian's serial OpenBLAS) keeps its work
 /// buffers in globals without locks: two threads in it at once get each other's buffers and
@@ -55,4 +55,4 @@ private:
   int analyses_ = 0;
 };
 
-}  // namespace virtual_origami::core
+}  // namespace virtual_origami::numerics

@@ -1,0 +1,48 @@
+// The layer order of a flat-folded state: which of two overlapping faces lies on top, for every
+// pair, found from what paper cannot do rather than from how it got there. A face folded flat
+// over a crease lies on the side its mountain or valley says; no layer passes through a fold
+// (taco–taco, taco–tortilla); and three overlapping layers stack one way (transitivity). The
+// pairs are boolean variables, the rules clauses, solved by unit propagation and backtracking.
+#pragma once
+
+#include <vector>
+
+#include "virtual_origami/core/paper.h"
+#include "virtual_origami/core/result.h"
+
+namespace virtual_origami::core
+{
+struct LayerOrderOptions
+{
+  /// Pairs whose order is known and must hold (e.g. layers that moved together in a fold).
+  std::vector<FaceOrder> kept;
+  /// A length: faces within it of one plane and overlapping by more than it are stacked.
+  double tolerance = 1e-7;
+  /// The search gives up after this many guesses (a stack with no order found in time is
+  /// reported as such, not as impossible).
+  long max_guesses = 200000;
+  /// Stacks of more faces than this are not ordered (the checks grow with its cube).
+  int max_faces = 600;
+};
+
+struct LayerOrder
+{
+  /// One entry per stacked pair, FOLD sign (faceOrders).
+  std::vector<FaceOrder> orders;
+  int stacked_pairs = 0;
+  /// False when a stack was too large or the search gave up: `orders` then leaves that stack out
+  /// and `incomplete` says why.
+  bool complete = true;
+  std::string incomplete;
+};
+
+/// Orders every pair of stacked faces of `paper` (folded positions and fold angles as they are;
+/// creases within kFlatAngleTolerance of ±π count as folded flat). Fails only when no order
+/// exists (no stacking of the layers folds flat), naming a rule that clashes.
+Expected<LayerOrder> solveLayerOrder(const Paper& paper, const LayerOrderOptions& options = {});
+
+/// Whether `orders` obey the rules above for `paper` (a check of any recorded order): empty when
+/// they do, else what breaks.
+std::string layerOrderViolation(const Paper& paper, const std::vector<FaceOrder>& orders, double tolerance = 1e-7);
+
+}  // namespace virtual_origami::core

@@ -1,0 +1,551 @@
+#include "virtual_origami/core/layer_order.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <optional>
+#include <string>
+
+#include "virtual_origami/core/face_orders.h"
+#include "virtual_origami/core/flat_vertices.h"
+
+namespace virtual_origami::core
+{
+namespace
+{
+using Polygon = std::vector<Vec2>;
+
+double cross(const Vec2& a, const Vec2& b)
+{
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+/// Counter-clockwise copy of a convex polygon.
+Polygon counterClockwise(Polygon p)
+{
+  double area = 0.0;
+  for (size_t i = 0; i < p.size(); ++i)
+    area += cross(p[i], p[(i + 1) % p.size()]);
+  if (area < 0)
+    std::reverse(p.begin(), p.end());
+  return p;
+}
+
+/// Sutherland–Hodgman: the part of convex `subject` inside convex counter-clockwise `clip`.
+Polygon clipConvex(const Polygon& subject, const Polygon& clip)
+{
+  Polygon out = subject;
+  for (size_t i = 0; i < clip.size() && !out.empty(); ++i)
+  {
+    const Vec2 a = clip[i], b = clip[(i + 1) % clip.size()];
+    const Polygon in = out;
+    out.clear();
+    for (size_t j = 0; j < in.size(); ++j)
+    {
+      const Vec2 p = in[j], q = in[(j + 1) % in.size()];
+      const double sp = cross(b - a, p - a), sq = cross(b - a, q - a);
+      if (sp >= 0)
+        out.push_back(p);
+      if ((sp >= 0) != (sq >= 0))
+        out.push_back(p + (q - p) * (sp / (sp - sq)));
+    }
+  }
+  return out;
+}
+
+double area(const Polygon& p)
+{
+  double a = 0.0;
+  for (size_t i = 0; i < p.size(); ++i)
+    a += cross(p[i], p[(i + 1) % p.size()]);
+  return 0.5 * std::abs(a);
+}
+
+/// Smallest distance from `p` inside convex counter-clockwise `poly` to its sides (negative outside).
+double depthInside(const Polygon& poly, const Vec2& p)
+{
+  double depth = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < poly.size(); ++i)
+  {
+    const Vec2 a = poly[i], b = poly[(i + 1) % poly.size()];
+    const double length = (b - a).norm();
+    if (length > 0)
+      depth = std::min(depth, cross(b - a, p - a) / length);
+  }
+  return depth;
+}
+
+/// A crease folded flat, as a segment of the stack's plane with the side its two faces lie on.
+struct FlatCrease
+{
+  int edge = -1, face = -1, other = -1;
+  Vec2 a, b;
+  int side = 0;  // +1: the faces lie left of a→b
+};
+
+/// The faces of one plane, in 2D coordinates of it, with the literals of the pairs that overlap.
+class StackProblem
+{
+public:
+  StackProblem(const Paper& paper, const std::vector<int>& faces, double tolerance)
+    : paper_(paper), faces_(faces), tolerance_(tolerance)
+  {
+    up_ = paper.faceNormal(faces.front());
+    const Vec3 e1 = up_.unitOrthogonal(), e2 = up_.cross(e1);
+    for (int f : faces)
+    {
+      Polygon p;
+      for (int v : paper.faces[f].vertices)
+        p.emplace_back(e1.dot(paper.vertices[v].folded), e2.dot(paper.vertices[v].folded));
+      polygons_[f] = counterClockwise(p);
+      facing_[f] = paper.faceNormal(f).dot(up_) > 0 ? 1 : -1;
+      for (int v : paper.faces[f].vertices)
+        plane_points_[v] = Vec2(e1.dot(paper.vertices[v].folded), e2.dot(paper.vertices[v].folded));
+    }
+    for (size_t i = 0; i < faces.size(); ++i)
+      for (size_t j = i + 1; j < faces.size(); ++j)
+        if (facesStacked(paper, faces[i], faces[j], tolerance))
+        {
+          const int f = std::min(faces[i], faces[j]), g = std::max(faces[i], faces[j]);
+          variables_[{ f, g }] = static_cast<int>(pairs_.size());
+          pairs_.push_back({ f, g });
+        }
+  }
+
+  int variableCount() const
+  {
+    return static_cast<int>(pairs_.size());
+  }
+  const std::vector<std::pair<int, int>>& pairs() const
+  {
+    return pairs_;
+  }
+  int facing(int f) const
+  {
+    return facing_.at(f);
+  }
+
+  /// The literal "b lies higher than a" (along the stack's up), 0 when the two do not overlap.
+  int higher(int a, int b) const
+  {
+    const auto it = variables_.find({ std::min(a, b), std::max(a, b) });
+    if (it == variables_.end())
+      return 0;
+    return a < b ? it->second + 1 : -(it->second + 1);
+  }
+
+  const Polygon& polygon(int f) const
+  {
+    return polygons_.at(f);
+  }
+  Vec2 planePoint(int v) const
+  {
+    return plane_points_.at(v);
+  }
+  double tolerance() const
+  {
+    return tolerance_;
+  }
+
+private:
+  const Paper& paper_;
+  std::vector<int> faces_;
+  double tolerance_;
+  Vec3 up_;
+  std::map<int, Polygon> polygons_;
+  std::map<int, int> facing_;
+  std::map<int, Vec2> plane_points_;
+  std::map<std::pair<int, int>, int> variables_;
+  std::vector<std::pair<int, int>> pairs_;
+};
+
+struct Clause
+{
+  std::vector<int> literals;
+  std::string why;
+};
+
+/// Every rule of the stack as clauses.
+std::vector<Clause> rulesOf(const Paper& paper, const StackProblem& stack, const std::vector<int>& faces,
+                            const std::vector<FaceOrder>& kept)
+{
+  std::vector<Clause> clauses;
+  const double tolerance = stack.tolerance();
+  std::vector<char> member(paper.faces.size(), 0);
+  for (int f : faces)
+    member[f] = 1;
+
+  // A face folded flat over a crease lies on the side its fold angle says.
+  std::vector<FlatCrease> creases;
+  for (size_t e = 0; e < paper.edges.size(); ++e)
+  {
+    const Edge& edge = paper.edges[e];
+    if (!edge.isCrease() || std::abs(std::abs(edge.fold_angle) - M_PI) > kFlatAngleTolerance)
+      continue;
+    const int f = edge.faces[0], g = edge.faces[1];
+    if (!member[f] || !member[g])
+      continue;
+    const int literal = stack.higher(f, g);
+    if (literal == 0)
+      continue;
+    const bool g_higher = (edge.fold_angle > 0) == (stack.facing(f) > 0);
+    clauses.push_back({ { g_higher ? literal : -literal },
+                        "crease " + std::to_string(e) + " puts face " + std::to_string(g) +
+                            (g_higher ? " above" : " below") + " face " + std::to_string(f) });
+    FlatCrease crease{ static_cast<int>(e), f, g, stack.planePoint(edge.vertices[0]),
+                       stack.planePoint(edge.vertices[1]) };
+    Vec2 centroid = Vec2::Zero();
+    for (const Vec2& p : stack.polygon(f))
+      centroid += p;
+    centroid /= static_cast<double>(stack.polygon(f).size());
+    crease.side = cross(crease.b - crease.a, centroid - crease.a) > 0 ? 1 : -1;
+    creases.push_back(crease);
+  }
+  for (const FaceOrder& o : kept)
+  {
+    if (o.face < 0 || o.other < 0 || o.face >= static_cast<int>(member.size()) ||
+        o.other >= static_cast<int>(member.size()) || !member[o.face] || !member[o.other] || o.above == 0)
+      continue;
+    const int literal = stack.higher(o.face, o.other);
+    if (literal != 0)
+      clauses.push_back(
+          { { o.above * stack.facing(o.face) > 0 ? literal : -literal },
+            "faces " + std::to_string(o.face) + " and " + std::to_string(o.other) + " keep their order" });
+  }
+
+  // Three layers over one place stack one way.
+  for (size_t i = 0; i < faces.size(); ++i)
+    for (size_t j = i + 1; j < faces.size(); ++j)
+    {
+      const int f = faces[i], g = faces[j];
+      if (stack.higher(f, g) == 0)
+        continue;
+      const Polygon fg = clipConvex(stack.polygon(f), stack.polygon(g));
+      for (size_t k = j + 1; k < faces.size(); ++k)
+      {
+        const int h = faces[k];
+        if (stack.higher(f, h) == 0 || stack.higher(g, h) == 0 ||
+            area(clipConvex(fg, stack.polygon(h))) <= tolerance * tolerance)
+          continue;
+        const std::string why = "faces " + std::to_string(f) + ", " + std::to_string(g) + " and " + std::to_string(h) +
+                                " overlap in one place";
+        clauses.push_back({ { -stack.higher(f, g), -stack.higher(g, h), -stack.higher(h, f) }, why });
+        clauses.push_back({ { -stack.higher(g, f), -stack.higher(h, g), -stack.higher(f, h) }, why });
+      }
+    }
+
+  // No layer lies between the two faces of a fold where the fold's line crosses it (taco–tortilla).
+  for (const FlatCrease& c : creases)
+    for (int h : faces)
+    {
+      if (h == c.face || h == c.other || stack.higher(c.face, h) == 0 || stack.higher(c.other, h) == 0)
+        continue;
+      const Polygon& poly = stack.polygon(h);
+      // The part of the crease inside h, and whether its middle is inside h, off h's sides.
+      double t0 = 0.0, t1 = 1.0;
+      for (size_t s = 0; s < poly.size() && t0 <= t1; ++s)
+      {
+        const Vec2 a = poly[s], b = poly[(s + 1) % poly.size()];
+        const double da = cross(b - a, c.a - a), db = cross(b - a, c.b - a);
+        if (da < 0 && db < 0)
+          t1 = -1.0;
+        else if (da < 0)
+          t0 = std::max(t0, da / (da - db));
+        else if (db < 0)
+          t1 = std::min(t1, da / (da - db));
+      }
+      if (t1 - t0 <= 0 || (t1 - t0) * (c.b - c.a).norm() <= tolerance)
+        continue;
+      if (depthInside(poly, c.a + 0.5 * (t0 + t1) * (c.b - c.a)) <= tolerance)
+        continue;
+      const std::string why =
+          "face " + std::to_string(h) + " would pass through the fold at crease " + std::to_string(c.edge);
+      clauses.push_back({ { -stack.higher(c.face, h), -stack.higher(h, c.other) }, why });
+      clauses.push_back({ { -stack.higher(c.other, h), -stack.higher(h, c.face) }, why });
+    }
+
+  // Two folds on one line with their faces on one side nest or lie apart, never interleave (taco–taco).
+  for (size_t i = 0; i < creases.size(); ++i)
+    for (size_t j = i + 1; j < creases.size(); ++j)
+    {
+      const FlatCrease &p = creases[i], &q = creases[j];
+      if (p.face == q.face || p.face == q.other || p.other == q.face || p.other == q.other)
+        continue;
+      const Vec2 d = (p.b - p.a).normalized();
+      const double off_a = std::abs(cross(d, q.a - p.a)), off_b = std::abs(cross(d, q.b - p.a));
+      if (off_a > tolerance || off_b > tolerance)
+        continue;
+      const double pa = 0.0, pb = (p.b - p.a).norm(), qa = d.dot(q.a - p.a), qb = d.dot(q.b - p.a);
+      if (std::min(pb, std::max(qa, qb)) - std::max(pa, std::min(qa, qb)) <= tolerance)
+        continue;
+      const int q_side = d.dot(q.b - q.a) > 0 ? q.side : -q.side;  // q.side measured along p's direction
+      if (q_side != p.side)
+        continue;
+      const int faces4[4] = { p.face, p.other, q.face, q.other };
+      std::vector<int> literals;  // the six pairs among the four faces
+      bool all = true;
+      for (int x = 0; x < 4 && all; ++x)
+        for (int y = x + 1; y < 4 && all; ++y)
+        {
+          literals.push_back(stack.higher(faces4[x], faces4[y]));
+          all = literals.back() != 0;
+        }
+      if (!all)
+        continue;
+      // Heights from an assignment of the six pairs; the rule on the resulting order.
+      const std::string why = "creases " + std::to_string(p.edge) + " and " + std::to_string(q.edge) +
+                              " fold on one line: their layers cannot interleave";
+      for (int mask = 0; mask < 64; ++mask)
+      {
+        const auto above = [&](int x, int y) {  // faces4[y] higher than faces4[x]
+          if (x < y)
+            return ((mask >> (x == 0 ? y - 1 : x == 1 ? y + 1 : 5)) & 1) != 0;
+          return ((mask >> (y == 0 ? x - 1 : y == 1 ? x + 1 : 5)) & 1) == 0;
+        };
+        const auto between = [&](int x, int lo, int hi) {
+          return (above(lo, x) && above(x, hi)) || (above(hi, x) && above(x, lo));
+        };
+        const bool interleaved = between(2, 0, 1) != between(3, 0, 1) || between(0, 2, 3) != between(1, 2, 3);
+        if (!interleaved)
+          continue;
+        Clause clause{ {}, why };
+        for (int bit = 0; bit < 6; ++bit)
+          clause.literals.push_back(((mask >> bit) & 1) ? -literals[bit] : literals[bit]);
+        clauses.push_back(std::move(clause));
+      }
+    }
+  return clauses;
+}
+
+/// Unit propagation and chronological backtracking over clauses of ±(variable + 1).
+class Search
+{
+public:
+  Search(int variables, const std::vector<Clause>& clauses)
+    : clauses_(clauses), value_(variables, 0), watch_(2 * variables)
+  {
+    for (size_t c = 0; c < clauses.size(); ++c)
+      for (int literal : clauses[c].literals)
+        watch_[slot(-literal)].push_back(static_cast<int>(c));  // revisit c when `literal` turns false
+  }
+
+  /// Empty when an assignment satisfies every clause; else why none does (a clause that fails).
+  std::optional<std::string> solve(long max_guesses, bool& gave_up)
+  {
+    struct Guess
+    {
+      size_t trail_length;
+      int literal;
+      bool flipped;
+    };
+    std::vector<int> trail;
+    std::vector<Guess> guesses;
+    for (const Clause& clause : clauses_)
+      if (clause.literals.size() == 1 && !assign(clause.literals[0], trail))
+        return clause.why;
+    std::optional<int> conflict = propagate(trail, 0);
+    if (conflict)
+      return clauses_[*conflict].why;
+    long count = 0;
+    for (;;)
+    {
+      const auto free = std::find(value_.begin(), value_.end(), 0);
+      if (free == value_.end())
+        return std::nullopt;
+      if (++count > max_guesses)
+      {
+        gave_up = true;
+        return "the search for an order of the layers gave up after " + std::to_string(max_guesses) + " guesses";
+      }
+      guesses.push_back({ trail.size(), static_cast<int>(free - value_.begin()) + 1, false });
+      assign(guesses.back().literal, trail);
+      conflict = propagate(trail, trail.size() - 1);
+      while (conflict)
+      {
+        // Back to the newest guess not yet tried the other way, and the other way.
+        while (!guesses.empty() && guesses.back().flipped)
+        {
+          undo(trail, guesses.back().trail_length);
+          guesses.pop_back();
+        }
+        if (guesses.empty())
+          return clauses_[*conflict].why;
+        Guess& guess = guesses.back();
+        undo(trail, guess.trail_length);
+        guess.literal = -guess.literal;
+        guess.flipped = true;
+        assign(guess.literal, trail);
+        conflict = propagate(trail, trail.size() - 1);
+      }
+    }
+  }
+
+  /// +1 / −1 per variable.
+  const std::vector<int>& values() const
+  {
+    return value_;
+  }
+
+private:
+  size_t slot(int literal) const
+  {
+    return 2 * (std::abs(literal) - 1) + (literal < 0 ? 1 : 0);
+  }
+  int truth(int literal) const
+  {
+    return literal > 0 ? value_[literal - 1] : -value_[-literal - 1];
+  }
+
+  bool assign(int literal, std::vector<int>& trail)
+  {
+    const int t = truth(literal);
+    if (t != 0)
+      return t > 0;
+    value_[std::abs(literal) - 1] = literal > 0 ? 1 : -1;
+    trail.push_back(literal);
+    return true;
+  }
+
+  void undo(std::vector<int>& trail, size_t length)
+  {
+    while (trail.size() > length)
+    {
+      value_[std::abs(trail.back()) - 1] = 0;
+      trail.pop_back();
+    }
+  }
+
+  std::optional<int> propagate(std::vector<int>& trail, size_t from)
+  {
+    for (size_t i = from; i < trail.size(); ++i)
+      for (int c : watch_[slot(trail[i])])
+      {
+        int unset = 0, unset_count = 0;
+        bool satisfied = false;
+        for (int literal : clauses_[c].literals)
+        {
+          const int t = truth(literal);
+          if (t > 0)
+          {
+            satisfied = true;
+            break;
+          }
+          if (t == 0)
+          {
+            unset = literal;
+            ++unset_count;
+          }
+        }
+        if (satisfied)
+          continue;
+        if (unset_count == 0)
+          return c;
+        if (unset_count == 1)
+          assign(unset, trail);
+      }
+    return std::nullopt;
+  }
+
+  const std::vector<Clause>& clauses_;
+  std::vector<int> value_;
+  std::vector<std::vector<int>> watch_;
+};
+
+/// The faces of `paper` in groups that lie flat on one another (connected by stacking).
+std::vector<std::vector<int>> stacksOf(const Paper& paper, double tolerance)
+{
+  const int n = static_cast<int>(paper.faces.size());
+  std::vector<int> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  const std::function<int(int)> root = [&](int f) { return parent[f] == f ? f : parent[f] = root(parent[f]); };
+  std::vector<Eigen::AlignedBox3d> boxes(n);
+  for (int f = 0; f < n; ++f)
+    for (int v : paper.faces[f].vertices)
+      boxes[f].extend(paper.vertices[v].folded);
+  std::vector<char> stacked(n, 0);
+  for (int f = 0; f < n; ++f)
+    for (int g = f + 1; g < n; ++g)
+    {
+      if (boxes[f].exteriorDistance(boxes[g]) > tolerance || !facesStacked(paper, f, g, tolerance))
+        continue;
+      parent[root(f)] = root(g);
+      stacked[f] = stacked[g] = 1;
+    }
+  std::map<int, std::vector<int>> groups;
+  for (int f = 0; f < n; ++f)
+    if (stacked[f])
+      groups[root(f)].push_back(f);
+  std::vector<std::vector<int>> stacks;
+  for (auto& [r, faces] : groups)
+    stacks.push_back(std::move(faces));
+  return stacks;
+}
+}  // namespace
+
+Expected<LayerOrder> solveLayerOrder(const Paper& paper, const LayerOrderOptions& options)
+{
+  LayerOrder result;
+  for (const std::vector<int>& faces : stacksOf(paper, options.tolerance))
+  {
+    if (static_cast<int>(faces.size()) > options.max_faces)
+    {
+      result.complete = false;
+      result.incomplete = "a stack of " + std::to_string(faces.size()) + " faces is more than the " +
+                          std::to_string(options.max_faces) + " whose layer order is worked out";
+      continue;
+    }
+    const StackProblem stack(paper, faces, options.tolerance);
+    const std::vector<Clause> clauses = rulesOf(paper, stack, faces, options.kept);
+    Search search(stack.variableCount(), clauses);
+    bool gave_up = false;
+    if (const std::optional<std::string> conflict = search.solve(options.max_guesses, gave_up))
+    {
+      if (!gave_up)
+        return Expected<LayerOrder>::failure("no order of the layers folds flat: " + *conflict);
+      result.complete = false;
+      result.incomplete = *conflict;
+      continue;
+    }
+    for (size_t k = 0; k < stack.pairs().size(); ++k)
+    {
+      const auto [f, g] = stack.pairs()[k];
+      const int g_higher = search.values()[k];  // +1: g above f along the stack's up
+      result.orders.push_back({ f, g, g_higher * stack.facing(f) });
+    }
+    result.stacked_pairs += stack.variableCount();
+  }
+  return result;
+}
+
+std::string layerOrderViolation(const Paper& paper, const std::vector<FaceOrder>& orders, double tolerance)
+{
+  Paper ordered = paper;
+  ordered.face_orders = orders;
+  for (const std::vector<int>& faces : stacksOf(paper, tolerance))
+  {
+    const StackProblem stack(paper, faces, tolerance);
+    std::vector<int> value(stack.variableCount(), 0);
+    for (size_t k = 0; k < stack.pairs().size(); ++k)
+    {
+      const auto [f, g] = stack.pairs()[k];
+      const int above = faceOrder(ordered, f, g);
+      if (above == 0)
+        return "faces " + std::to_string(f) + " and " + std::to_string(g) + " lie on each other with no order recorded";
+      value[k] = above * stack.facing(f);
+    }
+    for (const Clause& clause : rulesOf(paper, stack, faces, {}))
+    {
+      const bool holds = std::any_of(clause.literals.begin(), clause.literals.end(), [&](int literal) {
+        return (literal > 0 ? value[literal - 1] : -value[-literal - 1]) > 0;
+      });
+      if (!holds)
+        return clause.why;
+    }
+  }
+  return {};
+}
+
+}  // namespace virtual_origami::core
