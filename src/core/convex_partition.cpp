@@ -67,7 +67,7 @@ ConvexPieces convexPieces(const std::vector<Vec2>& polygon, double slack)
   std::vector<std::array<int, 2>> kept;
   for (auto d = result.diagonals.rbegin(); d != result.diagonals.rend(); ++d)
   {
-    const auto [u, v] = *d;
+    const int u = (*d)[0], v = (*d)[1];  // not a structured binding: clang 14 cannot capture one
     const auto hasSide = [](const std::vector<int>& cycle, int from, int to) {
       const size_t n = cycle.size();
       for (size_t i = 0; i < n; ++i)
