@@ -10,6 +10,7 @@
 
 #include "virtual_origami/core/face_orders.h"
 #include "virtual_origami/core/geometry.h"
+#include "virtual_origami/core/planar_geometry.h"
 
 namespace virtual_origami::core
 {
@@ -284,7 +285,7 @@ private:
     for (size_t k = 1; k + 1 < polygon.size(); ++k)
     {
       const Vec2 u = polygon[k] - polygon[0], w = polygon[k + 1] - polygon[0];
-      twice += u.x() * w.y() - u.y() * w.x();
+      twice += cross2(u, w);
     }
     return 0.5 * std::abs(twice);
   }
@@ -298,9 +299,6 @@ private:
     const Vec2 pa = creasePatternPoint(a), pb = creasePatternPoint(b);
     if (std::min(pieceArea(face, a, pa, b, pb), pieceArea(face, b, pb, a, pa)) < kMinPieceArea * scale_ * scale_)
       return true;
-    const auto angle = [](const Vec2& u, const Vec2& v) {
-      return std::atan2(std::abs(u.x() * v.y() - u.y() * v.x()), u.dot(v));
-    };
     const std::vector<int>& vs = paper_.faces[face].vertices;
     const size_t n = vs.size();
     for (const auto& [end, chord] : { std::pair(a, Vec2(pb - pa)), std::pair(b, Vec2(pa - pb)) })
@@ -323,7 +321,7 @@ private:
         sides = { along, Vec2(-along) };
       }
       for (const Vec2& side : sides)
-        if (angle(chord, side) < kMinCutAngle)
+        if (angleBetween(chord, side) < kMinCutAngle)
           return true;
     }
     return false;

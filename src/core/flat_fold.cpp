@@ -9,18 +9,12 @@
 #include "virtual_origami/core/flat_vertices.h"
 #include "virtual_origami/core/kinematics.h"
 #include "virtual_origami/core/layer_order.h"
+#include "virtual_origami/core/planar_geometry.h"
 
 namespace virtual_origami::core
 {
 namespace
 {
-double distanceToSegment(const Vec2& p, const Vec2& a, const Vec2& b)
-{
-  const Vec2 ab = b - a;
-  const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-  return (p - (a + t * ab)).norm();
-}
-
 bool insideFace(const Paper& paper, int face, const Vec2& p)
 {
   const std::vector<int>& vs = paper.faces[face].vertices;
@@ -29,7 +23,7 @@ bool insideFace(const Paper& paper, int face, const Vec2& p)
     const Vec2& a = paper.vertices[vs[i]].crease_pattern;
     const Vec2& b = paper.vertices[vs[(i + 1) % vs.size()]].crease_pattern;
     const Vec2 ab = b - a, ap = p - a;
-    if (ab.x() * ap.y() - ab.y() * ap.x() < -1e-12)
+    if (cross2(ab, ap) < -1e-12)
       return false;
   }
   return true;
@@ -81,8 +75,8 @@ Expected<FoldPlan> planFold(const Paper& paper, const FlatFoldRequest& request)
     {
       const Edge& edge = paper.edges[e];
       if (!edge.isCrease() ||
-          distanceToSegment(paper.vertices[edge.vertices[0]].crease_pattern, line.start, line.end) > tolerance ||
-          distanceToSegment(paper.vertices[edge.vertices[1]].crease_pattern, line.start, line.end) > tolerance)
+          pointSegmentDistance(paper.vertices[edge.vertices[0]].crease_pattern, line.start, line.end) > tolerance ||
+          pointSegmentDistance(paper.vertices[edge.vertices[1]].crease_pattern, line.start, line.end) > tolerance)
         continue;
       ++found;
       if (plan.angles[e] != line.angle &&

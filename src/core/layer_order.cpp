@@ -11,6 +11,7 @@
 
 #include "virtual_origami/core/face_orders.h"
 #include "virtual_origami/core/flat_vertices.h"
+#include "virtual_origami/core/planar_geometry.h"
 
 namespace virtual_origami::core
 {
@@ -18,18 +19,10 @@ namespace
 {
 using Polygon = std::vector<Vec2>;
 
-double cross(const Vec2& a, const Vec2& b)
-{
-  return a.x() * b.y() - a.y() * b.x();
-}
-
 /// Counter-clockwise copy of a convex polygon.
 Polygon counterClockwise(Polygon p)
 {
-  double area = 0.0;
-  for (size_t i = 0; i < p.size(); ++i)
-    area += cross(p[i], p[(i + 1) % p.size()]);
-  if (area < 0)
+  if (signedArea(p) < 0)
     std::reverse(p.begin(), p.end());
   return p;
 }
@@ -46,7 +39,7 @@ Polygon clipConvex(const Polygon& subject, const Polygon& clip)
     for (size_t j = 0; j < in.size(); ++j)
     {
       const Vec2 p = in[j], q = in[(j + 1) % in.size()];
-      const double sp = cross(b - a, p - a), sq = cross(b - a, q - a);
+      const double sp = cross2(b - a, p - a), sq = cross2(b - a, q - a);
       if (sp >= 0)
         out.push_back(p);
       if ((sp >= 0) != (sq >= 0))
@@ -58,10 +51,7 @@ Polygon clipConvex(const Polygon& subject, const Polygon& clip)
 
 double area(const Polygon& p)
 {
-  double a = 0.0;
-  for (size_t i = 0; i < p.size(); ++i)
-    a += cross(p[i], p[(i + 1) % p.size()]);
-  return 0.5 * std::abs(a);
+  return std::abs(signedArea(p));
 }
 
 /// Smallest distance from `p` inside convex counter-clockwise `poly` to its sides (negative outside).
@@ -73,7 +63,7 @@ double depthInside(const Polygon& poly, const Vec2& p)
     const Vec2 a = poly[i], b = poly[(i + 1) % poly.size()];
     const double length = (b - a).norm();
     if (length > 0)
-      depth = std::min(depth, cross(b - a, p - a) / length);
+      depth = std::min(depth, cross2(b - a, p - a) / length);
   }
   return depth;
 }
@@ -201,7 +191,7 @@ std::vector<Clause> rulesOf(const Paper& paper, const StackProblem& stack, const
     for (const Vec2& p : stack.polygon(f))
       centroid += p;
     centroid /= static_cast<double>(stack.polygon(f).size());
-    crease.side = cross(crease.b - crease.a, centroid - crease.a) > 0 ? 1 : -1;
+    crease.side = cross2(crease.b - crease.a, centroid - crease.a) > 0 ? 1 : -1;
     creases.push_back(crease);
   }
   for (const FaceOrder& o : kept)
@@ -249,7 +239,7 @@ std::vector<Clause> rulesOf(const Paper& paper, const StackProblem& stack, const
       for (size_t s = 0; s < poly.size() && t0 <= t1; ++s)
       {
         const Vec2 a = poly[s], b = poly[(s + 1) % poly.size()];
-        const double da = cross(b - a, c.a - a), db = cross(b - a, c.b - a);
+        const double da = cross2(b - a, c.a - a), db = cross2(b - a, c.b - a);
         if (da < 0 && db < 0)
           t1 = -1.0;
         else if (da < 0)
@@ -275,7 +265,7 @@ std::vector<Clause> rulesOf(const Paper& paper, const StackProblem& stack, const
       if (p.face == q.face || p.face == q.other || p.other == q.face || p.other == q.other)
         continue;
       const Vec2 d = (p.b - p.a).normalized();
-      const double off_a = std::abs(cross(d, q.a - p.a)), off_b = std::abs(cross(d, q.b - p.a));
+      const double off_a = std::abs(cross2(d, q.a - p.a)), off_b = std::abs(cross2(d, q.b - p.a));
       if (off_a > tolerance || off_b > tolerance)
         continue;
       const double pa = 0.0, pb = (p.b - p.a).norm(), qa = d.dot(q.a - p.a), qb = d.dot(q.b - p.a);

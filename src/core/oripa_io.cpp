@@ -8,17 +8,17 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <cstdint>
 #include <fstream>
 #include <limits>
 #include <map>
 #include <optional>
 #include <set>
-#include <stdexcept>
 #include <string_view>
-#include <unordered_map>
 #include <utility>
 
+#include "format_error.h"
+#include "virtual_origami/core/planar_geometry.h"
+#include "virtual_origami/core/planar_graph.h"
 #include "virtual_origami/core/reference_patterns.h"
 #include "virtual_origami/core/validity.h"
 
@@ -32,42 +32,9 @@ constexpr size_t kMaxFileBytes = size_t{ 64 } << 20;
 /// 1e-6 on a 400-unit sheet, so its files agree far better than this.
 constexpr double kMergeTolerance = 1e-8;
 
-/// Malformed input. The readers nest deeply, so they throw this; the public functions turn it
-/// into a failure, and nothing is thrown across the library boundary.
-struct FormatError : std::runtime_error
-{
-  using std::runtime_error::runtime_error;
-};
-
-[[noreturn]] void fail(const std::string& message)
-{
-  throw FormatError(message);
-}
-
 [[noreturn]] void failAt(int line, const std::string& message)
 {
   fail("line " + std::to_string(line) + ": " + message);
-}
-
-template <class T, class Body>
-Expected<T> guarded(const Body& body)
-{
-  try
-  {
-    return body();
-  }
-  catch (const FormatError& e)
-  {
-    return Expected<T>::failure(e.what());
-  }
-  catch (const std::bad_alloc&)
-  {
-    return Expected<T>::failure("out of memory");
-  }
-  catch (const std::exception& e)  // a bug here, not the file's fault: still no throw across the API
-  {
-    return Expected<T>::failure(std::string("internal error: ") + e.what());
-  }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -406,73 +373,6 @@ std::vector<CreaseSegment> readOpx(const std::string& text)
 // ---------------------------------------------------------------------------------------------
 // Planar graph
 
-bool finite(const Vec2& p)
-{
-  return std::isfinite(p.x()) && std::isfinite(p.y());
-}
-
-double cross(const Vec2& a, const Vec2& b)
-{
-  return a.x() * b.y() - a.y() * b.x();
-}
-
-double pointSegmentDistance(const Vec2& p, const Vec2& a, const Vec2& b)
-{
-  const Vec2 d = b - a;
-  const double t = std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
-  return (a + t * d - p).norm();
-}
-
-/// Points merged within a tolerance, found through a hash grid of that cell size.
-class PointSet
-{
-public:
-  explicit PointSet(double tolerance) : tolerance_(tolerance)
-  {}
-
-  int snap(const Vec2& p)
-  {
-    const long long cx = cell(p.x()), cy = cell(p.y());
-    int best = -1;
-    double best_distance = tolerance_;
-    for (long long x = cx - 1; x <= cx + 1; ++x)
-      for (long long y = cy - 1; y <= cy + 1; ++y)
-      {
-        const auto it = cells_.find(key(x, y));
-        if (it == cells_.end())
-          continue;
-        for (int i : it->second)
-        {
-          const double d = (points[i] - p).norm();
-          if (d <= best_distance)
-          {
-            best = i;
-            best_distance = d;
-          }
-        }
-      }
-    if (best >= 0)
-      return best;
-    points.push_back(p);
-    cells_[key(cx, cy)].push_back(static_cast<int>(points.size()) - 1);
-    return static_cast<int>(points.size()) - 1;
-  }
-
-  std::vector<Vec2> points;
-
-private:
-  long long cell(double x) const
-  {
-    return static_cast<long long>(std::floor(x / tolerance_));
-  }
-  static std::uint64_t key(long long x, long long y)
-  {
-    return (static_cast<std::uint64_t>(x) << 32) ^ static_cast<std::uint64_t>(y & 0xffffffffLL);
-  }
-  double tolerance_;
-  std::unordered_map<std::uint64_t, std::vector<int>> cells_;
-};
-
 struct Piece
 {
   Assignment assignment;
@@ -498,75 +398,21 @@ void addPiece(Pieces& pieces, int a, int b, const Piece& piece)
 }
 
 /// Splits every segment at the points of the others that lie on it and where it crosses them.
-Pieces splitSegments(const std::vector<CreaseSegment>& segments, PointSet& points, double tolerance)
+Pieces splitSegments(const std::vector<CreaseSegment>& segments, SnappedPoints& points, double tolerance)
 {
-  struct Seg
-  {
-    Vec2 a, b;
-    int ia, ib;
-    std::vector<int> on;
-  };
-  std::vector<Seg> segs;
+  std::vector<SnappedSegment> snapped;
   for (const CreaseSegment& s : segments)
   {
     const int ia = points.snap(s.a), ib = points.snap(s.b);
     if (ia == ib)
       failAt(s.line, "zero-length segment");
-    segs.push_back({ s.a, s.b, ia, ib, {} });
+    snapped.push_back({ s.a, s.b, ia, ib });
   }
-  const auto touch = [&](Seg& s, int id) {
-    if (id != s.ia && id != s.ib && pointSegmentDistance(points.points[id], s.a, s.b) <= tolerance)
-      s.on.push_back(id);
-  };
-  // Sweep in x: only segments whose x ranges overlap can meet.
-  std::vector<int> order(segs.size());
-  for (size_t i = 0; i < order.size(); ++i)
-    order[i] = static_cast<int>(i);
-  const auto low_x = [&](int i) { return std::min(segs[i].a.x(), segs[i].b.x()); };
-  std::sort(order.begin(), order.end(), [&](int i, int j) { return low_x(i) < low_x(j); });
-  for (size_t oi = 0; oi < order.size(); ++oi)
-  {
-    Seg& s = segs[order[oi]];
-    const double high_x = std::max(s.a.x(), s.b.x()) + tolerance;
-    const double s_low_y = std::min(s.a.y(), s.b.y()) - tolerance, s_high_y = std::max(s.a.y(), s.b.y()) + tolerance;
-    for (size_t oj = oi + 1; oj < order.size() && low_x(order[oj]) <= high_x; ++oj)
-    {
-      Seg& t = segs[order[oj]];
-      if (std::max(t.a.y(), t.b.y()) < s_low_y || std::min(t.a.y(), t.b.y()) > s_high_y)
-        continue;
-      touch(s, t.ia);
-      touch(s, t.ib);
-      touch(t, s.ia);
-      touch(t, s.ib);
-      // A proper crossing, away from every end (ends are the touches above).
-      const Vec2 d1 = s.b - s.a, d2 = t.b - t.a;
-      const double denominator = cross(d1, d2);
-      if (std::abs(denominator) <= 1e-12 * d1.norm() * d2.norm())
-        continue;
-      const double u = cross(t.a - s.a, d2) / denominator, v = cross(t.a - s.a, d1) / denominator;
-      const double margin_u = tolerance / d1.norm(), margin_v = tolerance / d2.norm();
-      if (u > margin_u && u < 1 - margin_u && v > margin_v && v < 1 - margin_v)
-      {
-        const int id = points.snap(s.a + u * d1);
-        for (Seg* g : { &s, &t })
-          if (id != g->ia && id != g->ib)
-            g->on.push_back(id);
-      }
-    }
-  }
+  const std::vector<std::vector<int>> along = pointsAlongSegments(snapped, points, tolerance);
   Pieces pieces;
-  for (size_t i = 0; i < segs.size(); ++i)
-  {
-    Seg& s = segs[i];
-    std::vector<std::pair<double, int>> along{ { 0.0, s.ia }, { 1.0, s.ib } };
-    const Vec2 d = s.b - s.a;
-    for (int id : s.on)
-      along.emplace_back((points.points[id] - s.a).dot(d) / d.squaredNorm(), id);
-    std::sort(along.begin(), along.end());
-    for (size_t k = 0; k + 1 < along.size(); ++k)
-      if (along[k].second != along[k + 1].second)
-        addPiece(pieces, along[k].second, along[k + 1].second, { segments[i].assignment, segments[i].line });
-  }
+  for (size_t i = 0; i < segments.size(); ++i)
+    for (size_t k = 0; k + 1 < along[i].size(); ++k)
+      addPiece(pieces, along[i][k], along[i][k + 1], { segments[i].assignment, segments[i].line });
   return pieces;
 }
 
@@ -609,53 +455,9 @@ void joinStraightRuns(Pieces& pieces, const std::vector<Vec2>& points, double to
   }
 }
 
-/// Faces of a connected planar graph, each traced with the face on its left: bounded faces come
-/// out counter-clockwise, the outer face clockwise. Half-edge 2e + s runs from edges[e][s].
-std::vector<std::vector<int>> traceHalfEdgeCycles(const std::vector<Vec2>& points,
-                                                  const std::vector<std::array<int, 2>>& edges)
-{
-  const auto from = [&](int h) { return edges[h / 2][h % 2]; };
-  const auto to = [&](int h) { return edges[h / 2][1 - h % 2]; };
-  const int half_count = 2 * static_cast<int>(edges.size());
-  std::vector<double> direction(half_count);
-  std::vector<std::vector<int>> outgoing(points.size());
-  for (int h = 0; h < half_count; ++h)
-  {
-    const Vec2 d = points[to(h)] - points[from(h)];
-    direction[h] = std::atan2(d.y(), d.x());
-    outgoing[from(h)].push_back(h);
-  }
-  std::vector<int> slot(half_count);
-  for (std::vector<int>& around : outgoing)
-  {
-    std::sort(around.begin(), around.end(), [&](int a, int b) { return direction[a] < direction[b]; });
-    for (size_t i = 0; i < around.size(); ++i)
-      slot[around[i]] = static_cast<int>(i);
-  }
-  // Arriving along h, the face on the left leaves along the first edge clockwise from the twin.
-  const auto next = [&](int h) {
-    const std::vector<int>& around = outgoing[to(h)];
-    const int n = static_cast<int>(around.size());
-    return around[(slot[h ^ 1] + n - 1) % n];
-  };
-  std::vector<char> visited(half_count, 0);
-  std::vector<std::vector<int>> cycles;
-  for (int start = 0; start < half_count; ++start)
-  {
-    if (visited[start])
-      continue;
-    std::vector<int> cycle;
-    for (int h = start; !visited[h]; h = next(h))
-    {
-      visited[h] = 1;
-      cycle.push_back(h);
-    }
-    cycles.push_back(std::move(cycle));
-  }
-  return cycles;
-}
-
-Paper buildPaper(const std::vector<CreaseSegment>& input, double size)
+/// The segments scaled into the paper's frame: the outline's box, its longer side `size` long,
+/// with its corner at the origin. Refuses what cannot be part of a paper.
+std::vector<CreaseSegment> scaledSegments(const std::vector<CreaseSegment>& input, double size, double tolerance)
 {
   if (!(std::isfinite(size) && size > 0))
     fail("the paper size must be positive");
@@ -674,12 +476,11 @@ Paper buildPaper(const std::vector<CreaseSegment>& input, double size)
   if (!(extent > 0 && std::isfinite(extent)))
     fail("the outline (type 1 lines) has no extent");
   const double scale = size / extent;
-  const double tolerance = kMergeTolerance * size;
   const Vec2 box = (high - low) * scale;
   std::vector<CreaseSegment> segments;
   for (const CreaseSegment& s : input)
   {
-    if (!(finite(s.a) && finite(s.b)))
+    if (!(s.a.allFinite() && s.b.allFinite()))
       failAt(s.line, "a coordinate is not finite");
     CreaseSegment n{ (s.a - low) * scale, (s.b - low) * scale, s.assignment, s.line };
     if (s.assignment != Assignment::Boundary && s.assignment != Assignment::Mountain &&
@@ -692,36 +493,47 @@ Paper buildPaper(const std::vector<CreaseSegment>& input, double size)
         failAt(s.line, "the segment lies outside the outline (type 1 lines)");
     segments.push_back(n);
   }
+  return segments;
+}
 
-  PointSet points(tolerance);
-  Pieces pieces = splitSegments(segments, points, tolerance);
-  joinStraightRuns(pieces, points.points, tolerance);
-
-  // The graph: used points renumbered, pieces as edges.
-  std::vector<int> number(points.points.size(), -1);
+/// The graph the pieces draw: the points they use, renumbered, and one edge a piece.
+struct CreaseGraph
+{
   std::vector<Vec2> vertices;
   std::vector<std::array<int, 2>> edges;
   std::vector<Piece> edge_piece;
+  std::vector<std::vector<int>> incident;  // the edges at each vertex
+};
+
+CreaseGraph creaseGraph(const Pieces& pieces, const std::vector<Vec2>& points)
+{
+  CreaseGraph graph;
+  std::vector<int> number(points.size(), -1);
   for (const auto& [key, piece] : pieces)
   {
     for (int p : { key.first, key.second })
       if (number[p] < 0)
       {
-        number[p] = static_cast<int>(vertices.size());
-        vertices.push_back(points.points[p]);
+        number[p] = static_cast<int>(graph.vertices.size());
+        graph.vertices.push_back(points[p]);
       }
-    edges.push_back({ number[key.first], number[key.second] });
-    edge_piece.push_back(piece);
+    graph.edges.push_back({ number[key.first], number[key.second] });
+    graph.edge_piece.push_back(piece);
   }
-  std::vector<std::vector<int>> incident(vertices.size());
-  for (size_t e = 0; e < edges.size(); ++e)
-    for (int v : edges[e])
-      incident[v].push_back(static_cast<int>(e));
+  graph.incident.resize(graph.vertices.size());
+  for (size_t e = 0; e < graph.edges.size(); ++e)
+    for (int v : graph.edges[e])
+      graph.incident[v].push_back(static_cast<int>(e));
+  return graph;
+}
+
+/// No loose end, and one piece of paper: every edge reachable from the outline.
+void checkConnected(const CreaseGraph& graph)
+{
+  const auto& [vertices, edges, edge_piece, incident] = graph;
   for (size_t v = 0; v < vertices.size(); ++v)
     if (incident[v].size() == 1)
       failAt(edge_piece[incident[v][0]].line, "the line ends without meeting another line (a loose end)");
-
-  // One piece of paper: every edge reachable from the outline.
   int start = 0;
   for (size_t e = 0; e < edges.size(); ++e)
     if (edge_piece[e].assignment == Assignment::Boundary)
@@ -752,23 +564,18 @@ Paper buildPaper(const std::vector<CreaseSegment>& input, double size)
       stray = edge_piece[e].line;
   if (stray >= 0)
     failAt(stray, "the line is not connected to the rest of the pattern");
+}
 
-  // Faces: every cycle but the outer one (the only clockwise one of a connected graph).
-  const std::vector<std::vector<int>> cycles = traceHalfEdgeCycles(vertices, edges);
+/// The bounded faces, each a simple convex polygon; no cut line between two of them.
+std::vector<std::vector<int>> convexFaces(const CreaseGraph& graph, double size)
+{
+  const auto& [vertices, edges, edge_piece, incident] = graph;
   std::vector<std::vector<int>> faces;
   std::vector<int> faces_of_edge(edges.size(), 0);
-  const double min_area = 1e-14 * size * size;
-  for (const std::vector<int>& cycle : cycles)
+  for (TracedFace& traced : boundedFaces(vertices, edges, 1e-14 * size * size))
   {
-    std::vector<int> face;
-    double twice_area = 0;
-    for (int h : cycle)
-    {
-      face.push_back(edges[h / 2][h % 2]);
-      twice_area += cross(vertices[edges[h / 2][h % 2]], vertices[edges[h / 2][1 - h % 2]]);
-    }
-    if (twice_area <= 2 * min_area)
-      continue;
+    const std::vector<int>& face = traced.vertices;
+    const std::vector<int>& cycle = traced.half_edges;
     const int line = edge_piece[cycle.front() / 2].line;
     std::vector<int> sorted = face;
     std::sort(sorted.begin(), sorted.end());
@@ -782,25 +589,38 @@ Paper buildPaper(const std::vector<CreaseSegment>& input, double size)
       const Vec2& b = vertices[face[(k + 1) % n]];
       const Vec2& c = vertices[face[(k + 2) % n]];
       // The same slack as checkValidity's, so what loads is valid.
-      if (cross(b - a, c - b) < -1e-12 * size * size)
+      if (cross2(b - a, c - b) < -1e-12 * size * size)
         failAt(edge_piece[cycle[(k + 1) % n] / 2].line, "a face bordered by this line is not convex");
     }
     for (int h : cycle)
       ++faces_of_edge[h / 2];
-    faces.push_back(std::move(face));
+    faces.push_back(std::move(traced.vertices));
   }
   if (faces.empty())
     fail("the lines enclose no paper");
   for (size_t e = 0; e < edges.size(); ++e)
     if (faces_of_edge[e] == 2 && edge_piece[e].assignment == Assignment::Boundary)
       failAt(edge_piece[e].line, "a cut (type 1) line runs inside the paper: slits are not supported");
+  return faces;
+}
 
-  Expected<Paper> paper = patternPaper(vertices, faces);
+Paper buildPaper(const std::vector<CreaseSegment>& input, double size)
+{
+  const double tolerance = kMergeTolerance * size;
+  const std::vector<CreaseSegment> segments = scaledSegments(input, size, tolerance);
+  SnappedPoints points(tolerance);
+  Pieces pieces = splitSegments(segments, points, tolerance);
+  joinStraightRuns(pieces, points.points(), tolerance);
+  const CreaseGraph graph = creaseGraph(pieces, points.points());
+  checkConnected(graph);
+  const std::vector<std::vector<int>> faces = convexFaces(graph, size);
+
+  Expected<Paper> paper = patternPaper(graph.vertices, faces);
   if (!paper)
     fail(paper.message());
   std::map<std::pair<int, int>, Assignment> kind;
-  for (size_t e = 0; e < edges.size(); ++e)
-    kind[std::minmax(edges[e][0], edges[e][1])] = edge_piece[e].assignment;
+  for (size_t e = 0; e < graph.edges.size(); ++e)
+    kind[std::minmax(graph.edges[e][0], graph.edges[e][1])] = graph.edge_piece[e].assignment;
   for (Edge& edge : paper->edges)
     if (edge.isCrease())
       edge.assignment = kind.at(std::minmax(edge.vertices[0], edge.vertices[1]));

@@ -6,6 +6,8 @@
 
 #include <Eigen/Geometry>
 
+#include "virtual_origami/core/planar_geometry.h"
+
 namespace virtual_origami::core
 {
 char assignmentLetter(Assignment assignment)
@@ -104,7 +106,7 @@ double Paper::faceArea(int face) const
   {
     const Vec2& a = vertices[vs[i]].crease_pattern;
     const Vec2& b = vertices[vs[(i + 1) % vs.size()]].crease_pattern;
-    twice += a.x() * b.y() - a.y() * b.x();
+    twice += cross2(a, b);
   }
   return 0.5 * twice;
 }

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <utility>
 
+#include "virtual_origami/core/planar_geometry.h"
 #include "virtual_origami/core/reference_patterns.h"
 
 namespace virtual_origami::core
@@ -31,18 +32,6 @@ Status checkGrid(const std::string& name, int columns, int rows, TessellationKin
   if (tessellationVertexCount(kind, columns, rows) > kMaxVertices)
     return failure(name + ": more than " + std::to_string(kMaxVertices) + " vertices");
   return success();
-}
-
-double signedArea(const std::vector<Vec2>& points, const std::vector<int>& cycle)
-{
-  double twice = 0;
-  for (size_t k = 0; k < cycle.size(); ++k)
-  {
-    const Vec2& a = points[cycle[k]];
-    const Vec2& b = points[cycle[(k + 1) % cycle.size()]];
-    twice += a.x() * b.y() - a.y() * b.x();
-  }
-  return 0.5 * twice;
 }
 
 /// Points and faces of a pattern under construction; faces are turned counter-clockwise as they
@@ -147,11 +136,6 @@ Expected<Tessellation> build(const Builder& b, Assignment horizontal, Assignment
 Assignment opposite(Assignment a)
 {
   return a == Assignment::Mountain ? Assignment::Valley : Assignment::Mountain;
-}
-
-double angleBetween(const Vec2& u, const Vec2& v)
-{
-  return std::atan2(std::abs(u.x() * v.y() - u.y() * v.x()), u.dot(v));
 }
 
 }  // namespace

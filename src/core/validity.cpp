@@ -3,6 +3,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "virtual_origami/core/planar_geometry.h"
+
 namespace virtual_origami::core
 {
 std::string ValidityReport::summary() const
@@ -61,7 +63,7 @@ void checkFaceShapes(const Paper& paper, const ValidityTolerance& tolerance, Val
       const Vec2& b = paper.vertices[vs[(i + 1) % n]].crease_pattern;
       const Vec2& c = paper.vertices[vs[(i + 2) % n]].crease_pattern;
       const Vec2 ab = b - a, bc = c - b;
-      const double turn = ab.x() * bc.y() - ab.y() * bc.x();
+      const double turn = cross2(ab, bc);
       if (turn < -tolerance.convexity * scale * scale)
         report.problems.push_back("face " + std::to_string(f) + " is not convex and counter-clockwise at vertex " +
                                   std::to_string(vs[(i + 1) % n]));

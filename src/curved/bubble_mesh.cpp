@@ -6,6 +6,7 @@
 #include <map>
 #include <utility>
 
+#include "virtual_origami/core/planar_geometry.h"
 #include "virtual_origami/curved/delaunay.h"
 
 namespace virtual_origami::core
@@ -480,7 +481,7 @@ Expected<CurvedMesh> bubbleMesh(const Paper& paper, const BubbleMeshOptions& opt
         const Vec2& a = paper.vertices[vs[i]].crease_pattern;
         const Vec2& b = paper.vertices[vs[(i + 1) % vs.size()]].crease_pattern;
         const Vec2 ab = b - a, ac = centroid - a;
-        inside = ab.x() * ac.y() - ab.y() * ac.x() > margin * ab.norm();
+        inside = cross2(ab, ac) > margin * ab.norm();
       }
       if (inside)
       {

@@ -19,6 +19,8 @@
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/lloyd_optimize_mesh_2.h>
 
+#include "virtual_origami/core/planar_geometry.h"
+
 namespace virtual_origami::core
 {
 namespace
@@ -33,11 +35,6 @@ using Triangulation =
     CGAL::Constrained_Delaunay_triangulation_2<Kernel, DataStructure, CGAL::No_constraint_intersection_tag>;
 using Criteria = CGAL::Delaunay_mesh_size_criteria_2<Triangulation>;
 using Point = Kernel::Point_2;
-
-double cross2(const Vec2& a, const Vec2& b)
-{
-  return a.x() * b.y() - a.y() * b.x();
-}
 
 /// Whether `p` lies strictly inside the polygon (even–odd rule).
 bool insidePolygon(const std::vector<Vec2>& polygon, const Vec2& p)

@@ -5,6 +5,8 @@
 #include <limits>
 #include <unordered_map>
 
+#include "virtual_origami/core/planar_geometry.h"
+
 namespace virtual_origami::core
 {
 namespace
@@ -132,10 +134,8 @@ double patternDistance(const CurvedMesh& mesh, int triangle, const Vec2& p)
   {
     const Vec2& a = mesh.nodes[t[k]].crease_pattern;
     const Vec2& b = mesh.nodes[t[(k + 1) % 3]].crease_pattern;
-    const Vec2 ab = b - a;
-    const double s = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-    nearest = std::min(nearest, (a + s * ab - p).norm());
-    inside = std::min(inside, ab.x() * (p - a).y() - ab.y() * (p - a).x());
+    nearest = std::min(nearest, pointSegmentDistance(p, a, b));
+    inside = std::min(inside, cross2(b - a, p - a));
   }
   return inside >= 0 ? 0.0 : nearest;
 }
@@ -170,12 +170,8 @@ Crossing cross(const Vec3& p1, const Vec3& p2, const Vec3& q1, const Vec3& q2)
 
 double segmentDistance2d(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d)
 {
-  const auto point = [](const Vec2& p, const Vec2& u, const Vec2& v) {
-    const Vec2 uv = v - u;
-    const double s = std::clamp((p - u).dot(uv) / uv.squaredNorm(), 0.0, 1.0);
-    return (u + s * uv - p).norm();
-  };
-  return std::min({ point(a, c, d), point(b, c, d), point(c, a, b), point(d, a, b) });
+  return std::min({ pointSegmentDistance(a, c, d), pointSegmentDistance(b, c, d), pointSegmentDistance(c, a, b),
+                    pointSegmentDistance(d, a, b) });
 }
 }  // namespace
 

@@ -7,13 +7,12 @@
 #include <string>
 
 #include "virtual_origami/core/kinematics.h"
+#include "virtual_origami/core/planar_geometry.h"
 
 namespace virtual_origami::core
 {
 namespace
 {
-double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
-
 /// The paper edge both nodes lie on, or -1.
 int sharedPaperEdge(const CurvedMesh& mesh, const Paper& paper, int a, int b)
 {
@@ -197,7 +196,7 @@ MeshQuality meshQuality(const CurvedMesh& mesh, const Paper& paper)
       const Vec2& o = mesh.nodes[tri[k]].crease_pattern;
       const Vec2 u = mesh.nodes[tri[(k + 1) % 3]].crease_pattern - o;
       const Vec2 v = mesh.nodes[tri[(k + 2) % 3]].crease_pattern - o;
-      const double angle = std::atan2(std::abs(cross2(u, v)), u.dot(v));
+      const double angle = angleBetween(u, v);
       q.min_angle = std::min(q.min_angle, angle);
       q.max_angle = std::max(q.max_angle, angle);
       q.min_edge = std::min(q.min_edge, u.norm() / mesh.spacing);

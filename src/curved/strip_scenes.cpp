@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "virtual_origami/core/planar_geometry.h"
 #include "virtual_origami/curved/bubble_mesh.h"
 #include "virtual_origami/curved/cgal_mesh.h"
 
@@ -11,8 +12,6 @@ namespace virtual_origami::core
 namespace
 {
 bool positiveFinite(double v) { return std::isfinite(v) && v > 0; }
-
-double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 /// Nodes this near x = 0 or x = L (relative to L) count as on the clamp lines; the meshers put
 /// the crease nodes there up to rounding.

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "test_models.h"
+#include "virtual_origami/core/planar_geometry.h"
 #include "virtual_origami/core/reference_patterns.h"
 #include "virtual_origami/curved/bubble_mesh.h"
 #include "virtual_origami/curved/cgal_mesh.h"
@@ -26,15 +27,10 @@ namespace
 {
 constexpr double kDeg = M_PI / 180;
 
-double cross2(const Vec2& a, const Vec2& b)
-{
-  return a.x() * b.y() - a.y() * b.x();
-}
-
 double angleAt(const Vec2& corner, const Vec2& a, const Vec2& b)
 {
   const Vec2 u = a - corner, v = b - corner;
-  return std::atan2(std::abs(cross2(u, v)), u.dot(v));
+  return angleBetween(u, v);
 }
 
 /// Whether `p` lies inside the counter-clockwise face, at least `margin` from each side.

@@ -12,6 +12,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "virtual_origami/core/planar_geometry.h"
 #include "virtual_origami/core/tessellations.h"
 #include "virtual_origami/core/validity.h"
 
@@ -31,11 +32,6 @@ size_t countAssignment(const Paper& paper, Assignment assignment)
 {
   return std::count_if(paper.edges.begin(), paper.edges.end(),
                        [&](const Edge& e) { return e.assignment == assignment; });
-}
-
-double cross(const Vec2& a, const Vec2& b)
-{
-  return a.x() * b.y() - a.y() * b.x();
 }
 
 /// What every loaded pattern promises: flat, valid, convex counter-clockwise faces, creases M or
@@ -66,7 +62,7 @@ void expectFlatValidPaper(const Paper& paper)
       const Vec2& a = paper.vertices[cycle[k]].crease_pattern;
       const Vec2& b = paper.vertices[cycle[(k + 1) % cycle.size()]].crease_pattern;
       const Vec2& c = paper.vertices[cycle[(k + 2) % cycle.size()]].crease_pattern;
-      EXPECT_GE(cross(b - a, c - b), -1e-12) << "face " << f;
+      EXPECT_GE(cross2(b - a, c - b), -1e-12) << "face " << f;
     }
   }
 }

@@ -10,6 +10,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "virtual_origami/core/planar_geometry.h"
 #include "virtual_origami/core/reference_patterns.h"
 #include "virtual_origami/core/validity.h"
 
@@ -20,11 +21,6 @@ namespace
 using ::testing::HasSubstr;
 
 constexpr double kPi = 3.14159265358979323846;
-
-double cross(const Vec2& a, const Vec2& b)
-{
-  return a.x() * b.y() - a.y() * b.x();
-}
 
 /// Everything a generated pattern promises, whatever its kind.
 void expectWellFormed(const Tessellation& t)
@@ -63,7 +59,7 @@ void expectWellFormed(const Tessellation& t)
       const Vec2& b = paper.vertices[cycle[(k + 1) % cycle.size()]].crease_pattern;
       const Vec2& c = paper.vertices[cycle[(k + 2) % cycle.size()]].crease_pattern;
       EXPECT_GT((b - a).norm(), 1e-9 * scale) << "face " << f;
-      EXPECT_GE(cross(b - a, c - b), -1e-12 * scale * scale) << "face " << f << " turns clockwise";
+      EXPECT_GE(cross2(b - a, c - b), -1e-12 * scale * scale) << "face " << f << " turns clockwise";
     }
   }
   Paper relinked = paper;

@@ -1,0 +1,376 @@
+// FOLD write: the crease pattern as the key frame and the folded form as a frame of its own, in
+// JSON laid out to be read and diffed; and the atomic file write every saved file goes through.
+#include "virtual_origami/core/fold_io.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <random>
+#include <set>
+#include <sstream>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include "fold_format.h"
+
+namespace virtual_origami::core
+{
+namespace
+{
+using ordered_json = nlohmann::ordered_json;
+
+ordered_json creasePatternCoords(const Paper& paper)
+{
+  ordered_json coords = ordered_json::array();
+  for (const Vertex& v : paper.vertices)
+    coords.push_back({ v.crease_pattern.x(), v.crease_pattern.y() });
+  return coords;
+}
+
+ordered_json foldedCoords(const Paper& paper)
+{
+  ordered_json coords = ordered_json::array();
+  for (const Vertex& v : paper.vertices)
+    coords.push_back({ v.folded.x(), v.folded.y(), v.folded.z() });
+  return coords;
+}
+
+/// The faces and edges a file gets: faces joined by split edges that are still flat (F) are
+/// merged back into the face they were split from, and those edges left out. A group whose
+/// outline is not one simple cycle (creased since in a way that pinches it) stays in pieces,
+/// with its split edges, which is still a valid FOLD.
+struct FileTopology
+{
+  std::vector<std::vector<int>> faces;
+  std::vector<int> edges;    // the paper's edges the file keeps, in order
+  std::vector<int> face_of;  // for each paper face, the file face it is (part of)
+};
+
+/// The outline of a group of faces joined across `inside` edges, counter-clockwise from the
+/// first face's first vertex; empty unless it is one cycle through every vertex of the group.
+std::vector<int> outline(const Paper& paper, const std::vector<int>& group, const std::vector<char>& inside)
+{
+  std::map<int, int> next;
+  std::vector<int> vertices;
+  size_t sides = 0;
+  for (int f : group)
+  {
+    const Face& face = paper.faces[f];
+    for (size_t i = 0; i < face.vertices.size(); ++i)
+    {
+      vertices.push_back(face.vertices[i]);
+      if (inside[face.edges[i]])
+        continue;
+      if (!next.emplace(face.vertices[i], face.vertices[(i + 1) % face.vertices.size()]).second)
+        return {};  // the outline passes a vertex twice
+      ++sides;
+    }
+  }
+  const int start = paper.faces[group.front()].vertices.front();
+  std::vector<int> cycle;
+  for (int v = start; cycle.size() <= sides; v = next.at(v))
+  {
+    if (!next.count(v))
+      return {};
+    cycle.push_back(v);
+    if (next.at(v) == start)
+      break;
+  }
+  std::sort(vertices.begin(), vertices.end());
+  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  if (cycle.size() != sides || cycle.size() != vertices.size())
+    return {};
+  return cycle;
+}
+
+FileTopology fileTopology(const Paper& paper)
+{
+  const size_t face_count = paper.faces.size();
+  // Union-find of the faces across flat split edges; each group's root is its first face.
+  std::vector<int> root(face_count);
+  for (size_t f = 0; f < face_count; ++f)
+    root[f] = static_cast<int>(f);
+  const std::function<int(int)> find = [&](int f) { return root[f] == f ? f : root[f] = find(root[f]); };
+  std::vector<char> inside(paper.edges.size(), 0);
+  for (size_t e = 0; e < paper.edges.size(); ++e)
+  {
+    const Edge& edge = paper.edges[e];
+    if (!edge.split || !edge.isCrease() || edge.assignment != Assignment::Flat)
+      continue;
+    inside[e] = 1;
+    const int a = find(edge.faces[0]), b = find(edge.faces[1]);
+    root[std::max(a, b)] = std::min(a, b);
+  }
+  std::vector<std::vector<int>> groups(face_count);
+  for (size_t f = 0; f < face_count; ++f)
+    groups[find(static_cast<int>(f))].push_back(static_cast<int>(f));
+  FileTopology file;
+  file.face_of.assign(face_count, -1);
+  std::vector<char> merged(face_count, 0);
+  for (size_t f = 0; f < face_count; ++f)
+  {
+    const std::vector<int>& group = groups[f];
+    if (group.empty())
+      continue;  // f is in an earlier face's group
+    std::vector<int> cycle = group.size() > 1 ? outline(paper, group, inside) : std::vector<int>{};
+    if (cycle.empty())
+    {
+      for (int g : group)  // in pieces: each face its own, in order
+        merged[g] = 0;
+      continue;
+    }
+    for (int g : group)
+      merged[g] = 1;
+    file.face_of[f] = static_cast<int>(file.faces.size());
+    file.faces.push_back(cycle);
+  }
+  for (size_t f = 0; f < face_count; ++f)
+  {
+    if (merged[f])
+    {
+      file.face_of[f] = file.face_of[find(static_cast<int>(f))];
+      continue;
+    }
+    file.face_of[f] = static_cast<int>(file.faces.size());
+    file.faces.push_back(paper.faces[f].vertices);
+  }
+  for (size_t e = 0; e < paper.edges.size(); ++e)
+    if (!inside[e] || !merged[paper.edges[e].faces[0]])
+      file.edges.push_back(static_cast<int>(e));
+  return file;
+}
+
+/// Edges, faces and layer order: everything but the coordinates.
+void addTopology(ordered_json& frame, const Paper& paper)
+{
+  const FileTopology file = fileTopology(paper);
+  ordered_json edges = ordered_json::array(), assignments = ordered_json::array(), angles = ordered_json::array();
+  for (int e : file.edges)
+  {
+    const Edge& edge = paper.edges[e];
+    edges.push_back({ edge.vertices[0], edge.vertices[1] });
+    assignments.push_back(std::string(1, assignmentLetter(edge.assignment)));
+    angles.push_back(toDegrees(edge.fold_angle));
+  }
+  ordered_json faces = ordered_json::array();
+  for (const std::vector<int>& face : file.faces)
+    faces.push_back(face);
+  frame["edges_vertices"] = edges;
+  frame["edges_assignment"] = assignments;
+  frame["edges_foldAngle"] = angles;
+  if (std::any_of(file.edges.begin(), file.edges.end(), [&](int e) { return paper.edges[e].target_angle.has_value(); }))
+  {
+    ordered_json targets = ordered_json::array();
+    for (int e : file.edges)
+    {
+      const std::optional<double>& target = paper.edges[e].target_angle;
+      targets.push_back(target ? ordered_json(toDegrees(*target)) : ordered_json(nullptr));
+    }
+    frame[kTargetAngleKey] = targets;
+  }
+  frame["faces_vertices"] = faces;
+  // Pieces of one face share its orders: each pair once, none of a face with itself.
+  ordered_json orders = ordered_json::array();
+  std::set<std::pair<int, int>> written;
+  for (const FaceOrder& order : paper.face_orders)
+  {
+    const int face = file.face_of[order.face], other = file.face_of[order.other];
+    if (face != other && written.emplace(face, other).second)
+      orders.push_back({ other, face, order.above });  // see faceOrdersOf
+  }
+  if (!orders.empty())
+    frame["faceOrders"] = orders;
+}
+
+ordered_json fileHeader(const std::string& title, const std::string& file_class)
+{
+  ordered_json file;
+  file["file_spec"] = 1.1;
+  file["file_creator"] = "virtual_origami";
+  file["file_classes"] = { file_class };
+  if (!title.empty())
+    file["file_title"] = title;
+  return file;
+}
+
+/// A standalone folded-form frame: 3D coordinates, with the crease pattern in our own field.
+ordered_json foldedFormFrame(const Paper& paper)
+{
+  ordered_json frame;
+  frame["frame_classes"] = { "foldedForm" };
+  frame["frame_attributes"] = { "3D" };
+  frame["vertices_coords"] = foldedCoords(paper);
+  frame[kCreasePatternKey] = creasePatternCoords(paper);
+  addTopology(frame, paper);
+  return frame;
+}
+
+/// JSON with one object key or nested array entry per line and the innermost arrays on one
+/// line: readable and diffable, and close to what other FOLD tools write. Numbers come out
+/// in the shortest form that reads back to the same double.
+void appendJson(const ordered_json& value, const std::string& indent, std::string& out)
+{
+  const std::string inner = indent + "  ";
+  if (value.is_object() && !value.empty())
+  {
+    out += "{";
+    bool first = true;
+    for (const auto& [key, item] : value.items())
+    {
+      out += (first ? "\n" : ",\n") + inner + ordered_json(key).dump() + ": ";
+      appendJson(item, inner, out);
+      first = false;
+    }
+    out += "\n" + indent + "}";
+  }
+  else if (value.is_array() && !value.empty() && value.front().is_structured())
+  {
+    out += "[";
+    for (size_t i = 0; i < value.size(); ++i)
+    {
+      out += (i == 0 ? "\n" : ",\n") + inner;
+      appendJson(value[i], inner, out);
+    }
+    out += "\n" + indent + "]";
+  }
+  else
+    out += value.dump();
+}
+
+std::string dumpFold(const ordered_json& file)
+{
+  std::string out;
+  appendJson(file, "", out);
+  return out + "\n";
+}
+
+std::string errnoText()
+{
+  return std::strerror(errno);
+}
+
+}  // namespace
+
+std::string formatFold(const Paper& paper, const std::string& title)
+{
+  ordered_json file = fileHeader(title, "singleModel");
+  file["frame_classes"] = { "creasePattern" };
+  file["frame_attributes"] = { "2D" };
+  file["vertices_coords"] = creasePatternCoords(paper);
+  addTopology(file, paper);
+  ordered_json folded;
+  folded["frame_classes"] = { "foldedForm" };
+  folded["frame_attributes"] = { "3D" };
+  folded["frame_inherit"] = true;
+  folded["frame_parent"] = 0;
+  folded["vertices_coords"] = foldedCoords(paper);
+  file["file_frames"] = ordered_json::array({ folded });
+  return dumpFold(file);
+}
+
+std::string formatFoldSequence(const std::vector<Paper>& steps, const std::string& title)
+{
+  // Steps may differ in topology (creases get added), so every frame stands alone.
+  ordered_json file = fileHeader(title, "diagrams");
+  if (steps.empty())
+    return dumpFold(file);
+  const ordered_json key_frame = foldedFormFrame(steps.front());
+  for (const auto& [key, value] : key_frame.items())
+    file[key] = value;
+  ordered_json frames = ordered_json::array();
+  for (size_t i = 1; i < steps.size(); ++i)
+    frames.push_back(foldedFormFrame(steps[i]));
+  if (!frames.empty())
+    file["file_frames"] = frames;
+  return dumpFold(file);
+}
+
+Status writeTextFile(const std::string& path, const std::string& text)
+{
+  // Replace only a regular file the user may write: never a link (rename would replace the
+  // link, not what it points to), a device or folder, or a read-only file (rename would
+  // replace it anyway, as the folder is writable). As root access() calls every file
+  // writable, so a file with no write permission at all counts as read-only too.
+  struct stat target;
+  const bool replacing = ::lstat(path.c_str(), &target) == 0;
+  if (!replacing && errno != ENOENT)
+    return failure("cannot write " + path + ": " + errnoText());
+  if (replacing && S_ISLNK(target.st_mode))
+    return failure("cannot write " + path + ": it is a symbolic link (not followed, not replaced)");
+  if (replacing && !S_ISREG(target.st_mode))
+    return failure("cannot write " + path + ": not a regular file");
+  if (replacing && ((target.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0 || ::access(path.c_str(), W_OK) != 0))
+    return failure("cannot write " + path + ": the file is read-only");
+  const std::filesystem::path target_path(path);
+  const std::string name = target_path.filename().string();
+  if (name.empty() || name == "." || name == "..")
+    return failure("cannot write " + path + ": not a file name");
+  const std::string folder = target_path.has_parent_path() ? target_path.parent_path().string() : ".";
+
+  // Write beside the target, then rename: readers never see a half-written file. The
+  // temporary file gets a new name and is created exclusively, without following links,
+  // so nothing planted in the folder (a link at <name>.tmp) is written through.
+  thread_local std::mt19937_64 random{ std::random_device{}() };
+  std::string temporary;
+  int fd = -1;
+  for (int attempt = 0; fd < 0; ++attempt)
+  {
+    std::ostringstream unique;
+    unique << folder << "/." << name << "." << ::getpid() << "." << std::hex << random() << ".tmp";
+    temporary = unique.str();
+    fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+    if (fd < 0 && (errno != EEXIST || attempt == 100))
+      return failure("cannot write " + path + ": " + errnoText());
+  }
+  const auto abandon = [&](const std::string& reason) {
+    ::close(fd);
+    ::unlink(temporary.c_str());
+    return failure("cannot write " + path + ": " + reason);
+  };
+  // The new file keeps the permissions of the one it replaces.
+  if (replacing && ::fchmod(fd, target.st_mode & 07777) != 0)
+    return abandon(errnoText());
+  for (size_t done = 0; done < text.size();)
+  {
+    const ssize_t wrote = ::write(fd, text.data() + done, text.size() - done);
+    if (wrote < 0 && errno == EINTR)
+      continue;
+    if (wrote <= 0)
+      return abandon(errnoText());
+    done += static_cast<size_t>(wrote);
+  }
+  // On disk before the rename makes it the file: a crash then leaves the old file or the
+  // whole new one, never an empty one.
+  if (::fsync(fd) != 0)
+    return abandon(errnoText());
+  if (::close(fd) != 0)
+  {
+    const std::string reason = errnoText();
+    ::unlink(temporary.c_str());
+    return failure("cannot write " + path + ": " + reason);
+  }
+  if (std::rename(temporary.c_str(), path.c_str()) != 0)
+  {
+    const std::string reason = errnoText();
+    ::unlink(temporary.c_str());
+    return failure("cannot rename " + temporary + " to " + path + ": " + reason);
+  }
+  // The rename itself on disk too (best effort: some file systems refuse to sync a folder).
+  const int folder_fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (folder_fd >= 0)
+  {
+    ::fsync(folder_fd);
+    ::close(folder_fd);
+  }
+  return success();
+}
+
+}  // namespace virtual_origami::core
