@@ -180,6 +180,11 @@ std::optional<std::vector<Assignment>> readAssignments(const json& frame, const 
   for (size_t e = 0; e < field->size(); ++e)
   {
     const json& entry = (*field)[e];
+    if (entry.is_null())  // no value: an edge nobody assigned
+    {
+      assignments.push_back(Assignment::Unassigned);
+      continue;
+    }
     const std::optional<Assignment> assignment =
         entry.is_string() ? assignmentFromLetter(entry.get<std::string>()) : std::nullopt;
     if (!assignment)
@@ -189,16 +194,22 @@ std::optional<std::vector<Assignment>> readAssignments(const json& frame, const 
   return assignments;
 }
 
-std::optional<std::vector<double>> readFoldAngles(const json& frame, const std::optional<size_t>& edge_count)
+std::optional<std::vector<std::optional<double>>> readFoldAngles(const json& frame,
+                                                                 const std::optional<size_t>& edge_count)
 {
   // FOLD 1.0 called the field edges_foldAngles.
   const std::string key = findField(frame, "edges_foldAngle") ? "edges_foldAngle" : "edges_foldAngles";
   const json* field = edgeField(frame, key, edge_count);
   if (!field)
     return std::nullopt;
-  std::vector<double> angles;
+  std::vector<std::optional<double>> angles;
   for (size_t e = 0; e < field->size(); ++e)
   {
+    if ((*field)[e].is_null())  // FOLD's "no value" (Origami Simulator writes it for boundaries)
+    {
+      angles.emplace_back();
+      continue;
+    }
     const double degrees = readNumber((*field)[e], indexed(key, e));
     if (std::abs(degrees) > 180.0 + 1e-9)
       fail(indexed(key, e) + " is outside [-180, 180] degrees");

@@ -20,7 +20,8 @@ struct FrameData
   std::vector<Vec3> coords;
   std::optional<std::vector<std::array<int, 2>>> edges;
   std::optional<std::vector<Assignment>> assignments;
-  std::optional<std::vector<double>> fold_angles;
+  /// Per edge; an entry is empty where the file says null (FOLD: no value).
+  std::optional<std::vector<std::optional<double>>> fold_angles;
   std::optional<std::vector<std::optional<double>>> target_angles;
   std::optional<std::vector<std::vector<int>>> faces;
   std::vector<std::array<int, 3>> face_orders;  // [f, g, s] as in the file

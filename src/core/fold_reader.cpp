@@ -392,7 +392,7 @@ void markBoundaries(Paper& paper)
 }
 
 /// A crease pattern lies flat at z = 0, or folded by the file's fold angles when they close.
-void foldCreasePattern(Paper& paper, const std::optional<std::vector<double>>& fold_angles)
+void foldCreasePattern(Paper& paper, const std::optional<std::vector<std::optional<double>>>& fold_angles)
 {
   for (Vertex& v : paper.vertices)
     v.folded = Vec3(v.crease_pattern.x(), v.crease_pattern.y(), 0.0);
@@ -403,7 +403,7 @@ void foldCreasePattern(Paper& paper, const std::optional<std::vector<double>>& f
   for (size_t e = 0; e < paper.edges.size(); ++e)
     if (paper.edges[e].isCrease())
     {
-      angles[e] = (*fold_angles)[e];
+      angles[e] = (*fold_angles)[e].value_or(0.0);  // no value: as drawn, flat
       folded = folded || angles[e] != 0.0;
     }
   if (!folded)
@@ -437,11 +437,14 @@ double measuredFoldAngle(const Paper& paper, int e)
   }
 }
 
-void setFoldedFormAngles(Paper& paper, const std::optional<std::vector<double>>& fold_angles)
+void setFoldedFormAngles(Paper& paper, const std::optional<std::vector<std::optional<double>>>& fold_angles)
 {
   for (size_t e = 0; e < paper.edges.size(); ++e)
     if (paper.edges[e].isCrease())
-      paper.edges[e].fold_angle = fold_angles ? (*fold_angles)[e] : measuredFoldAngle(paper, static_cast<int>(e));
+    {
+      const std::optional<double> given = fold_angles ? (*fold_angles)[e] : std::nullopt;
+      paper.edges[e].fold_angle = given ? *given : measuredFoldAngle(paper, static_cast<int>(e));
+    }
 }
 
 bool hasClass(const FrameData& data, const std::string& name)
@@ -541,7 +544,7 @@ BuiltFrame buildFrame(const json& frame, const BuiltFrame* parent)
     paper.sheet_area += paper.faceArea(static_cast<int>(f));
   markBoundaries(paper);
   // The edges splitConcaveFaces added lie flat.
-  std::optional<std::vector<double>> fold_angles = data.fold_angles;
+  std::optional<std::vector<std::optional<double>>> fold_angles = data.fold_angles;
   if (fold_angles)
     fold_angles->resize(paper.edges.size(), 0.0);
   // A crease pattern's fold angles say where its creases are meant to go (what folding by
@@ -554,7 +557,8 @@ BuiltFrame buildFrame(const json& frame, const BuiltFrame* parent)
       continue;
     if (data.target_angles)
       edge.target_angle = (*data.target_angles)[e];
-    else if (built.crease_pattern && fold_angles && ((*fold_angles)[e] != 0.0 || edge.assignment == Assignment::Flat))
+    else if (built.crease_pattern && fold_angles && (*fold_angles)[e] &&
+             (*(*fold_angles)[e] != 0.0 || edge.assignment == Assignment::Flat))
       edge.target_angle = (*fold_angles)[e];
   }
   if (built.crease_pattern)

@@ -407,6 +407,35 @@ TEST(FoldIo, FoldsACreasePatternByItsFoldAngles)
   EXPECT_TRUE(checkValidity(paper).ok()) << checkValidity(paper).summary();
 }
 
+// FOLD's null is "no value" (Origami Simulator's own files hold it in edges_foldAngle for the
+// boundary): read as absent, entry by entry, not refused.
+TEST(FoldIo, ReadsNullAsNoValue)
+{
+  const FoldDocument document = parseOrFail(R"({
+    "vertices_coords": [[0,0],[1,0],[1,1],[0,1]],
+    "edges_vertices": [[0,1],[1,2],[2,3],[3,0],[1,3]],
+    "edges_assignment": ["B",null,"B","B","V"],
+    "edges_foldAngle": [null,null,null,null,90],
+    "faces_vertices": [[0,1,3],[1,2,3]]})");
+  const Paper& paper = document.frames[0];
+  EXPECT_NEAR(M_PI / 2, paper.edges[4].fold_angle, 1e-12);  // the value given still folds
+  ASSERT_TRUE(paper.edges[4].target_angle);
+  EXPECT_NEAR(M_PI / 2, *paper.edges[4].target_angle, 1e-12);
+  EXPECT_EQ(Assignment::Boundary, paper.edges[1].assignment);  // a boundary by its one face
+  EXPECT_GT(paper.vertices[2].folded.z(), 0.5);
+
+  // A crease whose angle is null has no target and lies as drawn.
+  const FoldDocument unknown = parseOrFail(R"({
+    "vertices_coords": [[0,0],[1,0],[1,1],[0,1]],
+    "edges_vertices": [[0,1],[1,2],[2,3],[3,0],[1,3]],
+    "edges_assignment": ["B","B","B","B","V"],
+    "edges_foldAngle": [0,0,0,0,null],
+    "faces_vertices": [[0,1,3],[1,2,3]]})");
+  EXPECT_FALSE(unknown.frames[0].edges[4].target_angle);
+  EXPECT_EQ(0.0, unknown.frames[0].edges[4].fold_angle);
+  EXPECT_EQ(Assignment::Valley, unknown.frames[0].edges[4].assignment);
+}
+
 TEST(FoldIo, LoadsFlatWhenFoldAnglesDoNotClose)
 {
   // Four creases at one vertex all at 90°: no rigid folding has these angles.
