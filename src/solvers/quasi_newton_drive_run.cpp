@@ -12,12 +12,12 @@ QuasiNewtonDriver::DriveRun::DriveRun(QuasiNewtonDriver& driver, Paper& paper, c
   , options_(driver.options_)
   , limits_(driver.limits_)
   , budget_(limits_)
-  , s_(prepare(driver, paper, target, fixed))
-  , energy_(s_.energy)
+  , setup_(prepare(driver, paper, target, fixed))
+  , energy_(setup_.energy)
   , paper_(paper)
   , target_(target)
   , fixed_(fixed)
-  , free_(s_.free_vertices)
+  , free_(setup_.free_vertices)
   , history_(options_.memory)
 {
   energy_.setTargets(target);
@@ -59,15 +59,16 @@ SolveReport QuasiNewtonDriver::DriveRun::run()
 /// at its first use, and counted).
 bool QuasiNewtonDriver::DriveRun::nothingToSolve()
 {
-  const bool constant_unfactored = !s_.constant_tried;
-  const bool constant_refused = !free_.empty() && options_.hessian == DriverHessian::Constant && !s_.factorConstant();
-  report_.factorizations += constant_unfactored && s_.constant_tried ? 1 : 0;
+  const bool constant_unfactored = !setup_.constant_tried;
+  const bool constant_refused =
+      !free_.empty() && options_.hessian == DriverHessian::Constant && !setup_.factorConstant();
+  report_.factorizations += constant_unfactored && setup_.constant_tried ? 1 : 0;
   return free_.empty() || constant_refused;
 }
 
 SolveReport QuasiNewtonDriver::DriveRun::unsolved()
 {
-  report_.max_strain = springStrain(s_.springs, start_).max;
+  report_.max_strain = springStrain(setup_.springs, start_).max;
   report_.converged = free_.empty();
   report_.message = free_.empty() ? "every vertex is held" : "the constant matrix is not definite";
   report_.seconds = budget_.seconds();
@@ -77,18 +78,18 @@ SolveReport QuasiNewtonDriver::DriveRun::unsolved()
 void QuasiNewtonDriver::DriveRun::planFrame()
 {
   anchored_ = std::any_of(fixed_.begin(), fixed_.end(), [](char c) { return c != 0; });
-  continues_ = s_.last.cols() == x_.cols() && s_.last == start_;
-  const bool motion_known = s_.last_start.cols() == x_.cols() && s_.last_start != s_.last;
+  continues_ = setup_.last.cols() == x_.cols() && setup_.last == start_;
+  const bool motion_known = setup_.last_start.cols() == x_.cols() && setup_.last_start != setup_.last;
   subspace_frame_ = options_.hessian == DriverHessian::Lagged && options_.subspace_frames &&
-                    (motion_known || s_.gauss_newton.valid()) && limits_.max_seconds > 0 &&
+                    (motion_known || setup_.gauss_newton.valid()) && limits_.max_seconds > 0 &&
                     limits_.max_seconds < options_.subspace_below_seconds;
-  predicts_ = options_.predict && !subspace_frame_ && continues_ && s_.last_continued &&
-              s_.before_last.cols() == x_.cols() && s_.last_target.size() == target_.size();
+  predicts_ = options_.predict && !subspace_frame_ && continues_ && setup_.last_continued &&
+              setup_.before_last.cols() == x_.cols() && setup_.last_target.size() == target_.size();
   exact_allowed_ = options_.exact_hessian && !subspace_frame_;
   // A subspace frame that starts a slide goes by the last motion this driver made elsewhere on
   // the pattern: the mechanism turns much the same way there, and the Galerkin step says how far.
-  if ((continues_ || subspace_frame_) && s_.last_start.cols() == x_.cols())
-    motion_ = gather(s_.last - s_.last_start) / scale_;
+  if ((continues_ || subspace_frame_) && setup_.last_start.cols() == x_.cols())
+    motion_ = gather(setup_.last - setup_.last_start) / scale_;
 }
 
 /// The energy where the frame starts: a prediction needs only its value, whose face term is
@@ -98,7 +99,7 @@ void QuasiNewtonDriver::DriveRun::start()
 {
   if (predicts_)
   {
-    now_.face_energy = s_.last_face_energy;
+    now_.face_energy = setup_.last_face_energy;
     now_.hinge_energy = energy_.hingeEnergy(x_);
     now_.energy = now_.face_energy + now_.hinge_energy;
     predict();
@@ -108,12 +109,12 @@ void QuasiNewtonDriver::DriveRun::start()
   if (!start_evaluated_)
     evaluateStart();
   refresh_ = !subspace_frame_ && options_.hessian != DriverHessian::Constant &&
-             (options_.hessian == DriverHessian::Exact || !s_.gauss_newton.valid());
+             (options_.hessian == DriverHessian::Exact || !setup_.gauss_newton.valid());
   g_ = gather(gradient_);
   spread_ = Positions::Zero(3, x_.cols());
   diverged_ = !std::isfinite(now_.energy);
   if (options_.restore_final_faces && limits_.max_seconds > 0)
-    final_reserve_ = s_.restore_seconds;
+    final_reserve_ = setup_.restore_seconds;
 }
 
 void QuasiNewtonDriver::DriveRun::evaluateStart()
@@ -123,8 +124,8 @@ void QuasiNewtonDriver::DriveRun::evaluateStart()
   start_linearized_ = subspace_frame_;
   evaluate_seconds_ = budget_.seconds() - evaluate_from;
   // The line search's passes do not linearise: budget them as the last plain pass took.
-  if (subspace_frame_ && s_.evaluate_seconds > 0)
-    evaluate_seconds_ = s_.evaluate_seconds;
+  if (subspace_frame_ && setup_.evaluate_seconds > 0)
+    evaluate_seconds_ = setup_.evaluate_seconds;
   start_evaluated_ = true;
 }
 
@@ -134,17 +135,17 @@ void QuasiNewtonDriver::DriveRun::predict()
 {
   double step_now = 0.0, step_before = 0.0;
   for (size_t e = 0; e < target_.size(); ++e)
-    if (driven(target_[e]) && driven(s_.last_target[e]) && driven(s_.before_last_target[e]))
+    if (driven(target_[e]) && driven(setup_.last_target[e]) && driven(setup_.before_last_target[e]))
     {
-      step_now += std::pow(target_[e] - s_.last_target[e], 2);
-      step_before += std::pow(s_.last_target[e] - s_.before_last_target[e], 2);
+      step_now += std::pow(target_[e] - setup_.last_target[e], 2);
+      step_before += std::pow(setup_.last_target[e] - setup_.before_last_target[e], 2);
     }
   if (!(step_before > 0))
     return;
   const double ratio = std::min(2.0, std::sqrt(step_now / step_before));
-  Positions predicted = x_ + (ratio / scale_) * (s_.last - s_.before_last);
-  for (size_t v = 0; v < s_.free_index.size(); ++v)
-    if (s_.free_index[v] < 0)
+  Positions predicted = x_ + (ratio / scale_) * (setup_.last - setup_.before_last);
+  for (size_t v = 0; v < setup_.free_index.size(); ++v)
+    if (setup_.free_index[v] < 0)
       predicted.col(static_cast<Eigen::Index>(v)) = x_.col(static_cast<Eigen::Index>(v));
   Positions predicted_gradient;
   const double evaluate_from = budget_.seconds();
@@ -156,7 +157,7 @@ void QuasiNewtonDriver::DriveRun::predict()
   // strain they keep would pile up), one step of the constant matrix (rotations fitted, the
   // faces' shapes restored) takes it out for about one back-substitution. Not otherwise: a
   // frame solved to balance starts better from the straight prediction.
-  if (options_.restore_predicted_faces && (!(guess.energy < now_.energy) || !s_.last_balanced))
+  if (options_.restore_predicted_faces && (!(guess.energy < now_.energy) || !setup_.last_balanced))
     restoreFaces(predicted, predicted_gradient, guess);
   if (guess.energy < now_.energy)
   {
@@ -249,14 +250,14 @@ Eigen::MatrixX3d QuasiNewtonDriver::DriveRun::direction()
   const DrivenFaces::Linearization linearization = energy_.linearize(x_);
   if (frames_pending_)
   {
-    s_.factor_frames = linearization.frame;
+    setup_.factor_frames = linearization.frame;
     frames_pending_ = false;
   }
-  else if (options_.refactor_turn > 0 && s_.gauss_newton.valid() && roomForFactor() &&
+  else if (options_.refactor_turn > 0 && setup_.gauss_newton.valid() && roomForFactor() &&
            turnedSinceFactor(linearization) > options_.refactor_turn)
   {
     refactorAfresh();
-    s_.factor_frames = linearization.frame;
+    setup_.factor_frames = linearization.frame;
   }
   Eigen::MatrixX3d step = newtonKrylovStep(linearization, rigid);
   if (options_.follow_motion && motion_.size() > 0)
@@ -291,7 +292,7 @@ QuasiNewtonDriver::DriveRun::Trial QuasiNewtonDriver::DriveRun::lineSearch(const
     moveFree(trial_, out.step_length, direction);
     const double evaluate_from = budget_.seconds();
     out.energy = energy_.evaluate(trial_, &trial_gradient_);
-    s_.evaluate_seconds = budget_.seconds() - evaluate_from;
+    setup_.evaluate_seconds = budget_.seconds() - evaluate_from;
     if (out.energy.energy <= now_.energy + options_.armijo * out.step_length * slope)
     {
       out.accepted = true;
@@ -362,7 +363,7 @@ void QuasiNewtonDriver::DriveRun::restoreFinalFaces()
   restoreFaces(x_, x_gradient, now_);
   // A subspace frame that still shows strain above `restore_strain` (a slide's second frame,
   // whose motion to follow came from a frame without one) restores once more.
-  if (subspace_frame_ && springStrain(s_.springs, x_ * scale_).max > options_.restore_strain)
+  if (subspace_frame_ && springStrain(setup_.springs, x_ * scale_).max > options_.restore_strain)
     restoreFaces(x_, x_gradient, now_);
 }
 
@@ -375,23 +376,23 @@ SolveReport QuasiNewtonDriver::DriveRun::finish()
   {
     setFoldedPositions(paper_, start_);
     report_.diverged = true;
-    report_.max_strain = springStrain(s_.springs, start_).max;
+    report_.max_strain = springStrain(setup_.springs, start_).max;
     report_.message = driver_.name() + " produced non-finite positions; rolled back";
     return report_;
   }
   const Positions result = x_ * scale_;
   setFoldedPositions(paper_, result);
-  report_.max_strain = springStrain(s_.springs, result).max;
+  report_.max_strain = springStrain(setup_.springs, result).max;
   if (!report_.converged)
     report_.message = stuck_.empty() ? "stopped before balance" : stuck_;
-  s_.before_last = s_.last;
-  s_.before_last_target = s_.last_target;
-  s_.last_start = start_;
-  s_.last = result;
-  s_.last_target = target_;
-  s_.last_continued = continues_;
-  s_.last_face_energy = now_.face_energy;
-  s_.last_balanced = report_.converged;
+  setup_.before_last = setup_.last;
+  setup_.before_last_target = setup_.last_target;
+  setup_.last_start = start_;
+  setup_.last = result;
+  setup_.last_target = target_;
+  setup_.last_continued = continues_;
+  setup_.last_face_energy = now_.face_energy;
+  setup_.last_balanced = report_.converged;
   return report_;
 }
 

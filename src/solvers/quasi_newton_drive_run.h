@@ -84,7 +84,7 @@ private:
   const QuasiNewtonOptions& options_;
   const SolveLimits limits_;
   numerics::SolveBudget budget_;
-  Setup& s_;
+  Setup& setup_;
   DrivenFaces& energy_;
   Paper& paper_;
   const std::vector<double>& target_;

@@ -132,7 +132,7 @@ Eigen::MatrixX3d QuasiNewtonDriver::DriveRun::subspaceStep(const DrivenFaces::Li
   // here, if too short.
   if (motion_.size() > 0)
     addToSubspace(galerkin, motion_, l, rigid);
-  if (!continues_ && s_.gauss_newton.valid())
+  if (!continues_ && setup_.gauss_newton.valid())
     addToSubspace(galerkin, precondition(galerkin.residual), l, rigid);
   krylov_cut_ = false;
   for (int k = 0; k < options_.subspace_directions; ++k)
@@ -195,22 +195,22 @@ Eigen::MatrixX3d QuasiNewtonDriver::DriveRun::multiply(const DrivenFaces::Linear
 /// The kept factorisation's solve (the constant matrix's before there is one), counted.
 Eigen::MatrixX3d QuasiNewtonDriver::DriveRun::precondition(const Eigen::MatrixX3d& q)
 {
-  if (options_.hessian == DriverHessian::Constant || !s_.gauss_newton.valid())
+  if (options_.hessian == DriverHessian::Constant || !setup_.gauss_newton.valid())
     return solveConstant(q);
   ++report_.back_substitutions;
   const Eigen::MatrixX3d qt = q;  // row per vertex: flattened row-major it is 3i + axis
   Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> rows = qt;
-  const Eigen::VectorXd solved = s_.gauss_newton.solve(Eigen::Map<const Eigen::VectorXd>(rows.data(), rows.size()));
+  const Eigen::VectorXd solved = setup_.gauss_newton.solve(Eigen::Map<const Eigen::VectorXd>(rows.data(), rows.size()));
   return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(solved.data(), rows.rows(), 3);
 }
 
 /// The constant matrix's solve, counted (and its factorisation, where this frame makes it).
 Eigen::MatrixX3d QuasiNewtonDriver::DriveRun::solveConstant(const Eigen::MatrixX3d& rhs)
 {
-  const bool unfactored = !s_.constant_tried;
-  Eigen::MatrixX3d solved = s_.solveConstant(rhs);
+  const bool unfactored = !setup_.constant_tried;
+  Eigen::MatrixX3d solved = setup_.solveConstant(rhs);
   report_.factorizations += unfactored ? 1 : 0;
-  report_.back_substitutions += s_.factored ? 1 : 0;
+  report_.back_substitutions += setup_.factored ? 1 : 0;
   return solved;
 }
 
@@ -239,7 +239,7 @@ void QuasiNewtonDriver::DriveRun::restoreFaces(Positions& at, Positions& at_grad
       break;
     }
   }
-  s_.restore_seconds = clock.seconds();
+  setup_.restore_seconds = clock.seconds();
 }
 
 /// The Gauss–Newton matrix at x factorised; nothing held, its null space (rigid motions) is
@@ -249,7 +249,7 @@ bool QuasiNewtonDriver::DriveRun::refactor()
 {
   const numerics::SolveBudget clock(SolveLimits{});
   assembleGaussNewton();
-  const Eigen::SparseMatrix<double>& m = s_.gauss_newton_matrix;
+  const Eigen::SparseMatrix<double>& m = setup_.gauss_newton_matrix;
   double largest = 0.0;
   for (int k = 0; k < m.outerSize(); ++k)
     for (Eigen::SparseMatrix<double>::InnerIterator it(m, k); it; ++it)
@@ -259,9 +259,9 @@ bool QuasiNewtonDriver::DriveRun::refactor()
   for (double shift = largest * (anchored_ ? 1e-12 : 1e-9); shift <= largest && !factorized; shift *= 100)
   {
     ++report_.factorizations;
-    factorized = s_.gauss_newton.factorize(m, shift);
+    factorized = setup_.gauss_newton.factorize(m, shift);
   }
-  s_.factor_seconds = clock.seconds();
+  setup_.factor_seconds = clock.seconds();
   return factorized;
 }
 
@@ -276,21 +276,21 @@ void QuasiNewtonDriver::DriveRun::refactorAfresh()
 /// lands planned once per pattern (and shared with the driver's clones), the values summed.
 void QuasiNewtonDriver::DriveRun::assembleGaussNewton()
 {
-  energy_.gaussNewtonTriplets(x_, s_.free_index, s_.triplets);
-  Eigen::SparseMatrix<double>& m = s_.gauss_newton_matrix;
-  if (s_.slots.size() != s_.triplets.size())
+  energy_.gaussNewtonTriplets(x_, setup_.free_index, setup_.triplets);
+  Eigen::SparseMatrix<double>& m = setup_.gauss_newton_matrix;
+  if (setup_.slots.size() != setup_.triplets.size())
   {
     AssemblyPlan& plan = *driver_.assembly_;
     const std::lock_guard<std::mutex> planning(plan.mutex);
-    if (!plan.matches(s_.triplets))
-      plan.plan(s_.triplets, 3 * s_.free_count);
+    if (!plan.matches(setup_.triplets))
+      plan.plan(setup_.triplets, 3 * setup_.free_count);
     m = plan.pattern;
-    s_.slots = plan.slots;
+    setup_.slots = plan.slots;
   }
   double* values = m.valuePtr();
   std::fill(values, values + m.nonZeros(), 0.0);
-  for (size_t k = 0; k < s_.triplets.size(); ++k)
-    values[s_.slots[k]] += s_.triplets[k].value();
+  for (size_t k = 0; k < setup_.triplets.size(); ++k)
+    values[setup_.slots[k]] += setup_.triplets[k].value();
 }
 
 /// Whether `work` (and the line search's passes and the final restoring step after it) ends
@@ -305,7 +305,7 @@ bool QuasiNewtonDriver::DriveRun::fits(double work) const
 /// one took): in a preview frame the kept matrix serves until it fails outright.
 bool QuasiNewtonDriver::DriveRun::roomForFactor() const
 {
-  return limits_.max_seconds <= 0 || limits_.max_seconds - budget_.seconds() > 2 * s_.factor_seconds;
+  return limits_.max_seconds <= 0 || limits_.max_seconds - budget_.seconds() > 2 * setup_.factor_seconds;
 }
 
 /// How far the faces turned since the kept matrix was factorised, as K·δ² for the face that
@@ -313,11 +313,11 @@ bool QuasiNewtonDriver::DriveRun::roomForFactor() const
 /// charges along the mechanism's present turn, against the hinges' stiffness (about 1).
 double QuasiNewtonDriver::DriveRun::turnedSinceFactor(const DrivenFaces::Linearization& l) const
 {
-  if (s_.factor_frames.size() != l.frame.size())
+  if (setup_.factor_frames.size() != l.frame.size())
     return INFINITY;
   double largest = 0.0;
   for (size_t f = 0; f < l.frame.size(); ++f)
-    largest = std::max(largest, (l.frame[f] - s_.factor_frames[f]).squaredNorm());
+    largest = std::max(largest, (l.frame[f] - setup_.factor_frames[f]).squaredNorm());
   return energy_.faceStiffness() * largest;
 }
 
