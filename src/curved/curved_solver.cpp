@@ -534,26 +534,7 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
     refresh = false;
     refresh_in_solve = true;
     krylov = false;
-    double last_alpha = 0;
-    for (int attempt = 0; attempt < 30 && last_alpha == 0; ++attempt)
-    {
-      if (attempt > 0)
-        shift *= 100;
-      ++report.factorizations;
-      if (!factorization_.factorize(hessian_, shift))
-      {
-        // Curvature below −shift somewhere; above kNegligibleCurvature it is the free turn's
-        // rounding, not a saddle.
-        negative_curvature_ = negative_curvature_ || shift >= kNegligibleCurvature * material_.stretch;
-        continue;
-      }
-      factor_shift_ = shift;
-      renew_factorization_ = false;
-      stale_steps_help_ = true;
-      factor_free_ = free_index;
-      Eigen::VectorXd step = factorization_.solve(-g);
-      last_alpha = search(step, 30);
-    }
+    const double last_alpha = factorisedStep(g, free_index, search, shift, report);
     if (last_alpha == 0)
     {
       stuck = "no step lowers the energy any further";
@@ -572,6 +553,33 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
     report.message = msg.str();
   }
   return report;
+}
+
+double CurvedSolver::factorisedStep(const Eigen::VectorXd& g, const std::vector<int>& free_index,
+                                    const std::function<double(Eigen::VectorXd&, int)>& search, double& shift,
+                                    CurvedReport& report)
+{
+  double alpha = 0;
+  for (int attempt = 0; attempt < 30 && alpha == 0; ++attempt)
+  {
+    if (attempt > 0)
+      shift *= 100;
+    ++report.factorizations;
+    if (!factorization_.factorize(hessian_, shift))
+    {
+      // Curvature below −shift somewhere; above kNegligibleCurvature it is the free turn's
+      // rounding, not a saddle.
+      negative_curvature_ = negative_curvature_ || shift >= kNegligibleCurvature * material_.stretch;
+      continue;
+    }
+    factor_shift_ = shift;
+    renew_factorization_ = false;
+    stale_steps_help_ = true;
+    factor_free_ = free_index;
+    Eigen::VectorXd step = factorization_.solve(-g);
+    alpha = search(step, 30);
+  }
+  return alpha;
 }
 
 bool CurvedSolver::prepareConstantFactor(const Positions& x, const std::vector<int>& free_index, int free_count)

@@ -130,6 +130,109 @@ double independence(const std::vector<Eigen::RowVector3d>& rows)
   const Eigen::VectorXd s = Eigen::JacobiSVD<Eigen::MatrixXd>(m).singularValues();
   return s.size() < 3 ? 0.0 : s[2];
 }
+
+std::vector<Eigen::RowVector3d> rowsOf(const std::vector<Hinge>& hinges)
+{
+  std::vector<Eigen::RowVector3d> rows;
+  for (const Hinge& h : hinges)
+    rows.push_back(h.row);
+  return rows;
+}
+
+constexpr double kIndependent = 0.05;  // rows this far from dependent fix h well enough
+
+/// Triangle t's own hinges (`used`, fewer than three) completed by the one or two hinges of the
+/// triangles within two bending sides that fix its curvature best; as they were where none fix
+/// it well enough.
+std::vector<Hinge> completedHinges(const Lookup& look, int t, const std::vector<Hinge>& used)
+{
+  // Candidates: the hinges of the triangles within two bending sides.
+  std::vector<int> near = { t };
+  for (int depth = 0; depth < 2; ++depth)
+  {
+    const size_t count = near.size();
+    for (size_t k = 0; k < count; ++k)
+      for (int i = 0; i < 3; ++i)
+        if (std::optional<Hinge> h = sideHinge(look, near[k], i))
+          if (h->across >= 0 && std::find(near.begin(), near.end(), h->across) == near.end())
+            near.push_back(h->across);
+  }
+  std::vector<Hinge> candidates;
+  for (size_t k = 1; k < near.size(); ++k)
+    for (int i = 0; i < 3; ++i)
+      if (std::optional<Hinge> h = sideHinge(look, near[k], i))
+      {
+        const auto same = [&](const Hinge& o) { return o.edge == h->edge; };
+        if (std::none_of(used.begin(), used.end(), same) && std::none_of(candidates.begin(), candidates.end(), same))
+          candidates.push_back(*h);
+      }
+  // The one or two that fix the curvature best.
+  const size_t need = 3 - used.size();
+  double best = 0.0;
+  std::vector<Hinge> chosen;
+  for (size_t p = 0; p < candidates.size(); ++p)
+    for (size_t q = need == 1 ? p : p + 1; q < (need == 1 ? p + 1 : candidates.size()); ++q)
+    {
+      std::vector<Hinge> trial = used;
+      trial.push_back(candidates[p]);
+      if (need == 2)
+        trial.push_back(candidates[q]);
+      const double quality = independence(rowsOf(trial));
+      if (quality > best)
+      {
+        best = quality;
+        chosen = trial;
+      }
+    }
+  return best > kIndependent ? chosen : used;
+}
+
+/// The jump of the curvature across each bending side inside a face: ½·s·A·(h − h')ᵀ·Q·(h − h'),
+/// over the hinges of both triangles, A the mean of their areas.
+void addSmoothingTerms(const CurvedMesh& mesh, const CurvedMaterial& material, const Eigen::Matrix3d& density,
+                       const std::vector<std::vector<Hinge>>& hinges_of,
+                       const std::vector<Eigen::MatrixXd>& curvature_of, std::vector<PlateTerm>& terms)
+{
+  for (const MeshEdge& edge : mesh.edges)
+  {
+    if (!edge.isHinge())
+      continue;
+    const int t = edge.triangles[0], u = edge.triangles[1];
+    if (hinges_of[t].empty() || hinges_of[u].empty())
+      continue;
+    if (mesh.triangles[t].face != mesh.triangles[u].face)
+      continue;  // a crease: the curvature may jump there
+    PlateTerm term;
+    std::vector<int> edges;
+    const auto slotOf = [&](const Hinge& h) {
+      const auto at = std::find(edges.begin(), edges.end(), h.edge);
+      if (at != edges.end())
+        return static_cast<int>(at - edges.begin());
+      edges.push_back(h.edge);
+      term.hinges.push_back(h.nodes);
+      term.rest.push_back(h.rest);
+      return static_cast<int>(edges.size()) - 1;
+    };
+    std::vector<int> slots_t, slots_u;
+    for (const Hinge& h : hinges_of[t])
+      slots_t.push_back(slotOf(h));
+    for (const Hinge& h : hinges_of[u])
+      slots_u.push_back(slotOf(h));
+    // A hinge seen from the other side has the same dihedral: slotOf matches it by its edge.
+    Eigen::MatrixXd jump = Eigen::MatrixXd::Zero(3, edges.size());
+    for (size_t k = 0; k < slots_t.size(); ++k)
+      jump.col(slots_t[k]) += curvature_of[t].col(k);
+    for (size_t k = 0; k < slots_u.size(); ++k)
+      jump.col(slots_u[k]) -= curvature_of[u].col(k);
+    double stiffness = material.bend;
+    if (mesh.triangles[t].face < static_cast<int>(mesh.curved_faces.size()) &&
+        !mesh.curved_faces[mesh.triangles[t].face])
+      stiffness *= material.flat_face;
+    const double area = 0.5 * (mesh.restArea(t) + mesh.restArea(u));
+    term.weight = material.plate_smoothing * stiffness * area * jump.transpose() * density * jump;
+    terms.push_back(std::move(term));
+  }
+}
 }  // namespace
 
 std::vector<PlateTerm> plateTerms(const CurvedMesh& mesh, const Paper& paper, const CurvedMaterial& material)
@@ -143,7 +246,6 @@ std::vector<PlateTerm> plateTerms(const CurvedMesh& mesh, const Paper& paper, co
   const double nu = material.poisson_ratio;
   Eigen::Matrix3d density;  // ½·hᵀ·density·h = ½·(ν (tr H)² + (1 − ν) H : H)
   density << 1, nu, 0, nu, 1, 0, 0, 0, 2 * (1 - nu);
-  constexpr double kIndependent = 0.05;  // rows this far from dependent fix h well enough
 
   std::vector<PlateTerm> terms;
   terms.reserve(mesh.triangles.size());
@@ -169,55 +271,8 @@ std::vector<PlateTerm> plateTerms(const CurvedMesh& mesh, const Paper& paper, co
         used.push_back(*h);
     if (used.empty())
       continue;
-    const auto rowsOf = [](const std::vector<Hinge>& hinges) {
-      std::vector<Eigen::RowVector3d> rows;
-      for (const Hinge& h : hinges)
-        rows.push_back(h.row);
-      return rows;
-    };
     if (used.size() < 3)
-    {
-      // Candidates: the hinges of the triangles within two bending sides.
-      std::vector<int> near = { static_cast<int>(t) };
-      for (int depth = 0; depth < 2; ++depth)
-      {
-        const size_t count = near.size();
-        for (size_t k = 0; k < count; ++k)
-          for (int i = 0; i < 3; ++i)
-            if (std::optional<Hinge> h = sideHinge(look, near[k], i))
-              if (h->across >= 0 && std::find(near.begin(), near.end(), h->across) == near.end())
-                near.push_back(h->across);
-      }
-      std::vector<Hinge> candidates;
-      for (size_t k = 1; k < near.size(); ++k)
-        for (int i = 0; i < 3; ++i)
-          if (std::optional<Hinge> h = sideHinge(look, near[k], i))
-          {
-            const auto same = [&](const Hinge& o) { return o.edge == h->edge; };
-            if (std::none_of(used.begin(), used.end(), same) && std::none_of(candidates.begin(), candidates.end(), same))
-              candidates.push_back(*h);
-          }
-      // The one or two that fix the curvature best.
-      const size_t need = 3 - used.size();
-      double best = 0.0;
-      std::vector<Hinge> chosen;
-      for (size_t p = 0; p < candidates.size(); ++p)
-        for (size_t q = need == 1 ? p : p + 1; q < (need == 1 ? p + 1 : candidates.size()); ++q)
-        {
-          std::vector<Hinge> trial = used;
-          trial.push_back(candidates[p]);
-          if (need == 2)
-            trial.push_back(candidates[q]);
-          const double quality = independence(rowsOf(trial));
-          if (quality > best)
-          {
-            best = quality;
-            chosen = trial;
-          }
-        }
-      if (best > kIndependent)
-        used = chosen;
-    }
+      used = completedHinges(look, static_cast<int>(t), used);
     Eigen::MatrixXd r(used.size(), 3);
     for (size_t k = 0; k < used.size(); ++k)
       r.row(k) = used[k].row;
@@ -243,47 +298,8 @@ std::vector<PlateTerm> plateTerms(const CurvedMesh& mesh, const Paper& paper, co
     hinges_of[t] = used;
     curvature_of[t] = curvature;
   }
-  // The jump of the curvature across each bending side: ½·s·A·(h − h')ᵀ·Q·(h − h'), over the
-  // hinges of both triangles, A the mean of their areas.
   if (material.plate_smoothing > 0)
-    for (const MeshEdge& edge : mesh.edges)
-    {
-      if (!edge.isHinge())
-        continue;
-      const int t = edge.triangles[0], u = edge.triangles[1];
-      if (hinges_of[t].empty() || hinges_of[u].empty())
-        continue;
-      if (mesh.triangles[t].face != mesh.triangles[u].face)
-        continue;  // a crease: the curvature may jump there
-      PlateTerm term;
-      std::vector<int> edges;
-      const auto slotOf = [&](const Hinge& h) {
-        const auto at = std::find(edges.begin(), edges.end(), h.edge);
-        if (at != edges.end())
-          return static_cast<int>(at - edges.begin());
-        edges.push_back(h.edge);
-        term.hinges.push_back(h.nodes);
-        term.rest.push_back(h.rest);
-        return static_cast<int>(edges.size()) - 1;
-      };
-      std::vector<int> slots_t, slots_u;
-      for (const Hinge& h : hinges_of[t])
-        slots_t.push_back(slotOf(h));
-      for (const Hinge& h : hinges_of[u])
-        slots_u.push_back(slotOf(h));
-      // A hinge seen from the other side has the same dihedral: slotOf matches it by its edge.
-      Eigen::MatrixXd jump = Eigen::MatrixXd::Zero(3, edges.size());
-      for (size_t k = 0; k < slots_t.size(); ++k)
-        jump.col(slots_t[k]) += curvature_of[t].col(k);
-      for (size_t k = 0; k < slots_u.size(); ++k)
-        jump.col(slots_u[k]) -= curvature_of[u].col(k);
-      double stiffness = material.bend;
-      if (mesh.triangles[t].face < static_cast<int>(mesh.curved_faces.size()) && !mesh.curved_faces[mesh.triangles[t].face])
-        stiffness *= material.flat_face;
-      const double area = 0.5 * (mesh.restArea(t) + mesh.restArea(u));
-      term.weight = material.plate_smoothing * stiffness * area * jump.transpose() * density * jump;
-      terms.push_back(std::move(term));
-    }
+    addSmoothingTerms(mesh, material, density, hinges_of, curvature_of, terms);
   for (PlateTerm& term : terms)
     for (const auto& h : term.hinges)
       for (int node : h)

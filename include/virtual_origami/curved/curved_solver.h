@@ -162,6 +162,13 @@ private:
     return surroundings_.gravity != 0 || surroundings_.table;
   }
   CurvedReport newton(Positions& x, const std::vector<int>& free_index, int free_count);
+  /// Newton's last resort: the exact Hessian (hessian_, gradient g) factorised with the damping
+  /// `shift`, raised a hundredfold per try until it is positive definite and its step, taken by
+  /// `search` (Armijo, up to 30 halvings), lowers the energy; that factorisation is kept.
+  /// Returns the step length taken (0: none in 30 tries), `shift` the last one tried.
+  double factorisedStep(const Eigen::VectorXd& g, const std::vector<int>& free_index,
+                        const std::function<double(Eigen::VectorXd&, int)>& search, double& shift,
+                        CurvedReport& report);
   /// The step of hessian_ + μI against gradient g by conjugate gradients preconditioned by the
   /// kept factorisation, orthogonal to `free_motions`, in at most `max_iterations`. Returns
   /// the factor by which the linear model cuts the largest force (1 at negative curvature, 0

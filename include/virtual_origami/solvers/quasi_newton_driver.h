@@ -104,6 +104,7 @@ public:
 
 private:
   struct Setup;
+  class DriveRun;  // one call of drive(): its state and named steps
   QuasiNewtonOptions options_;
   std::mutex mutex_;
   std::unique_ptr<Setup> setup_;
