@@ -134,10 +134,11 @@ void GestureModel::showSheet()
 void GestureModel::showSlider()
 {
   slider_stale_ = false;
-  if (!paper_ || !hasDrivenCreases(*paper_))
+  if (!paper_)
     return;
-  slider_fraction_ = committed_fraction_ && committed_fraction_->first == revision_ ? committed_fraction_->second :
-                                                                                      foldFraction(*paper_);
+  if (hasDrivenCreases(*paper_))  // without them there is no slider: it is taken away
+    slider_fraction_ = committed_fraction_ && committed_fraction_->first == revision_ ? committed_fraction_->second :
+                                                                                        foldFraction(*paper_);
   emit(SliderShown{});
 }
 

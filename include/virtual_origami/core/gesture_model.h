@@ -112,7 +112,8 @@ struct SheetReleased
 {
   bool reshow = false;
 };
-/// The fold slider is sent again, its handle at `GestureModel::sliderFraction()`.
+/// The fold slider is sent again, its handle at `GestureModel::sliderFraction()` (or taken away
+/// from a paper without driven creases).
 struct SliderShown
 {};
 /// The slider's handle and percent moved to `fraction`.
