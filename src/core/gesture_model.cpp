@@ -32,32 +32,6 @@ const char* modeName(GestureMode mode)
   return "";
 }
 
-const char* stateName(GestureState state)
-{
-  switch (state)
-  {
-    case GestureState::Idle:
-      return "idle";
-    case GestureState::DrawingLine:
-      return "drawing a line";
-    case GestureState::TurningFace:
-      return "turning a face";
-    case GestureState::TurningNothing:
-      return "turning nothing";
-    case GestureState::PickingFold:
-      return "picking for a fold";
-    case GestureState::HoldingVertex:
-      return "holding a vertex";
-    case GestureState::Bending:
-      return "bending";
-    case GestureState::Sliding:
-      return "sliding";
-    case GestureState::FoldingMarks:
-      return "folding the marks";
-  }
-  return "";
-}
-
 GestureModel::GestureModel(GestureSettings settings, GestureOutputs& outputs, std::function<double()> clock)
   : settings_(std::move(settings)), outputs_(outputs), clock_(std::move(clock)), mode_(settings_.mode)
 {

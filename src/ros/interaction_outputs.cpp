@@ -64,6 +64,63 @@ SliderStyle scaledTo(const std::optional<core::Paper>& paper, SliderStyle style)
   return style;
 }
 
+/// The drag's guides: the line with its snaps or the ring, else none; and the named axis.
+visualization_msgs::MarkerArray guideMarkers(const core::Guides& g, const InteractionStyle& style, const ros::Time& now)
+{
+  visualization_msgs::MarkerArray array = g.line ? creaseDragMarkers(*g.line, style, now) :
+                                          g.ring ? rotationDragMarkers(*g.ring, g.angle, style, now) :
+                                                   clearedMarkers(style, now);
+  if (g.named_axis)
+  {
+    const visualization_msgs::MarkerArray axis =
+        namedAxisMarkers(g.named_axis->first, g.named_axis->second, style, now);
+    array.markers.insert(array.markers.end(), axis.markers.begin(), axis.markers.end());
+  }
+  return array;
+}
+
+visualization_msgs::MarkerArray picksMarkers(const core::Paper& paper, const core::Picks& p,
+                                             const InteractionStyle& style, const ros::Time& now)
+{
+  visualization_msgs::MarkerArray array = chosenCreaseMarkers(paper, p.marks, p.picked_edge, p.keep_face, style, now);
+  const visualization_msgs::MarkerArray picked = pickMarkers(paper, p.face, p.vertex, style, now);
+  array.markers.insert(array.markers.end(), picked.markers.begin(), picked.markers.end());
+  return array;
+}
+
+/// The goal the ViewCamera display turns rviz's view to; without a frame: back to the view
+/// before the turn.
+geometry_msgs::PoseStamped viewTurnGoal(const core::ViewTurn& turn, const std::string& frame_id, const ros::Time& now)
+{
+  geometry_msgs::PoseStamped goal;
+  goal.header.stamp = now;
+  if (!turn.to)
+    return goal;
+  goal.header.frame_id = frame_id;
+  goal.pose.position = toPoint(turn.to->eye);
+  const Eigen::Quaterniond q(turn.to->axes);
+  goal.pose.orientation.w = q.w();
+  goal.pose.orientation.x = q.x();
+  goal.pose.orientation.y = q.y();
+  goal.pose.orientation.z = q.z();
+  return goal;
+}
+
+/// Removes the bent sheet shown while the curved model held the vertex.
+visualization_msgs::MarkerArray bentSheetHidden(const std_msgs::Header& header)
+{
+  visualization_msgs::MarkerArray hide;
+  for (const char* ns : { "bent_sheet", "bent_sheet_back", "bent_sheet_edges" })
+  {
+    visualization_msgs::Marker m;
+    m.header = header;
+    m.ns = ns;
+    m.action = visualization_msgs::Marker::DELETE;
+    hide.markers.push_back(m);
+  }
+  return hide;
+}
+
 template <class... Ts>
 struct Overloaded : Ts...
 {
@@ -151,43 +208,11 @@ void InteractionNode::show(const core::GestureOutput& output)
 {
   style_.drawn_top = model_.drawnTop();
   const ros::Time now = ros::Time::now();
-  const std::optional<core::Paper>& paper = model_.paper();
   std::visit(Overloaded{
-                 [&](const core::Guides& g) {
-                   visualization_msgs::MarkerArray array = g.line ? creaseDragMarkers(*g.line, style_, now) :
-                                                           g.ring ? rotationDragMarkers(*g.ring, g.angle, style_, now) :
-                                                                    clearedMarkers(style_, now);
-                   if (g.named_axis)
-                   {
-                     const visualization_msgs::MarkerArray axis =
-                         namedAxisMarkers(g.named_axis->first, g.named_axis->second, style_, now);
-                     array.markers.insert(array.markers.end(), axis.markers.begin(), axis.markers.end());
-                   }
-                   markers_pub_.publish(array);
-                 },
-                 [&](const core::Picks& p) {
-                   visualization_msgs::MarkerArray array =
-                       chosenCreaseMarkers(*paper, p.marks, p.picked_edge, p.keep_face, style_, now);
-                   const visualization_msgs::MarkerArray picked = pickMarkers(*paper, p.face, p.vertex, style_, now);
-                   array.markers.insert(array.markers.end(), picked.markers.begin(), picked.markers.end());
-                   markers_pub_.publish(array);
-                 },
+                 [&](const core::Guides& g) { markers_pub_.publish(guideMarkers(g, style_, now)); },
+                 [&](const core::Picks& p) { markers_pub_.publish(picksMarkers(*model_.paper(), p, style_, now)); },
                  [&](const core::Message& m) { tell(m); },
-                 [&](const core::ViewTurn& t) {
-                   geometry_msgs::PoseStamped goal;  // without a frame: the view before the turn
-                   goal.header.stamp = now;
-                   if (t.to)
-                   {
-                     goal.header.frame_id = style_.frame_id;
-                     goal.pose.position = toPoint(t.to->eye);
-                     const Eigen::Quaterniond q(t.to->axes);
-                     goal.pose.orientation.w = q.w();
-                     goal.pose.orientation.x = q.x();
-                     goal.pose.orientation.y = q.y();
-                     goal.pose.orientation.z = q.z();
-                   }
-                   view_turn_pub_.publish(goal);
-                 },
+                 [&](const core::ViewTurn& t) { view_turn_pub_.publish(viewTurnGoal(t, style_.frame_id, now)); },
                  [&](const core::CurvedHold& h) {
                    VertexTarget held;  // vertex -1: let go
                    held.header.frame_id = style_.frame_id;
@@ -195,18 +220,8 @@ void InteractionNode::show(const core::GestureOutput& output)
                    held.vertex = h.vertex;
                    held.position = toPoint(h.target);
                    curved_drag_pub_.publish(held);
-                   if (h.vertex >= 0)
-                     return;
-                   visualization_msgs::MarkerArray hide;  // the bent sheet shown during the drag
-                   for (const char* ns : { "bent_sheet", "bent_sheet_back", "bent_sheet_edges" })
-                   {
-                     visualization_msgs::Marker m;
-                     m.header = held.header;
-                     m.ns = ns;
-                     m.action = visualization_msgs::Marker::DELETE;
-                     hide.markers.push_back(m);
-                   }
-                   markers_pub_.publish(hide);
+                   if (h.vertex < 0)
+                     markers_pub_.publish(bentSheetHidden(held.header));
                  },
                  [&](const core::SheetShown&) { showPaper(); },
                  [&](const core::SheetReleased& r) {
@@ -222,7 +237,8 @@ void InteractionNode::show(const core::GestureOutput& output)
                  [&](const core::SliderShown&) { showSlider(); },
                  [&](const core::SliderMoved& s) {
                    if (slider_shown_)
-                     slider_pub_.publish(sliderMarkers(track_, s.fraction, scaledTo(paper, slider_style_), now));
+                     slider_pub_.publish(
+                         sliderMarkers(track_, s.fraction, scaledTo(model_.paper(), slider_style_), now));
                  },
              },
              output);

@@ -1,7 +1,7 @@
 // The mouse gestures on the paper (SPEC §5), without ROS: presses, moves and releases on the
 // sheet and on the fold slider, and the menu's choices, in; the requests to paper_model
 // (gesture_requests.h) and what to draw (guides, picks, messages, the view turn) out, through
-// GestureOutputs. One explicit state machine: what the mouse holds, entered and left in
+// GestureOutputs (gesture_outputs.h). One explicit state machine: what the mouse holds, entered and left in
 // `enter` only. The interaction node is its adapter (ROS feedback in, service calls and markers
 // out); tests drive it directly (gesture_model_test.cpp).
 #pragma once
@@ -17,6 +17,7 @@
 
 #include "virtual_origami/core/chosen_creases.h"
 #include "virtual_origami/core/drag.h"
+#include "virtual_origami/core/gesture_outputs.h"
 #include "virtual_origami/core/gesture_requests.h"
 #include "virtual_origami/core/paper.h"
 #include "virtual_origami/core/snap.h"
@@ -34,7 +35,12 @@ enum class GestureMode
 };
 const char* modeName(GestureMode mode);  // "crease", "rotate", "fold", "drag"
 
-/// What the mouse holds. Idle between gestures; one state per kind of drag.
+/// What the mouse holds. Idle between gestures; one state per kind of drag. The transitions:
+///   Idle --press--> DrawingLine | TurningFace | TurningNothing | PickingFold | HoldingVertex
+///   HoldingVertex <--rigid faces follow / do not, bent paper does--> Bending
+///   Idle --slider press--> Sliding;  Idle --Fold on the marked creases--> FoldingMarks
+///   any --release, last frame, mode change--> Idle (a new press or input finishes the fold first)
+/// Leaving Bending lets the curved model go; leaving a turn turns the view back (`enter`).
 enum class GestureState
 {
   Idle,
@@ -47,7 +53,6 @@ enum class GestureState
   Sliding,         // the fold slider's handle
   FoldingMarks,    // the fold on the marked creases, animated frame by frame
 };
-const char* stateName(GestureState state);
 
 /// Where the mouse is, as rviz reports it on the sheet marker (in the paper frame).
 struct Pointer
@@ -55,84 +60,6 @@ struct Pointer
   std::optional<Vec3> mouse_point;      // the point under the mouse, when rviz found one
   Vec3 marker_position = Vec3::Zero();  // where the drag moved the sheet marker
   std::optional<ViewCamera> camera;     // rviz's camera at that moment, when it is known
-};
-
-/// The drag's guides: the line being drawn with its snaps, or the ring a face turns on; with
-/// neither, the guides are cleared (a crease named as the axis stays shown).
-struct Guides
-{
-  std::optional<CreaseDrag> line;
-  std::optional<RotationRing> ring;
-  double angle = 0.0;
-  std::optional<std::pair<Vec3, Vec3>> named_axis;
-};
-
-/// The marks, the face that stays and the picked layer.
-struct Picks
-{
-  std::vector<std::pair<int, CreaseMark>> marks;
-  int picked_edge = -1, keep_face = -1, face = -1, vertex = -1;
-};
-
-/// Something to tell the user: at `at`, beside the paper (what a click picked: a text over the
-/// paper would take the next click) or at the slider's handle. An empty text: what was said no
-/// longer applies.
-struct Message
-{
-  enum class Place
-  {
-    At,
-    Beside,
-    Slider,
-  };
-  std::string text;
-  Vec3 at = Vec3::Zero();
-  Place place = Place::At;
-};
-
-/// The seed's view turn for the ring just pressed (to), or back to the view before it (none).
-struct ViewTurn
-{
-  std::optional<ViewCamera> to;
-};
-
-/// The curved model holds `vertex` at `target`; vertex -1: it lets go and the bent sheet goes.
-struct CurvedHold
-{
-  int vertex = -1;
-  Vec3 target = Vec3::Zero();
-};
-
-/// The sheet marker and the menu's check marks are sent again (never during a drag: that would
-/// end it in rviz).
-struct SheetShown
-{};
-/// A drag on the sheet ended: the marker goes back under the sheet; `reshow`: and is sent again.
-struct SheetReleased
-{
-  bool reshow = false;
-};
-/// The fold slider is sent again, its handle at `GestureModel::sliderFraction()` (or taken away
-/// from a paper without driven creases).
-struct SliderShown
-{};
-/// The slider's handle and percent moved to `fraction`.
-struct SliderMoved
-{
-  double fraction = 0.0;
-};
-
-using GestureOutput =
-    std::variant<Guides, Picks, Message, ViewTurn, CurvedHold, SheetShown, SheetReleased, SliderShown, SliderMoved>;
-
-/// Where the model's requests and drawings go: the interaction node's services and markers, or
-/// a test's record.
-class GestureOutputs
-{
-public:
-  virtual ~GestureOutputs() = default;
-  virtual PaperReply send(const PaperRequest& request) = 0;
-  virtual void show(const GestureOutput& output) = 0;
 };
 
 struct GestureSettings
