@@ -450,3 +450,65 @@ TEST_F(GestureModelTest, APaperChangedDuringADragIsShownAfterTheRelease)
   model.paperChanged(Paper::square(1.0), ++revision, {});
   EXPECT_EQ(out.drawn<SheetShown>().size(), 1u);
 }
+
+namespace
+{
+/// rviz's camera straight above `over`, `height` up, looking down (x right, y down the picture).
+ViewCamera cameraAbove(const Vec3& over, double height)
+{
+  ViewCamera camera;
+  camera.eye = over + Vec3(0, 0, height);
+  camera.axes.col(0) = Vec3::UnitX();
+  camera.axes.col(2) = -Vec3::UnitZ();
+  camera.axes.col(1) = camera.axes.col(2).cross(camera.axes.col(0));
+  return camera;
+}
+}  // namespace
+
+TEST_F(GestureModelTest, WithTheCameraKnownTheCreaseGoesThroughTheLayersTheEyeSees)
+{
+  load(Paper::square(1.0));
+  const ViewCamera camera = cameraAbove(p3(0.5, 0.5), 2.0);
+  model.press(Pointer{ p3(0.012, 0.02, 0.004), Vec3::Zero(), camera });
+  // The marker moves on the plane facing the eye; the line's end is where the pointer's sight
+  // line meets the pressed face's plane.
+  model.release(Pointer{ std::nullopt, p3(0.985, 0.99) - p3(0.012, 0.02), camera });
+  const std::vector<CreaseCall> creases = out.sent<CreaseCall>();
+  ASSERT_EQ(creases.size(), 1u);
+  ASSERT_TRUE(creases[0].eye.has_value());
+  EXPECT_TRUE(creases[0].eye->isApprox(camera.eye));
+  EXPECT_TRUE(creases[0].start.isApprox(p3(0, 0)));
+  EXPECT_TRUE(creases[0].end.isApprox(p3(1, 1)));
+}
+
+TEST_F(GestureModelTest, ARingSeenEdgeOnTurnsTheViewForTheDragAndBackOnRelease)
+{
+  load(diagonalSquare());
+  model.chooseMode(GestureMode::Rotate, at(p3(0.5, 0.5)));
+  out.forget();
+  const ViewCamera camera = cameraAbove(p3(0.5, 0.5), 2.0);  // from straight above: edge-on
+  model.press(Pointer{ p3(0.8, 0.3, 0.004), Vec3::Zero(), camera });
+  ASSERT_EQ(model.state(), GestureState::TurningFace);
+  std::vector<ViewTurn> turns = out.drawn<ViewTurn>();
+  ASSERT_EQ(turns.size(), 1u);
+  ASSERT_TRUE(turns[0].to.has_value());
+  // Turned so that the sight line to the press meets the axis (the diagonal) at |cos| ≥ 0.6.
+  const Vec3 axis = Vec3(1, 1, 0).normalized();
+  EXPECT_GE(std::abs(turns[0].to->rayTo(p3(0.8, 0.3)).dot(axis)), 0.6);
+  model.release(Pointer{ std::nullopt, Vec3::Zero(), camera });
+  turns = out.drawn<ViewTurn>();
+  ASSERT_EQ(turns.size(), 2u);
+  EXPECT_FALSE(turns[1].to.has_value());  // back to the view before the turn
+}
+
+TEST_F(GestureModelTest, WithoutTheViewTurnSettingTheViewStays)
+{
+  GestureSettings settings;
+  settings.view_turn = false;
+  settings.mode = GestureMode::Rotate;
+  GestureModel fixed(settings, out, [this] { return now; });
+  fixed.paperChanged(diagonalSquare(), 1, {});
+  fixed.press(Pointer{ p3(0.8, 0.3, 0.004), Vec3::Zero(), cameraAbove(p3(0.5, 0.5), 2.0) });
+  EXPECT_EQ(fixed.state(), GestureState::TurningFace);
+  EXPECT_TRUE(out.drawn<ViewTurn>().empty());
+}
