@@ -151,11 +151,6 @@ public:
   {
     return revision_;
   }
-  /// How far over the folded sheet its pickable copy floats (over every drawn layer).
-  double pickLift() const
-  {
-    return pick_lift_;
-  }
   /// How high paper_model draws the top layer.
   double drawnTop() const
   {
@@ -291,6 +286,7 @@ private:
   std::optional<Paper> paper_;
   uint64_t revision_ = 0;
   std::vector<int> pinned_;
+  // The pickable copy floats over every drawn layer; rviz reports mouse points on the copy last shown.
   double pick_lift_ = 0.004, drawn_top_ = 0.0, shown_lift_ = 0.005;
   bool sheet_stale_ = false;   // a change came during a drag: the sheet is sent after it
   bool slider_stale_ = false;  // likewise the slider
