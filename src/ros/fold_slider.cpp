@@ -15,19 +15,9 @@ namespace
 {
 using visualization_msgs::Marker;
 
-Marker baseMarker(const SliderStyle& style, const ros::Time& stamp, const std::string& ns, int type)
+Marker sliderPart(const SliderStyle& style, const ros::Time& stamp, const std::string& ns, int type)
 {
-  Marker m;
-  m.header.frame_id = style.frame_id;
-  m.header.stamp = stamp;
-  m.ns = ns;
-  m.type = type;
-  m.action = Marker::ADD;
-  m.pose.orientation.w = 1.0;
-  m.scale.x = m.scale.y = m.scale.z = style.line_width;
-  m.color = rgba(0.25f, 0.25f, 0.3f);
-  m.frame_locked = true;
-  return m;
+  return baseMarker(style.frame_id, stamp, ns, type, style.line_width, rgba(0.25f, 0.25f, 0.3f));
 }
 }  // namespace
 
@@ -59,8 +49,7 @@ core::Vec3 sliderPoint(const SliderTrack& track, double fraction)
   return track.start + std::clamp(fraction, 0.0, 1.0) * (track.end - track.start);
 }
 
-visualization_msgs::InteractiveMarker sliderHandle(const SliderTrack& track, double fraction,
-                                                   const SliderStyle& style)
+visualization_msgs::InteractiveMarker sliderHandle(const SliderTrack& track, double fraction, const SliderStyle& style)
 {
   visualization_msgs::InteractiveMarker im;
   im.header.frame_id = style.frame_id;
@@ -95,7 +84,7 @@ visualization_msgs::MarkerArray sliderMarkers(const SliderTrack& track, double f
                                               const ros::Time& stamp)
 {
   visualization_msgs::MarkerArray array;
-  Marker line = baseMarker(style, stamp, "fold_slider_track", Marker::LINE_LIST);
+  Marker line = sliderPart(style, stamp, "fold_slider_track", Marker::LINE_LIST);
   line.points = { toPoint(track.start), toPoint(track.end) };
   const core::Vec3 across = core::Vec3::UnitZ().cross(track.end - track.start).normalized() * style.handle_size * 0.4;
   for (int tick = 0; tick <= 4; ++tick)
@@ -106,7 +95,7 @@ visualization_msgs::MarkerArray sliderMarkers(const SliderTrack& track, double f
   }
   array.markers.push_back(line);
 
-  Marker text = baseMarker(style, stamp, "fold_slider_percent", Marker::TEXT_VIEW_FACING);
+  Marker text = sliderPart(style, stamp, "fold_slider_percent", Marker::TEXT_VIEW_FACING);
   text.scale.z = style.text_size;
   text.color = rgba(0.1f, 0.1f, 0.3f);
   char buffer[48];
@@ -122,7 +111,7 @@ visualization_msgs::MarkerArray sliderRemoved(const SliderStyle& style, const ro
   visualization_msgs::MarkerArray array;
   for (const char* ns : { "fold_slider_track", "fold_slider_percent" })
   {
-    Marker m = baseMarker(style, stamp, ns, Marker::LINE_LIST);
+    Marker m = sliderPart(style, stamp, ns, Marker::LINE_LIST);
     m.action = Marker::DELETE;
     array.markers.push_back(m);
   }

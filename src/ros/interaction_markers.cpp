@@ -15,26 +15,18 @@ namespace
 {
 using visualization_msgs::Marker;
 
-Marker baseMarker(const InteractionStyle& style, const ros::Time& stamp, const std::string& ns, int type)
+/// A marker of the interaction: over the sheet's markers, never hidden in them.
+Marker overSheet(const InteractionStyle& style, const ros::Time& stamp, const std::string& ns, int type)
 {
-  Marker m;
-  m.header.frame_id = style.frame_id;
-  m.header.stamp = stamp;
-  m.ns = ns;
-  m.type = type;
-  m.action = Marker::ADD;
-  m.pose.orientation.w = 1.0;
-  m.pose.position.z = style.pick_lift;  // over the sheet's markers, never hidden in them
-  m.scale.x = m.scale.y = m.scale.z = style.line_width;
-  m.color = rgba(0, 0, 0);
-  m.frame_locked = true;
+  Marker m = baseMarker(style.frame_id, stamp, ns, type, style.line_width, rgba(0, 0, 0));
+  m.pose.position.z = style.pick_lift;
   return m;
 }
 
 Marker points(const InteractionStyle& style, const ros::Time& stamp, const std::string& ns,
               const std::vector<core::Vec3>& at, const std_msgs::ColorRGBA& color, double size)
 {
-  Marker m = baseMarker(style, stamp, ns, Marker::SPHERE_LIST);
+  Marker m = overSheet(style, stamp, ns, Marker::SPHERE_LIST);
   m.scale.x = m.scale.y = m.scale.z = size;
   m.color = color;
   for (const core::Vec3& p : at)
@@ -68,7 +60,7 @@ void addSnapGuides(visualization_msgs::MarkerArray& array, const core::Snap& sna
                                    rgba(0.1f, 0.6f, 0.2f, 0.7f), style.point_size));
   if (!snap.guide_lines.empty())
   {
-    Marker lines = baseMarker(style, stamp, which + "_guide_lines", Marker::LINE_LIST);
+    Marker lines = overSheet(style, stamp, which + "_guide_lines", Marker::LINE_LIST);
     lines.scale.x = 0.5 * style.line_width;
     lines.color = rgba(0.55f, 0.2f, 0.75f, 0.8f);
     for (const core::Segment3& s : snap.guide_lines)
@@ -150,7 +142,7 @@ visualization_msgs::MarkerArray creaseDragMarkers(const core::CreaseDrag& drag, 
                                                   const ros::Time& stamp)
 {
   visualization_msgs::MarkerArray array = clearedMarkers(style, stamp);
-  Marker line = baseMarker(style, stamp, "line", Marker::LINE_LIST);
+  Marker line = overSheet(style, stamp, "line", Marker::LINE_LIST);
   line.color = rgba(0.9f, 0.45f, 0.0f);
   line.points = { toPoint(drag.start.point), toPoint(drag.end.point) };
   array.markers.push_back(line);
@@ -163,13 +155,13 @@ visualization_msgs::MarkerArray rotationDragMarkers(const core::RotationRing& ri
                                                     const InteractionStyle& style, const ros::Time& stamp)
 {
   visualization_msgs::MarkerArray array = clearedMarkers(style, stamp);
-  Marker axis = baseMarker(style, stamp, "axis", Marker::LINE_LIST);
+  Marker axis = overSheet(style, stamp, "axis", Marker::LINE_LIST);
   axis.scale.x = 2.5 * style.line_width;
   axis.color = rgba(1.0f, 0.75f, 0.0f);
   axis.points = { toPoint(ring.axis_a), toPoint(ring.axis_b) };
   array.markers.push_back(axis);
 
-  Marker circle = baseMarker(style, stamp, "ring", Marker::LINE_STRIP);
+  Marker circle = overSheet(style, stamp, "ring", Marker::LINE_STRIP);
   circle.color = rgba(0.2f, 0.4f, 0.9f, 0.8f);
   const int segments = 72;
   for (int i = 0; i <= segments; ++i)
@@ -179,7 +171,7 @@ visualization_msgs::MarkerArray rotationDragMarkers(const core::RotationRing& ri
   }
   array.markers.push_back(circle);
 
-  Marker spokes = baseMarker(style, stamp, "spokes", Marker::LINE_LIST);
+  Marker spokes = overSheet(style, stamp, "spokes", Marker::LINE_LIST);
   spokes.color = rgba(0.2f, 0.4f, 0.9f);
   const core::Vec3 now = core::ringPoint(ring, angle);
   spokes.points = { toPoint(ring.centre), toPoint(ring.press), toPoint(ring.centre), toPoint(now) };
@@ -187,7 +179,7 @@ visualization_msgs::MarkerArray rotationDragMarkers(const core::RotationRing& ri
   array.markers.push_back(
       points(style, stamp, "pointer", { ring.press, now }, rgba(0.2f, 0.4f, 0.9f), 1.4 * style.point_size));
 
-  Marker text = baseMarker(style, stamp, "angle", Marker::TEXT_VIEW_FACING);
+  Marker text = overSheet(style, stamp, "angle", Marker::TEXT_VIEW_FACING);
   text.scale.z = style.text_size;
   text.color = rgba(0.1f, 0.1f, 0.3f);
   char buffer[32];
@@ -202,7 +194,7 @@ visualization_msgs::MarkerArray namedAxisMarkers(const core::Vec3& a, const core
                                                  const InteractionStyle& style, const ros::Time& stamp)
 {
   visualization_msgs::MarkerArray array;
-  Marker axis = baseMarker(style, stamp, "named_axis", Marker::LINE_LIST);
+  Marker axis = overSheet(style, stamp, "named_axis", Marker::LINE_LIST);
   axis.scale.x = 2.5 * style.line_width;
   axis.color = rgba(0.9f, 0.3f, 0.0f);
   axis.points = { toPoint(a), toPoint(b) };
@@ -239,7 +231,7 @@ visualization_msgs::MarkerArray chosenCreaseMarkers(const core::Paper& paper,
                                                     const ros::Time& stamp)
 {
   visualization_msgs::MarkerArray array;
-  Marker valley = baseMarker(style, stamp, "marks", Marker::LINE_LIST);
+  Marker valley = overSheet(style, stamp, "marks", Marker::LINE_LIST);
   valley.id = 0;
   valley.scale.x = 2.0 * style.line_width;
   valley.color = rgba(0.1f, 0.3f, 0.9f);
@@ -262,14 +254,14 @@ visualization_msgs::MarkerArray chosenCreaseMarkers(const core::Paper& paper,
       m.points.push_back(toPoint(b));
     }
   }
-  Marker picked = baseMarker(style, stamp, "marks", Marker::LINE_LIST);
+  Marker picked = overSheet(style, stamp, "marks", Marker::LINE_LIST);
   picked.id = 3;
   picked.scale.x = 4.0 * style.line_width;
   picked.color = rgba(1.0f, 0.85f, 0.0f, 0.6f);
   if (picked_edge >= 0 && static_cast<size_t>(picked_edge) < paper.edges.size())
     for (int v : paper.edges[picked_edge].vertices)
       picked.points.push_back(toPoint(paper.vertices[v].folded));
-  Marker keep = baseMarker(style, stamp, "marks", Marker::LINE_LIST);
+  Marker keep = overSheet(style, stamp, "marks", Marker::LINE_LIST);
   keep.id = 4;
   keep.scale.x = 1.5 * style.line_width;
   keep.color = rgba(0.1f, 0.7f, 0.2f);
@@ -289,7 +281,7 @@ visualization_msgs::MarkerArray pickMarkers(const core::Paper& paper, int face, 
                                             const InteractionStyle& style, const ros::Time& stamp)
 {
   visualization_msgs::MarkerArray array;
-  Marker outline = baseMarker(style, stamp, "pick", Marker::LINE_LIST);
+  Marker outline = overSheet(style, stamp, "pick", Marker::LINE_LIST);
   outline.id = 0;
   outline.scale.x = 1.5 * style.line_width;
   outline.color = rgba(1.0f, 0.6f, 0.0f);
@@ -314,7 +306,7 @@ visualization_msgs::MarkerArray messageMarker(const std::string& text, const cor
                                               const InteractionStyle& style, const ros::Time& stamp)
 {
   visualization_msgs::MarkerArray array;
-  Marker m = baseMarker(style, stamp, "message", Marker::TEXT_VIEW_FACING);
+  Marker m = overSheet(style, stamp, "message", Marker::TEXT_VIEW_FACING);
   m.scale.z = style.text_size;
   m.color = rgba(0.6f, 0.1f, 0.1f);
   m.text = text;
@@ -373,7 +365,7 @@ core::Vec3 besideAnchor(const core::Paper& paper, const std::string& text, const
 visualization_msgs::MarkerArray clearedMarkers(const InteractionStyle& style, const ros::Time& stamp)
 {
   visualization_msgs::MarkerArray array;
-  Marker all = baseMarker(style, stamp, "", Marker::DELETEALL);
+  Marker all = overSheet(style, stamp, "", Marker::DELETEALL);
   all.action = Marker::DELETEALL;
   array.markers.push_back(all);
   return array;

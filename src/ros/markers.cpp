@@ -17,25 +17,25 @@ std_msgs::ColorRGBA rgba(float r, float g, float b, float a)
   return c;
 }
 
-namespace
-{
-visualization_msgs::Marker baseMarker(const MarkerStyle& style, const ros::Time& stamp, const std::string& ns,
-                                      int type)
+visualization_msgs::Marker baseMarker(const std::string& frame_id, const ros::Time& stamp, const std::string& ns,
+                                      int type, double scale, const std_msgs::ColorRGBA& color)
 {
   visualization_msgs::Marker m;
-  m.header.frame_id = style.frame_id;
+  m.header.frame_id = frame_id;
   m.header.stamp = stamp;
   m.ns = ns;
   m.id = 0;
   m.type = type;
   m.action = visualization_msgs::Marker::ADD;
   m.pose.orientation.w = 1.0;
-  m.scale.x = m.scale.y = m.scale.z = 1.0;
-  m.color = rgba(1, 1, 1);
+  m.scale.x = m.scale.y = m.scale.z = scale;
+  m.color = color;
   m.frame_locked = true;
   return m;
 }
 
+namespace
+{
 /// Each face's lift off its plane: its stack level along the stack's upward normal.
 std::vector<core::Vec3> layerLifts(const core::Paper& paper, const MarkerStyle& style)
 {
@@ -52,13 +52,12 @@ std::vector<core::Vec3> layerLifts(const core::Paper& paper, const MarkerStyle& 
 }
 }  // namespace
 
-visualization_msgs::MarkerArray paperMarkers(const core::Paper& paper, const MarkerStyle& style,
-                                             const ros::Time& stamp)
+visualization_msgs::MarkerArray paperMarkers(const core::Paper& paper, const MarkerStyle& style, const ros::Time& stamp)
 {
   using visualization_msgs::Marker;
   const std::vector<core::Vec3> lift = layerLifts(paper, style);
-  Marker front = baseMarker(style, stamp, "front", Marker::TRIANGLE_LIST);
-  Marker back = baseMarker(style, stamp, "back", Marker::TRIANGLE_LIST);
+  Marker front = baseMarker(style.frame_id, stamp, "front", Marker::TRIANGLE_LIST);
+  Marker back = baseMarker(style.frame_id, stamp, "back", Marker::TRIANGLE_LIST);
   front.color = rgba(0.96f, 0.89f, 0.76f);  // the coloured side of the sheet
   back.color = rgba(0.55f, 0.70f, 0.86f);
   std::vector<double> strain;
@@ -88,10 +87,10 @@ visualization_msgs::MarkerArray paperMarkers(const core::Paper& paper, const Mar
       }
     }
   }
-  Marker mountain = baseMarker(style, stamp, "mountain", Marker::LINE_LIST);
-  Marker valley = baseMarker(style, stamp, "valley", Marker::LINE_LIST);
-  Marker other = baseMarker(style, stamp, "crease", Marker::LINE_LIST);
-  Marker boundary = baseMarker(style, stamp, "boundary", Marker::LINE_LIST);
+  Marker mountain = baseMarker(style.frame_id, stamp, "mountain", Marker::LINE_LIST);
+  Marker valley = baseMarker(style.frame_id, stamp, "valley", Marker::LINE_LIST);
+  Marker other = baseMarker(style.frame_id, stamp, "crease", Marker::LINE_LIST);
+  Marker boundary = baseMarker(style.frame_id, stamp, "boundary", Marker::LINE_LIST);
   mountain.color = rgba(0.84f, 0.15f, 0.16f);
   valley.color = rgba(0.12f, 0.47f, 0.71f);
   other.color = rgba(0.5f, 0.5f, 0.5f);
@@ -100,10 +99,10 @@ visualization_msgs::MarkerArray paperMarkers(const core::Paper& paper, const Mar
     m->scale.x = style.line_width;
   for (const core::Edge& e : paper.edges)
   {
-    Marker& m = e.assignment == core::Assignment::Mountain  ? mountain
-                : e.assignment == core::Assignment::Valley  ? valley
-                : e.assignment == core::Assignment::Boundary ? boundary
-                                                             : other;
+    Marker& m = e.assignment == core::Assignment::Mountain ? mountain :
+                e.assignment == core::Assignment::Valley   ? valley :
+                e.assignment == core::Assignment::Boundary ? boundary :
+                                                             other;
     core::Vec3 offset = core::Vec3::Zero();  // drawn with the higher of its faces
     for (int f : e.faces)
       if (f >= 0 && lift[f].norm() > offset.norm())

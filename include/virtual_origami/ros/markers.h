@@ -14,7 +14,7 @@ namespace virtual_origami
 struct MarkerStyle
 {
   std::string frame_id = "paper";
-  double layer_gap = 0.002;    // between coincident layers of a flat fold, in metres
+  double layer_gap = 0.002;     // between coincident layers of a flat fold, in metres
   double side_offset = 0.0004;  // front and back surfaces of one layer, apart
   double line_width = 0.004;
   /// Both sides of every face in the colour of its strain (strain_colours.h) instead of the
@@ -24,6 +24,11 @@ struct MarkerStyle
 };
 
 std_msgs::ColorRGBA rgba(float r, float g, float b, float a = 1.0f);
+
+/// The start of every marker of this package: `type` in namespace `ns`, at the origin of
+/// `frame_id` and locked to it, scaled by `scale` (a line's width) in `color`.
+visualization_msgs::Marker baseMarker(const std::string& frame_id, const ros::Time& stamp, const std::string& ns,
+                                      int type, double scale = 1.0, const std_msgs::ColorRGBA& color = rgba(1, 1, 1));
 
 /// Namespaces: `front` and `back` (TRIANGLE_LIST, the two sides of every face in their own
 /// colours or coloured by strain, coincident layers lifted by their stack level), `mountain`, `valley`, `crease`

@@ -1,0 +1,84 @@
+// The gesture model's fold slider: the handle beside the sheet previews a fold by assignment
+// while it moves and commits it on release.
+#include <algorithm>
+#include <cmath>
+
+#include "virtual_origami/core/gesture_model.h"
+
+namespace virtual_origami::core
+{
+namespace
+{
+/// Fractions are committed to 0.1 %: what the percent shows is what is recorded.
+double tidy(double fraction)
+{
+  return std::round(std::clamp(fraction, 0.0, 1.0) * 1000.0) / 1000.0;
+}
+}  // namespace
+
+void GestureModel::slidePress()
+{
+  enter(GestureState::Sliding);
+  move_pending_ = false;
+  fraction_at_press_ = slider_fraction_;
+  slider_previewed_.reset();
+}
+
+void GestureModel::slideMove(double fraction)
+{
+  if (state_ != GestureState::Sliding)
+    return;
+  slider_fraction_ = tidy(fraction);
+  move_pending_ = true;
+}
+
+void GestureModel::updateSlider()
+{
+  move_pending_ = false;
+  emit(SliderMoved{ slider_fraction_ });
+  // One preview per batch of moves: the call waits for the solver, and the moves that came
+  // meanwhile were coalesced into the latest, so previews go as fast as the solver keeps up.
+  if (!slider_previewed_ || *slider_previewed_ != slider_fraction_)
+    if (send(FoldByAssignmentCall{ slider_fraction_, true }).success)
+      slider_previewed_ = slider_fraction_;
+  ++updates_;
+}
+
+void GestureModel::slideRelease(double fraction)
+{
+  if (state_ != GestureState::Sliding)
+    return;
+  slider_fraction_ = tidy(fraction);
+  move_pending_ = false;
+  enter(GestureState::Idle);
+  // A press without a move commits nothing; once a preview is drawn, the release commits.
+  if (slider_previewed_ || slider_fraction_ != fraction_at_press_)
+  {
+    const std::string said = commitFold(slider_fraction_);
+    if (!said.empty())
+      emit(Message{ said, Vec3::Zero(), Message::Place::Slider });
+  }
+  if (sheet_stale_)
+    showSheet();
+  if (slider_stale_)
+    showSlider();
+  else  // rviz keeps the handle where the drag left it; the percent stays with it
+    emit(SliderMoved{ slider_fraction_ });
+}
+
+void GestureModel::foldByAssignment(double fraction, const Pointer& at)
+{
+  const std::string said = commitFold(fraction);
+  if (!said.empty())
+    tell(said, rightClick(at));
+}
+
+std::string GestureModel::commitFold(double fraction)
+{
+  const PaperReply reply = send(FoldByAssignmentCall{ fraction, false });
+  if (reply.answered && reply.success)
+    committed_fraction_ = std::make_pair(reply.revision, fraction);
+  return reply.message;
+}
+
+}  // namespace virtual_origami::core

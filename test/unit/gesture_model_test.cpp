@@ -1,0 +1,514 @@
+// The mouse gestures without ROS (as tf2's BufferCore is tested without a master): presses,
+// moves, releases and menu choices into the gesture model, the requests to paper_model and the
+// drawings out, in order.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "test_models.h"
+#include "virtual_origami/core/gesture_model.h"
+
+using namespace virtual_origami::core;
+using namespace virtual_origami::core::test;
+
+namespace
+{
+/// Records what the model asks and shows; paper_model's replies are scripted (default: yes).
+class RecordedOutputs : public GestureOutputs
+{
+public:
+  PaperReply send(const PaperRequest& request) override
+  {
+    requests.push_back(request);
+    return reply ? reply(request) : PaperReply{ true, true, "", 0, false };
+  }
+  void show(const GestureOutput& output) override
+  {
+    shown.push_back(output);
+  }
+
+  template <class T>
+  std::vector<T> sent() const
+  {
+    std::vector<T> found;
+    for (const PaperRequest& r : requests)
+      if (const T* t = std::get_if<T>(&r))
+        found.push_back(*t);
+    return found;
+  }
+  template <class T>
+  std::vector<T> drawn() const
+  {
+    std::vector<T> found;
+    for (const GestureOutput& o : shown)
+      if (const T* t = std::get_if<T>(&o))
+        found.push_back(*t);
+    return found;
+  }
+  std::string lastSaid() const
+  {
+    const std::vector<Message> said = drawn<Message>();
+    return said.empty() ? "" : said.back().text;
+  }
+  void forget()
+  {
+    requests.clear();
+    shown.clear();
+  }
+
+  std::vector<PaperRequest> requests;
+  std::vector<GestureOutput> shown;
+  std::function<PaperReply(const PaperRequest&)> reply;
+};
+
+class GestureModelTest : public ::testing::Test
+{
+protected:
+  GestureModelTest() : model(GestureSettings{}, out, [this] { return now; })
+  {}
+
+  void load(Paper paper)
+  {
+    model.paperChanged(std::move(paper), ++revision, {});
+    out.forget();
+  }
+  /// rviz's report of a point of the sheet seen from above: on the pickable copy over it.
+  Pointer at(const Vec3& p) const
+  {
+    return Pointer{ Vec3(p + Vec3(0, 0, model.shownLift())), Vec3::Zero(), {} };
+  }
+  /// The marker dragged from `press` until the pointer is over `p`.
+  Pointer dragged(const Vec3& press, const Vec3& p) const
+  {
+    return Pointer{ std::nullopt, p - press, {} };
+  }
+  void drag(const Vec3& from, const std::vector<Vec3>& through)
+  {
+    model.press(at(from));
+    for (const Vec3& p : through)
+    {
+      now += 0.1;
+      model.move(dragged(from, p));
+      model.update();
+    }
+    model.release(dragged(from, through.empty() ? from : through.back()));
+  }
+  void click(const Vec3& p)
+  {
+    drag(p, {});
+  }
+
+  double now = 100.0;
+  uint64_t revision = 0;
+  RecordedOutputs out;
+  GestureModel model;
+};
+
+Paper diagonalSquare()
+{
+  Paper paper = Paper::square(1.0);
+  creaseLine(paper, p3(0, 0), p3(1, 1));
+  return paper;
+}
+}  // namespace
+
+TEST_F(GestureModelTest, ACreaseDragShowsTheSnappedLineAndCreasesItOnRelease)
+{
+  load(Paper::square(1.0));
+  model.press(at(p3(0.012, 0.02)));
+  EXPECT_EQ(model.state(), GestureState::DrawingLine);
+  now += 0.5;
+  EXPECT_DOUBLE_EQ(model.timeInState(), 0.5);
+  model.move(dragged(p3(0.012, 0.02), p3(0.985, 0.99)));
+  EXPECT_TRUE(out.requests.empty());  // moves wait for the update
+  model.update();
+  const std::vector<Guides> guides = out.drawn<Guides>();
+  ASSERT_FALSE(guides.empty());
+  ASSERT_TRUE(guides.back().line.has_value());
+  EXPECT_TRUE(guides.back().line->start.point.isApprox(p3(0, 0)));  // the guide: snapped to the corners
+  EXPECT_TRUE(guides.back().line->end.point.isApprox(p3(1, 1)));
+  EXPECT_TRUE(out.requests.empty());  // nothing creased while drawing
+
+  model.release(dragged(p3(0.012, 0.02), p3(0.985, 0.99)));
+  const std::vector<CreaseCall> creases = out.sent<CreaseCall>();
+  ASSERT_EQ(out.requests.size(), 1u);
+  ASSERT_EQ(creases.size(), 1u);
+  EXPECT_TRUE(creases[0].start.isApprox(p3(0, 0)));
+  EXPECT_TRUE(creases[0].end.isApprox(p3(1, 1)));
+  EXPECT_FALSE(creases[0].eye.has_value());  // no camera known
+  EXPECT_EQ(model.state(), GestureState::Idle);
+  EXPECT_FALSE(out.drawn<Guides>().back().line.has_value());  // the guides cleared
+  EXPECT_EQ(out.drawn<SheetReleased>().size(), 1u);
+}
+
+TEST_F(GestureModelTest, WithoutSnappingTheLineIsCreasedAsDrawn)
+{
+  load(Paper::square(1.0));
+  model.toggleSnapping(at(p3(0.5, 0.5)));
+  EXPECT_FALSE(model.snapping());
+  EXPECT_EQ(out.drawn<SheetShown>().size(), 1u);  // the menu's check mark
+  drag(p3(0.012, 0.02), { p3(0.985, 0.99) });
+  const std::vector<CreaseCall> creases = out.sent<CreaseCall>();
+  ASSERT_EQ(creases.size(), 1u);
+  EXPECT_TRUE(creases[0].start.isApprox(p3(0.012, 0.02)));
+  EXPECT_TRUE(creases[0].end.isApprox(p3(0.985, 0.99)));
+}
+
+TEST_F(GestureModelTest, AClickInCreaseModeCreasesNothingAndARefusalIsSaid)
+{
+  load(Paper::square(1.0));
+  click(p3(0.4, 0.4));
+  EXPECT_TRUE(out.requests.empty());
+  out.reply = [](const PaperRequest&) { return PaperReply{ true, false, "the line crosses no face", 0, false }; };
+  drag(p3(0.1, 0.5), { p3(0.9, 0.5) });
+  EXPECT_EQ(out.sent<CreaseCall>().size(), 1u);
+  EXPECT_EQ(out.lastSaid(), "the line crosses no face");
+}
+
+TEST_F(GestureModelTest, ARotateDragPreviewsTheTurnThenCommitsTheAngleLastShown)
+{
+  load(diagonalSquare());
+  model.chooseMode(GestureMode::Rotate, at(p3(0.5, 0.5)));
+  EXPECT_EQ(out.lastSaid(), "rotate mode");
+  out.forget();
+  // From above the ring is seen edge-on: over the axis a quarter turn, half-way an eighth.
+  drag(p3(0.8, 0.3), { p3(0.55, 0.55), p3(0.675, 0.425) });
+  const std::vector<RotateCall> calls = out.sent<RotateCall>();
+  ASSERT_EQ(calls.size(), 3u);
+  EXPECT_FALSE(calls[0].commit);
+  EXPECT_NEAR(std::abs(calls[0].angle), M_PI / 2, 1e-9);
+  EXPECT_FALSE(calls[1].commit);
+  EXPECT_NEAR(std::abs(calls[1].angle), M_PI / 4, 1e-9);
+  EXPECT_TRUE(calls[2].commit);
+  EXPECT_EQ(calls[2].angle, calls[1].angle);
+  for (const RotateCall& c : calls)
+  {
+    EXPECT_EQ(c.axis_edge, calls[0].axis_edge);
+    EXPECT_TRUE(c.click.isApprox(p3(0.8, 0.3)));
+    EXPECT_FALSE(c.picked_layers_only);
+  }
+  const std::vector<Guides> guides = out.drawn<Guides>();
+  ASSERT_GE(guides.size(), 3u);
+  EXPECT_TRUE(guides[guides.size() - 2].ring.has_value());  // the ring while turning, then cleared
+  EXPECT_FALSE(guides.back().ring.has_value());
+  EXPECT_EQ(model.state(), GestureState::Idle);
+}
+
+TEST_F(GestureModelTest, ARotateDragBackToNoTurnPutsThePaperBackAndCommitsNothing)
+{
+  load(diagonalSquare());
+  model.chooseMode(GestureMode::Rotate, at(p3(0.5, 0.5)));
+  out.forget();
+  drag(p3(0.8, 0.3), { p3(0.55, 0.55), p3(0.8, 0.3) });
+  const std::vector<RotateCall> calls = out.sent<RotateCall>();
+  ASSERT_EQ(calls.size(), 2u);
+  EXPECT_NEAR(std::abs(calls[0].angle), M_PI / 2, 1e-9);
+  EXPECT_EQ(calls[1].angle, 0.0);  // the preview of no turn
+  EXPECT_FALSE(calls[1].commit);
+}
+
+TEST_F(GestureModelTest, AModeSwitchDuringADragCancelsIt)
+{
+  load(diagonalSquare());
+  model.chooseMode(GestureMode::Rotate, at(p3(0.5, 0.5)));
+  model.press(at(p3(0.8, 0.3)));
+  model.move(dragged(p3(0.8, 0.3), p3(0.55, 0.55)));
+  model.update();
+  ASSERT_EQ(model.state(), GestureState::TurningFace);
+  out.forget();
+  model.chooseMode(GestureMode::Crease, at(p3(0.5, 0.5)));
+  EXPECT_EQ(model.state(), GestureState::Idle);
+  EXPECT_EQ(model.mode(), GestureMode::Crease);
+  EXPECT_EQ(out.drawn<SheetShown>().size(), 1u);  // the menu's check marks and the sheet's description
+  EXPECT_EQ(out.lastSaid(), "crease mode");
+  model.release(dragged(p3(0.8, 0.3), p3(0.55, 0.55)));
+  EXPECT_TRUE(out.requests.empty());  // nothing committed, nothing creased
+}
+
+TEST_F(GestureModelTest, ARotatePressOffEveryCreaseTurnsNothingAndSaysWhy)
+{
+  load(Paper::square(1.0));
+  model.chooseMode(GestureMode::Rotate, at(p3(0.5, 0.5)));
+  out.forget();
+  model.press(at(p3(0.5, 0.4)));
+  EXPECT_EQ(model.state(), GestureState::TurningNothing);
+  model.move(dragged(p3(0.5, 0.4), p3(0.2, 0.2)));
+  model.update();
+  model.release(dragged(p3(0.5, 0.4), p3(0.2, 0.2)));
+  EXPECT_TRUE(out.requests.empty());
+  EXPECT_FALSE(out.lastSaid().empty());
+}
+
+TEST_F(GestureModelTest, AClickOnACreaseInRotateModeNamesItTheAxis)
+{
+  load(creasedSquare());
+  model.chooseMode(GestureMode::Rotate, at(p3(0.5, 0.5)));
+  click(p3(0.5, 0.2));  // on the midline x = .5
+  EXPECT_EQ(out.lastSaid().rfind("The axis: this crease.", 0), 0u);
+  const std::vector<Guides> guides = out.drawn<Guides>();
+  ASSERT_TRUE(guides.back().named_axis.has_value());
+  EXPECT_NEAR(guides.back().named_axis->first.x(), 0.5, 1e-12);
+  EXPECT_NEAR(guides.back().named_axis->second.x(), 0.5, 1e-12);
+  out.forget();
+  // A turn of a face next to it is about it, not the face's automatic axis.
+  drag(p3(0.7, 0.4), { p3(0.55, 0.4) });
+  const std::vector<RotateCall> calls = out.sent<RotateCall>();
+  ASSERT_FALSE(calls.empty());
+  const Paper& paper = *model.paper();
+  const Edge& axis = paper.edges[calls[0].axis_edge];
+  EXPECT_NEAR(paper.vertices[axis.vertices[0]].crease_pattern.x(), 0.5, 1e-12);
+  EXPECT_NEAR(paper.vertices[axis.vertices[1]].crease_pattern.x(), 0.5, 1e-12);
+  out.forget();
+  click(p3(0.7, 0.35));  // off every crease: the automatic axis again
+  EXPECT_EQ(out.lastSaid(), "The automatic axis again.");
+  EXPECT_FALSE(out.drawn<Guides>().back().named_axis.has_value());
+}
+
+TEST_F(GestureModelTest, NextLayerDownPicksTheLayerUnderTheTopOneAndTheRingTakesIt)
+{
+  load(stackOfLayers(1));  // the right half folded over the left: two layers over [0, .5] × [0, 1]
+  model.chooseMode(GestureMode::Rotate, at(p3(0.25, 0.5)));
+  const auto ringFace = [&] {
+    out.forget();
+    model.press(at(p3(0.25, 0.5)));
+    const std::vector<Guides> guides = out.drawn<Guides>();
+    model.release(dragged(p3(0.25, 0.5), p3(0.25, 0.5)));
+    return guides.empty() || !guides.back().ring ? -1 : guides.back().ring->face;
+  };
+  const int top = ringFace();
+  ASSERT_GE(top, 0);
+  model.nextLayer(at(p3(0.25, 0.5)));
+  EXPECT_EQ(out.lastSaid(), "Picked layer 2 of 2.");
+  const GestureStatus status = model.status();
+  EXPECT_EQ(status.picked_layer, 2u);
+  EXPECT_EQ(status.layers, 2u);
+  ASSERT_GE(status.picked_face, 0);
+  EXPECT_NE(status.picked_face, top);
+  EXPECT_EQ(out.drawn<Picks>().back().face, status.picked_face);
+  EXPECT_EQ(ringFace(), status.picked_face);  // a press where the pick was turns the picked layer
+  model.nextLayer(at(p3(0.25, 0.5)));
+  EXPECT_EQ(out.lastSaid(), "No layer below this one.");
+}
+
+TEST_F(GestureModelTest, MarkedCreasesFoldInFramesThenTheMarksGo)
+{
+  std::vector<int> left;
+  load(creasedInHalf(left));
+  model.chooseMode(GestureMode::Fold, at(p3(0.5, 0.5)));
+  EXPECT_EQ(model.mode(), GestureMode::Fold);
+  click(p3(0.5, 0.3));
+  EXPECT_EQ(out.lastSaid(), "Crease valley.");
+  click(p3(0.5, 0.3));  // again on it: the next mark
+  EXPECT_EQ(out.lastSaid(), "Crease mountain (layer 1 of 1).");
+  click(p3(0.5, 0.3));
+  click(p3(0.5, 0.3));
+  click(p3(0.5, 0.3));  // unfold, none, valley again
+  EXPECT_EQ(out.lastSaid(), "Crease valley (layer 1 of 1).");
+  model.foldMarks(M_PI, at(p3(0.5, 0.5)));
+  EXPECT_EQ(out.lastSaid().rfind("Pick the face that stays first", 0), 0u);
+  EXPECT_TRUE(out.requests.empty());
+  click(p3(0.2, 0.5));
+  EXPECT_EQ(out.lastSaid(), "This face stays (layer 1 of 1).");
+  ASSERT_EQ(model.status().marked_edges.size(), 1u);
+  EXPECT_DOUBLE_EQ(model.status().marked_angles[0], M_PI);
+
+  model.foldMarks(M_PI, at(p3(0.5, 0.5)));
+  EXPECT_EQ(model.state(), GestureState::FoldingMarks);
+  for (int frame = 0; frame < 20; ++frame)
+    model.tick();
+  const std::vector<FlatFoldCall> frames = out.sent<FlatFoldCall>();
+  ASSERT_EQ(frames.size(), 8u);  // the default 8 frames, the last one committed
+  for (size_t i = 0; i < frames.size(); ++i)
+  {
+    EXPECT_DOUBLE_EQ(frames[i].fraction, (i + 1) / 8.0);
+    EXPECT_EQ(frames[i].commit, i + 1 == frames.size());
+    ASSERT_EQ(frames[i].fold.creases.size(), 1u);
+    EXPECT_DOUBLE_EQ(frames[i].fold.creases[0].angle, M_PI);
+    EXPECT_LT(frames[i].fold.fixed_point.x(), 0.5);  // the left half stays
+  }
+  EXPECT_EQ(model.state(), GestureState::Idle);
+  EXPECT_TRUE(model.status().marked_edges.empty());
+}
+
+TEST_F(GestureModelTest, ANewInputFinishesTheAnimatedFoldAtOnce)
+{
+  std::vector<int> left;
+  load(creasedInHalf(left));
+  model.chooseMode(GestureMode::Fold, at(p3(0.5, 0.5)));
+  click(p3(0.5, 0.3));
+  click(p3(0.2, 0.5));
+  model.foldMarks(M_PI / 2, at(p3(0.5, 0.5)));
+  model.tick();
+  model.finishFold();
+  const std::vector<FlatFoldCall> frames = out.sent<FlatFoldCall>();
+  ASSERT_EQ(frames.size(), 8u);
+  EXPECT_TRUE(frames.back().commit);
+  EXPECT_DOUBLE_EQ(frames.back().fold.creases[0].angle, M_PI / 2);
+  EXPECT_EQ(model.state(), GestureState::Idle);
+}
+
+TEST_F(GestureModelTest, AVertexDragPreviewsThenCommitsWhereTheLastPreviewWent)
+{
+  load(Paper::square(1.0));
+  model.chooseMode(GestureMode::Drag, at(p3(0.5, 0.5)));
+  out.forget();
+  drag(p3(1.0, 0.0), { p3(1.0, 0.1), p3(0.9, 0.2) });
+  const std::vector<DragVertexCall> calls = out.sent<DragVertexCall>();
+  ASSERT_EQ(calls.size(), 4u);  // the press's own, two moves, the commit
+  const int corner = model.paper()->vertexAt(Vec2(1, 0));
+  for (const DragVertexCall& c : calls)
+    EXPECT_EQ(c.vertex, corner);
+  EXPECT_TRUE(calls[0].position.isApprox(p3(1, 0)));
+  EXPECT_TRUE(calls[2].position.isApprox(p3(0.9, 0.2)));
+  EXPECT_FALSE(calls[2].commit);
+  EXPECT_TRUE(calls[3].commit);
+  EXPECT_TRUE(calls[3].position.isApprox(p3(0.9, 0.2)));
+}
+
+TEST_F(GestureModelTest, WhereRigidFacesCannotFollowTheCurvedModelBendsThePaperAndLetsGoOnRelease)
+{
+  load(Paper::square(1.0));
+  model.chooseMode(GestureMode::Drag, at(p3(0.5, 0.5)));
+  out.forget();
+  out.reply = [](const PaperRequest& r) {
+    const DragVertexCall& call = std::get<DragVertexCall>(r);
+    const bool at_rest = call.position.isApprox(p3(1, 0));
+    return PaperReply{ true, at_rest, at_rest ? "" : "the faces cannot follow", 0, !at_rest };
+  };
+  model.press(at(p3(1.0, 0.0)));
+  model.move(dragged(p3(1.0, 0.0), p3(1.0, 0.0, 0.2)));
+  model.update();
+  EXPECT_EQ(model.state(), GestureState::Bending);
+  EXPECT_TRUE(model.status().bending);
+  std::vector<CurvedHold> holds = out.drawn<CurvedHold>();
+  ASSERT_EQ(holds.size(), 1u);
+  EXPECT_EQ(holds[0].vertex, model.paper()->vertexAt(Vec2(1, 0)));
+  EXPECT_TRUE(holds[0].target.isApprox(p3(1, 0, 0.2)));
+  now += 2.0;
+  EXPECT_DOUBLE_EQ(model.timeInState(), 2.0);
+
+  model.release(dragged(p3(1.0, 0.0), p3(1.0, 0.0, 0.2)));
+  holds = out.drawn<CurvedHold>();
+  ASSERT_GE(holds.size(), 2u);
+  EXPECT_EQ(holds.back().vertex, -1);  // let go
+  EXPECT_EQ(out.lastSaid(), "Let go: the bent paper springs back, as it was.");
+  for (const DragVertexCall& c : out.sent<DragVertexCall>())
+    EXPECT_FALSE(c.commit);
+  EXPECT_EQ(model.state(), GestureState::Idle);
+}
+
+TEST_F(GestureModelTest, TheSliderPreviewsWhileMovingAndCommitsOnRelease)
+{
+  load(Paper::square(1.0));
+  model.slidePress();
+  EXPECT_EQ(model.state(), GestureState::Sliding);
+  EXPECT_FALSE(model.dragging());  // the sheet is not dragged: its marker may be re-sent
+  model.slideMove(0.41234);
+  model.update();
+  model.slideMove(0.41234);
+  model.update();  // the same fraction again: no second preview
+  model.slideRelease(0.5);
+  const std::vector<FoldByAssignmentCall> calls = out.sent<FoldByAssignmentCall>();
+  ASSERT_EQ(calls.size(), 2u);
+  EXPECT_DOUBLE_EQ(calls[0].fraction, 0.412);  // to 0.1 %
+  EXPECT_TRUE(calls[0].preview);
+  EXPECT_DOUBLE_EQ(calls[1].fraction, 0.5);
+  EXPECT_FALSE(calls[1].preview);
+  EXPECT_DOUBLE_EQ(out.drawn<SliderMoved>().back().fraction, 0.5);
+  EXPECT_EQ(model.state(), GestureState::Idle);
+}
+
+TEST_F(GestureModelTest, MenuCommandsAndPinsAskPaperModelAndSayItsAnswer)
+{
+  load(Paper::square(1.0));
+  out.reply = [](const PaperRequest&) { return PaperReply{ true, true, "done", 0, false }; };
+  model.command(PaperCommand::Undo, at(p3(0.5, 0.5)));
+  model.pin(at(p3(0.97, 0.02)), false);
+  model.pin(at(p3(0.5, 0.5)), true);  // nothing pinned: nothing to release
+  ASSERT_EQ(out.requests.size(), 2u);
+  EXPECT_EQ(std::get<CommandCall>(out.requests[0]).command, PaperCommand::Undo);
+  const PinCall pin = std::get<PinCall>(out.requests[1]);
+  EXPECT_EQ(pin.vertex, model.paper()->vertexAt(Vec2(1, 0)));
+  EXPECT_FALSE(pin.release);
+  EXPECT_EQ(out.lastSaid(), "no pin near the click");
+  out.reply = [](const PaperRequest&) { return PaperReply{ false, false, "undo did not answer", 0, false }; };
+  model.command(PaperCommand::Undo, at(p3(0.5, 0.5)));
+  EXPECT_EQ(out.lastSaid(), "undo did not answer");
+}
+
+TEST_F(GestureModelTest, APaperChangedDuringADragIsShownAfterTheRelease)
+{
+  load(Paper::square(1.0));
+  model.press(at(p3(0.1, 0.5)));
+  model.paperChanged(Paper::square(1.0), ++revision, {});
+  EXPECT_TRUE(out.drawn<SheetShown>().empty());  // a marker sent now would end the drag in rviz
+  model.release(dragged(p3(0.1, 0.5), p3(0.2, 0.5)));
+  const std::vector<SheetReleased> released = out.drawn<SheetReleased>();
+  ASSERT_EQ(released.size(), 1u);
+  EXPECT_TRUE(released[0].reshow);
+  model.paperChanged(Paper::square(1.0), ++revision, {});
+  EXPECT_EQ(out.drawn<SheetShown>().size(), 1u);
+}
+
+namespace
+{
+/// rviz's camera straight above `over`, `height` up, looking down (x right, y down the picture).
+ViewCamera cameraAbove(const Vec3& over, double height)
+{
+  ViewCamera camera;
+  camera.eye = over + Vec3(0, 0, height);
+  camera.axes.col(0) = Vec3::UnitX();
+  camera.axes.col(2) = -Vec3::UnitZ();
+  camera.axes.col(1) = camera.axes.col(2).cross(camera.axes.col(0));
+  return camera;
+}
+}  // namespace
+
+TEST_F(GestureModelTest, WithTheCameraKnownTheCreaseGoesThroughTheLayersTheEyeSees)
+{
+  load(Paper::square(1.0));
+  const ViewCamera camera = cameraAbove(p3(0.5, 0.5), 2.0);
+  model.press(Pointer{ p3(0.012, 0.02, 0.004), Vec3::Zero(), camera });
+  // The marker moves on the plane facing the eye; the line's end is where the pointer's sight
+  // line meets the pressed face's plane.
+  model.release(Pointer{ std::nullopt, p3(0.985, 0.99) - p3(0.012, 0.02), camera });
+  const std::vector<CreaseCall> creases = out.sent<CreaseCall>();
+  ASSERT_EQ(creases.size(), 1u);
+  ASSERT_TRUE(creases[0].eye.has_value());
+  EXPECT_TRUE(creases[0].eye->isApprox(camera.eye));
+  EXPECT_TRUE(creases[0].start.isApprox(p3(0, 0)));
+  EXPECT_TRUE(creases[0].end.isApprox(p3(1, 1)));
+}
+
+TEST_F(GestureModelTest, ARingSeenEdgeOnTurnsTheViewForTheDragAndBackOnRelease)
+{
+  load(diagonalSquare());
+  model.chooseMode(GestureMode::Rotate, at(p3(0.5, 0.5)));
+  out.forget();
+  const ViewCamera camera = cameraAbove(p3(0.5, 0.5), 2.0);  // from straight above: edge-on
+  model.press(Pointer{ p3(0.8, 0.3, 0.004), Vec3::Zero(), camera });
+  ASSERT_EQ(model.state(), GestureState::TurningFace);
+  std::vector<ViewTurn> turns = out.drawn<ViewTurn>();
+  ASSERT_EQ(turns.size(), 1u);
+  ASSERT_TRUE(turns[0].to.has_value());
+  // Turned so that the sight line to the press meets the axis (the diagonal) at |cos| ≥ 0.6.
+  const Vec3 axis = Vec3(1, 1, 0).normalized();
+  EXPECT_GE(std::abs(turns[0].to->rayTo(p3(0.8, 0.3)).dot(axis)), 0.6);
+  model.release(Pointer{ std::nullopt, Vec3::Zero(), camera });
+  turns = out.drawn<ViewTurn>();
+  ASSERT_EQ(turns.size(), 2u);
+  EXPECT_FALSE(turns[1].to.has_value());  // back to the view before the turn
+}
+
+TEST_F(GestureModelTest, WithoutTheViewTurnSettingTheViewStays)
+{
+  GestureSettings settings;
+  settings.view_turn = false;
+  settings.mode = GestureMode::Rotate;
+  GestureModel fixed(settings, out, [this] { return now; });
+  fixed.paperChanged(diagonalSquare(), 1, {});
+  fixed.press(Pointer{ p3(0.8, 0.3, 0.004), Vec3::Zero(), cameraAbove(p3(0.5, 0.5), 2.0) });
+  EXPECT_EQ(fixed.state(), GestureState::TurningFace);
+  EXPECT_TRUE(out.drawn<ViewTurn>().empty());
+}
