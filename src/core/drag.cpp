@@ -175,7 +175,13 @@ double ringAngle(const RotationRing& ring, const Vec3& pointer, const Vec3& view
     const double previous_travel = ring.turn_sign * previous;
     travel += 2 * M_PI * std::round((previous_travel - travel) / (2 * M_PI));
   }
-  return std::clamp(ring.turn_sign * travel, ring.min_angle, ring.max_angle);
+  const double angle = std::clamp(ring.turn_sign * travel, ring.min_angle, ring.max_angle);
+  // A half turn the pointer nearly reaches is one: a flap left at 179° is not flat, and the
+  // next half turn over it crumples the model.
+  const double half = std::copysign(M_PI, angle);
+  if (std::abs(angle - half) < kHalfTurnSnap && half >= ring.min_angle && half <= ring.max_angle)
+    return half;
+  return angle;
 }
 
 Vec3 ringPoint(const RotationRing& ring, double angle)

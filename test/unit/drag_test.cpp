@@ -101,6 +101,22 @@ TEST(RotationRing, PressOnAHalfPicksTheDiagonalAsAxis)
   EXPECT_NEAR(ring->max_angle, M_PI, 1e-12);
 }
 
+// A half turn dragged to the mirror image lands on 180° exactly, not at 179° (a flap left
+// short of flat makes the next half turn over it crumple the model); 10° short stays short.
+TEST(RotationRing, AHalfTurnWithinThreeDegreesSnapsToOne)
+{
+  const Paper paper = diagonalSquare();
+  const RotationRing ring = *rotationRing(paper, p3(0.8, 0.3), kFromAbove);
+  const Vec3 u = (p3(0.8, 0.3) - ring.centre).normalized();
+  const auto pointerAt = [&](double degrees) {  // seen edge-on, the distance maps onto the angle
+    return Vec3(ring.centre + ring.radius * (1.0 - 2.0 * degrees / 180.0) * u);
+  };
+  EXPECT_EQ(std::abs(ringAngle(ring, pointerAt(178.0), kFromAbove)), M_PI);
+  EXPECT_EQ(std::abs(ringAngle(ring, pointerAt(179.5), kFromAbove)), M_PI);
+  EXPECT_NEAR(std::abs(ringAngle(ring, pointerAt(170.0), kFromAbove)), 170.0 * M_PI / 180.0, 1e-12);
+  EXPECT_NEAR(std::abs(ringAngle(ring, pointerAt(90.0), kFromAbove)), M_PI / 2, 1e-12);
+}
+
 TEST(RotationRing, DraggingTowardsTheAxisLiftsTheHalfTowardsTheEye)
 {
   const Paper paper = diagonalSquare();
@@ -149,8 +165,10 @@ TEST(RotationRing, SeenFromTheSideTheAngleFollowsThePointerAroundTheRing)
     const Vec3 on_ring = ringPoint(ring, target);
     EXPECT_NEAR(ringAngle(ring, on_ring - 0.4 * view, view, target * 0.9), target, 1e-9) << target;
   }
-  // Unwrapped next to the previous angle, clamped to the fold limits.
-  EXPECT_NEAR(ringAngle(ring, ringPoint(ring, M_PI - 0.01), view, 3.0), M_PI - 0.01, 1e-9);
+  // Unwrapped next to the previous angle, clamped to the fold limits; within 3° of a half turn,
+  // a half turn.
+  EXPECT_NEAR(ringAngle(ring, ringPoint(ring, M_PI - 0.1), view, 3.0), M_PI - 0.1, 1e-9);
+  EXPECT_EQ(ringAngle(ring, ringPoint(ring, M_PI - 0.01), view, 3.0), M_PI);
 }
 
 TEST(RotationRing, AFoldedFlapUnfoldsTowardsTheEyeWithinItsLimits)

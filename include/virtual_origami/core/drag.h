@@ -4,6 +4,7 @@
 // on the drag plane (the plane through the press point that the view projects the mouse onto).
 #pragma once
 
+#include <cmath>
 #include <vector>
 
 #include "virtual_origami/core/crease.h"
@@ -68,12 +69,16 @@ struct RotationRing
 Expected<RotationRing> rotationRing(const Paper& paper, const Vec3& press, const Vec3& view_direction, int face = -1,
                                     int axis_edge = -1, bool carry_stack = true);
 
+/// How near a half turn the pointer's angle snaps to it (radians, 3°).
+constexpr double kHalfTurnSnap = 3.0 * M_PI / 180.0;
+
 /// The request angle for the pointer, within the ring's limits. Seen from the side, the
 /// pointer's ray meets the ring's plane and the angle follows it around (unwrapped next to
 /// `previous`). Seen edge-on, the pointer's distance from the axis maps linearly onto a half
 /// turn: at the press point 0, over the axis a quarter turn, at the mirror image of the
 /// press point a half turn — every angle is reachable at the same rate, where following the
 /// projection would jump near 0° and 180° (the seed turns the view there; a server cannot).
+/// Within kHalfTurnSnap of a half turn the angle is exactly ±π (where the ring's limits allow).
 double ringAngle(const RotationRing& ring, const Vec3& pointer, const Vec3& view_direction, double previous = 0.0);
 
 /// Where the pressed point is when the face has turned by the request angle `angle`.

@@ -37,7 +37,10 @@ std::optional<Vec3> alongSightOnto(const ViewCamera& camera, const Vec3& point, 
 /// about the line through the face centre C and P (the smallest turn, up to 75°, either
 /// way) until the sight line to P meets d at |cos| ≥ `min_cos`, then levelled (rviz's orbit
 /// views have no roll) and moved so that P keeps its place in the picture (its camera
-/// coordinates stay). None when the view is fine as it is or no such turn exists.
+/// coordinates stay). Where no turn about C–P reaches (a low oblique view, C–P near the sight
+/// line), the camera orbits about the vertical through P and tilts, the smallest turn first, so
+/// an edge-on ring gets a usable view from any view. None when the view is fine as it is or no
+/// such turn exists.
 std::optional<ViewCamera> turnedView(const ViewCamera& camera, const Vec3& press, const Vec3& centre,
                                      const Vec3& axis_direction, double min_cos = 0.6);
 
