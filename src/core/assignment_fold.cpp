@@ -6,6 +6,7 @@
 
 #include "virtual_origami/core/face_springs.h"
 #include "virtual_origami/core/fold_fraction.h"
+#include "virtual_origami/core/layer_order.h"
 #include "virtual_origami/core/positions.h"
 
 namespace virtual_origami::core
@@ -110,6 +111,23 @@ void addStage(SolveReport& total, const SolveReport& stage)
   total = stage;
   total.iterations = iterations;
   total.seconds = seconds;
+}
+/// Faces the commit left lying flat on each other get the order their creases allow, like every
+/// flat fold's; where none exists the result says why (the layers would pass through each other).
+void recordLayerOrder(Paper& work, AssignmentFoldResult& result)
+{
+  LayerOrderOptions options;
+  options.tolerance = 1e-7 * work.scale();
+  const Expected<LayerOrder> order = solveLayerOrder(work, options);
+  if (!order)
+  {
+    result.layer_problem = order.message();
+    work.face_orders.clear();
+    return;
+  }
+  if (order->complete)
+    work.face_orders = order->orders;
+  result.ordered_pairs = order->complete ? order->stacked_pairs : 0;
 }
 }  // namespace
 
@@ -227,6 +245,8 @@ Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFo
   result.face_strain = faceStrains(work);
   result.max_strain = result.face_strain.empty() ? 0.0 : *std::max_element(result.face_strain.begin(), result.face_strain.end());
   result.angle_error = angleError(work, goal);
+  if (request.converge)
+    recordLayerOrder(work, result);
   if (request.converge)
     paper = std::move(copy);
   return result;

@@ -478,6 +478,13 @@ std::vector<std::vector<int>> stacksOf(const Paper& paper, double tolerance)
 Expected<LayerOrder> solveLayerOrder(const Paper& paper, const LayerOrderOptions& options)
 {
   LayerOrder result;
+  if (static_cast<int>(paper.faces.size()) > options.max_paper_faces)
+  {
+    result.complete = false;
+    result.incomplete = "a paper of " + std::to_string(paper.faces.size()) + " faces is more than the " +
+                        std::to_string(options.max_paper_faces) + " whose stacks are looked for";
+    return result;
+  }
   for (const std::vector<int>& faces : stacksOf(paper, options.tolerance))
   {
     if (static_cast<int>(faces.size()) > options.max_faces)

@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "virtual_origami/core/fold_io.h"
+#include "virtual_origami/core/layer_order.h"
 #include "virtual_origami/core/reference_patterns.h"
 #include "virtual_origami/core/tessellations.h"
 #include "virtual_origami/solvers/crease_driver_factory.h"
@@ -370,6 +371,11 @@ TEST(AssignmentFold, SquareTwistFoldsFlatAtFullFraction)
     {
       EXPECT_NEAR(paper.edges[e].fold_angle, t.target_fold_angle[e], 1e-6) << "edge " << e;
     }
+  // Flat, its layers carry their order like every flat fold's: every stacked pair, by the rules.
+  EXPECT_EQ(folded->layer_problem, "");
+  EXPECT_GT(folded->ordered_pairs, 0);
+  EXPECT_EQ(static_cast<int>(paper.face_orders.size()), folded->ordered_pairs);
+  EXPECT_EQ(layerOrderViolation(paper, paper.face_orders), "");
   // The same shape up to a rigid motion: every distance between vertices as in the closed form.
   for (size_t a = 0; a < paper.vertices.size(); ++a)
     for (size_t b = a + 1; b < paper.vertices.size(); ++b)

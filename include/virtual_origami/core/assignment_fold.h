@@ -76,6 +76,11 @@ struct AssignmentFoldResult
   double max_strain = 0.0;    // of the result
   double angle_error = 0.0;   // RMS distance of the driven creases from fraction · target (rad)
   std::vector<double> face_strain;
+  /// A committed result with faces lying flat on each other: how many such pairs its recorded
+  /// layer order (faceOrders, layer_order.h) orders, and, where no stacking of them exists (the
+  /// layers would cross), why.
+  int ordered_pairs = 0;
+  std::string layer_problem;
 };
 
 /// Folds `paper` by assignment. Fails (paper untouched) on a fraction outside [0, 1] or not

@@ -23,6 +23,8 @@ struct LayerOrderOptions
   long max_guesses = 200000;
   /// Stacks of more faces than this are not ordered (the checks grow with its cube).
   int max_faces = 600;
+  /// Papers of more faces than this are not searched for stacks at all (pairs grow with its square).
+  int max_paper_faces = 4000;
 };
 
 struct LayerOrder
