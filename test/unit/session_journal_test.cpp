@@ -641,3 +641,40 @@ TEST(SessionJournal, ALoadedFileNameThatIsNotUtf8IsJournaledNotThrown)
   EXPECT_TRUE(read->history.paper == session.paper());
   std::filesystem::remove(path);
 }
+
+// Found by the round-3 probe: a respawn read back every state a large session had made (2
+// minutes). Once the events outweigh the header they become a new header: a restart reads
+// within twice a header, and reads back the same history.
+TEST(SessionJournal, ASnapshotBoundsWhatARestartReads)
+{
+  const std::string path = tempPath("snapshot.jsonl");
+  SessionJournal journal;
+  Session session;
+  ASSERT_TRUE(journal.start(path, session));
+  session.setHistoryLimit(4 * approximateBytes(session.paper()) + 1);
+  int snapshots = 0;
+  for (int i = 0; i < 60; ++i)
+  {
+    CreaseRequest line;
+    line.start = p3(0.01 + 0.98 * i / 60.0, -0.1);
+    line.end = p3(0.01 + 0.98 * i / 60.0, 1.1);
+    ASSERT_TRUE(session.crease(line));
+    const uint64_t before = journal.eventBytes();
+    ASSERT_TRUE(journal.record(session));
+    const uint64_t event = journal.eventBytes() - before;
+    // What a restart would read now: a header and events no heavier, but for the last one.
+    EXPECT_EQ(std::filesystem::file_size(path), journal.headerBytes() + journal.eventBytes());
+    EXPECT_LE(journal.eventBytes(), journal.headerBytes() + event);
+    if (journal.wantsSnapshot(0))
+    {
+      ASSERT_TRUE(journal.snapshot(session));
+      ++snapshots;
+      EXPECT_EQ(std::filesystem::file_size(path), journal.headerBytes());
+    }
+  }
+  EXPECT_GT(snapshots, 3);
+  const Expected<History> read = readJournal(path);
+  ASSERT_TRUE(read) << read.message();
+  expectSameHistory(*read, session.history());
+  std::filesystem::remove(path);
+}
