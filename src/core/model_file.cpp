@@ -1,0 +1,115 @@
+#include "virtual_origami/core/model_file.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstring>
+
+#include <nlohmann/json.hpp>
+
+#include "virtual_origami/core/fold_io.h"
+#include "virtual_origami/core/oripa_io.h"
+
+namespace virtual_origami::core
+{
+namespace
+{
+bool endsWith(const std::string& s, const std::string& suffix)
+{
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+size_t foldVertices(const std::string& text)
+{
+  const nlohmann::json root = nlohmann::json::parse(text, nullptr, false);
+  if (root.is_discarded() || !root.is_object())
+    return 0;
+  const auto count = [](const nlohmann::json& frame) -> size_t {
+    const auto coords = frame.find("vertices_coords");
+    return coords != frame.end() && coords->is_array() ? coords->size() : 0;
+  };
+  size_t most = count(root);
+  const auto frames = root.find("file_frames");
+  if (frames != root.end() && frames->is_array())
+    for (const nlohmann::json& frame : *frames)
+      if (frame.is_object())
+        most = std::max(most, count(frame));
+  return most;
+}
+
+size_t countOf(const std::string& text, const char* word)
+{
+  size_t count = 0;
+  for (size_t at = text.find(word); at != std::string::npos; at = text.find(word, at + 1))
+    ++count;
+  return count;
+}
+}  // namespace
+
+std::optional<ModelFormat> modelFormat(const std::string& path)
+{
+  std::string lower = path;
+  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (endsWith(lower, ".bag") || endsWith(lower, ".bag.active") || endsWith(lower, ".jsonl"))
+    return std::nullopt;
+  if (endsWith(lower, ".cp"))
+    return ModelFormat::OripaCp;
+  if (endsWith(lower, ".opx"))
+    return ModelFormat::OripaOpx;
+  return ModelFormat::Fold;
+}
+
+Status checkModelSize(const std::string& text, ModelFormat format, size_t max_vertices)
+{
+  if (max_vertices == 0)
+    return success();
+  size_t vertices = 0;
+  const char* what = "vertices";
+  switch (format)
+  {
+    case ModelFormat::Fold:
+      vertices = foldVertices(text);
+      break;
+    case ModelFormat::OripaCp:
+      // Every non-blank line is a segment.
+      for (size_t begin = 0; begin < text.size();)
+      {
+        size_t end = text.find('\n', begin);
+        if (end == std::string::npos)
+          end = text.size();
+        if (std::any_of(text.begin() + static_cast<std::ptrdiff_t>(begin),
+                        text.begin() + static_cast<std::ptrdiff_t>(end),
+                        [](unsigned char c) { return !std::isspace(c); }))
+          vertices += 2;
+        begin = end + 1;
+      }
+      what = "vertices (two per line)";
+      break;
+    case ModelFormat::OripaOpx:
+      vertices = 2 * countOf(text, "oripa.OriLineProxy");
+      what = "vertices (two per line)";
+      break;
+  }
+  if (vertices > max_vertices)
+    return failure("the model has " + std::to_string(vertices) + " " + what + ", more than max_load_vertices (" +
+                   std::to_string(max_vertices) + "): refused before it is read");
+  return success();
+}
+
+Expected<Paper> parseModel(const std::string& text, ModelFormat format, double size)
+{
+  switch (format)
+  {
+    case ModelFormat::OripaCp:
+      return parseOripaCp(text, size);
+    case ModelFormat::OripaOpx:
+      return parseOripaOpx(text, size);
+    case ModelFormat::Fold:
+      break;
+  }
+  Expected<FoldDocument> document = parseFold(text);
+  if (!document)
+    return Expected<Paper>::failure(document.message());
+  return std::move(document->frames.back());
+}
+
+}  // namespace virtual_origami::core
