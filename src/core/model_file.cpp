@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstring>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -18,22 +19,38 @@ bool endsWith(const std::string& s, const std::string& suffix)
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-size_t foldVertices(const std::string& text)
+/// The most vertices of any frame, and of any face.
+std::pair<size_t, size_t> foldSizes(const std::string& text)
 {
   const nlohmann::json root = nlohmann::json::parse(text, nullptr, false);
   if (root.is_discarded() || !root.is_object())
-    return 0;
-  const auto count = [](const nlohmann::json& frame) -> size_t {
+    return { 0, 0 };
+  size_t vertices = 0, face = 0;
+  const auto count = [&](const nlohmann::json& frame) {
     const auto coords = frame.find("vertices_coords");
-    return coords != frame.end() && coords->is_array() ? coords->size() : 0;
+    if (coords != frame.end() && coords->is_array())
+      vertices = std::max(vertices, coords->size());
+    const auto faces = frame.find("faces_vertices");
+    if (faces != frame.end() && faces->is_array())
+      for (const nlohmann::json& f : *faces)
+        if (f.is_array())
+          face = std::max(face, f.size());
   };
-  size_t most = count(root);
+  count(root);
   const auto frames = root.find("file_frames");
   if (frames != root.end() && frames->is_array())
     for (const nlohmann::json& frame : *frames)
       if (frame.is_object())
-        most = std::max(most, count(frame));
-  return most;
+        count(frame);
+  return { vertices, face };
+}
+
+Status faceWithin(size_t face, const ModelLimits& limits)
+{
+  if (limits.max_face_vertices > 0 && face > limits.max_face_vertices)
+    return failure("the model has a face of " + std::to_string(face) + " vertices, more than max_face_vertices (" +
+                   std::to_string(limits.max_face_vertices) + "): refused before it is checked");
+  return success();
 }
 
 size_t countOf(const std::string& text, const char* word)
@@ -58,17 +75,20 @@ std::optional<ModelFormat> modelFormat(const std::string& path)
   return ModelFormat::Fold;
 }
 
-Status checkModelSize(const std::string& text, ModelFormat format, size_t max_vertices)
+Status checkModelSize(const std::string& text, ModelFormat format, const ModelLimits& limits)
 {
-  if (max_vertices == 0)
-    return success();
   size_t vertices = 0;
   const char* what = "vertices";
   switch (format)
   {
-    case ModelFormat::Fold:
-      vertices = foldVertices(text);
+    case ModelFormat::Fold: {
+      const auto [most, face] = foldSizes(text);
+      const Status faces = faceWithin(face, limits);
+      if (!faces)
+        return faces;
+      vertices = most;
       break;
+    }
     case ModelFormat::OripaCp:
       // Every non-blank line is a segment.
       for (size_t begin = 0; begin < text.size();)
@@ -89,10 +109,18 @@ Status checkModelSize(const std::string& text, ModelFormat format, size_t max_ve
       what = "vertices (two per line)";
       break;
   }
-  if (vertices > max_vertices)
+  if (limits.max_vertices > 0 && vertices > limits.max_vertices)
     return failure("the model has " + std::to_string(vertices) + " " + what + ", more than max_load_vertices (" +
-                   std::to_string(max_vertices) + "): refused before it is read");
+                   std::to_string(limits.max_vertices) + "): refused before it is read");
   return success();
+}
+
+Status checkFaceSizes(const Paper& paper, const ModelLimits& limits)
+{
+  size_t face = 0;
+  for (const Face& f : paper.faces)
+    face = std::max(face, f.vertices.size());
+  return faceWithin(face, limits);
 }
 
 Expected<Paper> parseModel(const std::string& text, ModelFormat format, double size)

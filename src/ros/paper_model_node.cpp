@@ -117,7 +117,10 @@ PaperModelNode::PaperModelNode(ros::NodeHandle nh, ros::NodeHandle private_nh) :
   if (!guarded)
     throw std::runtime_error("the journal: " + guarded.message());
   journal_.setSync(private_nh.param("journal_sync", true));
-  max_load_vertices_ = static_cast<size_t>(std::max(0, private_nh.param("max_load_vertices", 100000)));
+  load_limits_.max_vertices = static_cast<size_t>(
+      std::max(0, private_nh.param("max_load_vertices", static_cast<int>(load_limits_.max_vertices))));
+  load_limits_.max_face_vertices = static_cast<size_t>(
+      std::max(0, private_nh.param("max_face_vertices", static_cast<int>(load_limits_.max_face_vertices))));
   max_load_bytes_ = static_cast<size_t>(std::max(0.0, private_nh.param("max_load_mb", 64.0)) * (1 << 20));
   journal_snapshot_bytes_ =
       static_cast<uint64_t>(std::max(0.0, private_nh.param("journal_snapshot_mb", 64.0)) * (1 << 20));
@@ -823,8 +826,11 @@ bool PaperModelNode::load(Load::Request& req, Load::Response& res)
   {
     const core::Expected<std::string> text = folder_->readFile(req.path, max_load_bytes_);
     const core::Status sized =
-        text ? core::checkModelSize(*text, *format, max_load_vertices_) : core::failure(text.message());
+        text ? core::checkModelSize(*text, *format, load_limits_) : core::failure(text.message());
     paper = sized ? core::parseModel(*text, *format, size_) : core::Expected<core::Paper>::failure(sized.message());
+    const core::Status faces = paper ? core::checkFaceSizes(*paper, load_limits_) : core::success();
+    if (!faces)
+      paper = core::Expected<core::Paper>::failure(faces.message());
   }
   uint64_t base = 0;
   {

@@ -38,28 +38,33 @@ TEST(ModelFile, FormatsByName)
   EXPECT_FALSE(modelFormat("folding.bag.active"));
 }
 
-// Found by the round-3 probe: a 200,000-vertex FOLD got no answer in 780 s. The size is
-// refused before the parse, by the count the file declares.
+// Found by the round-3 probe: a 200,000-vertex polygon FOLD got no answer in 780 s. The sizes
+// are refused before the parse, by the counts the file declares.
 TEST(ModelFile, ALargeModelIsRefusedBeforeItIsParsed)
 {
   const std::string grid = gridFold(10);  // 121 vertices
-  EXPECT_TRUE(checkModelSize(grid, ModelFormat::Fold, 121));
-  const Status refused = checkModelSize(grid, ModelFormat::Fold, 120);
+  EXPECT_TRUE(checkModelSize(grid, ModelFormat::Fold, { 121, 4 }));
+  const Status refused = checkModelSize(grid, ModelFormat::Fold, { 120, 4 });
   ASSERT_FALSE(refused);
   EXPECT_NE(refused.message().find("max_load_vertices"), std::string::npos) << refused.message();
-  EXPECT_TRUE(checkModelSize(grid, ModelFormat::Fold, 0));  // no limit
+  EXPECT_TRUE(checkModelSize(grid, ModelFormat::Fold, { 0, 0 }));  // no limits
+  const Status big_face = checkModelSize(grid, ModelFormat::Fold, { 121, 3 });
+  ASSERT_FALSE(big_face);
+  EXPECT_NE(big_face.message().find("max_face_vertices"), std::string::npos) << big_face.message();
   const Expected<Paper> paper = parseModel(grid, ModelFormat::Fold, 1.0);
   ASSERT_TRUE(paper) << paper.message();
   EXPECT_EQ(paper->vertices.size(), 121u);
+  EXPECT_TRUE(checkFaceSizes(*paper, { 0, 4 }));
+  EXPECT_FALSE(checkFaceSizes(*paper, { 0, 3 }));
   // A frame of file_frames counts too.
   const std::string framed = R"({"file_spec":1.1,"vertices_coords":[[0,0],[1,0],[1,1]],"faces_vertices":[[0,1,2]],)"
                              R"("file_frames":[{"vertices_coords":[[0,0,0],[1,0,0],[1,1,0],[0,1,0]]}]})";
-  EXPECT_FALSE(checkModelSize(framed, ModelFormat::Fold, 3));
+  EXPECT_FALSE(checkModelSize(framed, ModelFormat::Fold, { 3, 0 }));
   // ORIPA: two vertices a line, blank lines aside.
   const std::string cp = "1 0 0 1 0\n\n1 1 0 1 1\n1 1 1 0 1\n1 0 1 0 0\n2 0 0 1 1\n";
-  EXPECT_TRUE(checkModelSize(cp, ModelFormat::OripaCp, 10));
-  EXPECT_FALSE(checkModelSize(cp, ModelFormat::OripaCp, 9));
+  EXPECT_TRUE(checkModelSize(cp, ModelFormat::OripaCp, { 10, 0 }));
+  EXPECT_FALSE(checkModelSize(cp, ModelFormat::OripaCp, { 9, 0 }));
   // Broken text is the parser's to refuse, with its own message.
-  EXPECT_TRUE(checkModelSize("not json", ModelFormat::Fold, 1));
+  EXPECT_TRUE(checkModelSize("not json", ModelFormat::Fold, { 1, 1 }));
   EXPECT_FALSE(parseModel("not json", ModelFormat::Fold, 1.0));
 }

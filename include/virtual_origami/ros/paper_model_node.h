@@ -33,6 +33,7 @@
 #include <virtual_origami/VertexTarget.h>
 
 #include "virtual_origami/core/data_folder.h"
+#include "virtual_origami/core/model_file.h"
 #include "virtual_origami/core/session.h"
 #include "virtual_origami/core/session_journal.h"
 #include "virtual_origami/ros/conversions.h"
@@ -164,8 +165,9 @@ private:
   core::SnapSettings snap_;
   std::shared_ptr<core::ShapeSolver> solver_;
   size_t history_limit_ = 0;
-  /// Load refuses files over these before parsing (parameters max_load_vertices, max_load_mb).
-  size_t max_load_vertices_ = 100000;
+  /// Load refuses files over these before the expensive work (parameters max_load_vertices,
+  /// max_face_vertices, max_load_mb).
+  core::ModelLimits load_limits_;
   size_t max_load_bytes_ = size_t{ 64 } << 20;
   /// Events after the journal's header, in bytes, that make a snapshot once they outweigh it too.
   uint64_t journal_snapshot_bytes_ = uint64_t{ 64 } << 20;
