@@ -42,9 +42,11 @@ TEST(RecordReplay, AReplayEndsInTheRecordedState)
   ASSERT_TRUE(recorded.trigger("redo").response.success);
   ASSERT_TRUE(recorded.trigger("undo").response.success);
   ASSERT_TRUE(recorded.crease(-0.1, 0.25, 1.1, 0.25).response.success);
-  const Rotate folded = recorded.rotate(-1, -1, 0.3, 0.1, M_PI);
+  // Part way, so that the squash presses something (a squash of flat paper is refused).
+  const Rotate folded = recorded.rotate(-1, -1, 0.3, 0.1, 2.0);
   ASSERT_TRUE(folded.response.success) << folded.response.message;
-  ASSERT_TRUE(recorded.trigger("squash").response.success);
+  const std_srvs::Trigger squashed = recorded.trigger("squash");
+  ASSERT_TRUE(squashed.response.success) << squashed.response.message;
 
   // Then afresh: a fold on a chosen crease (previewed half way first), pins, a vertex dragged
   // (previewed first), a rotation of the picked layers only.
