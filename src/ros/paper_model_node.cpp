@@ -514,6 +514,11 @@ void PaperModelNode::publishMarkers(const core::Paper& paper)
 
 void PaperModelNode::broadcastFrames(const ros::TimerEvent&)
 {
+  {
+    std::lock_guard<std::mutex> resume(resume_mutex_);
+    if (resuming_)
+      return;  // no frames of the placeholder sheet
+  }
   std::lock_guard<std::mutex> lock(mutex_);
   broadcastFaces(ros::Time::now());
   std::vector<geometry_msgs::TransformStamped> frames;

@@ -34,7 +34,10 @@ core::Status startWhereTheRecordingStarted(const Recording& recording, Operation
     return core::failure("the recording's first state is broken: " + paper.message());
   const std::string name = "replay_start_" + std::to_string(::getpid()) + ".fold";
   const std::string path = options.data_dir + "/" + name;
-  const core::Status written = core::writeTextFile(path, core::formatFold(*paper, "replay start"));
+  // Through the folder's descriptor, as paper_model reads it.
+  const core::Expected<core::DataFolder> folder = core::DataFolder::open(options.data_dir);
+  const core::Status written = folder ? folder->writeFile(name, core::formatFold(*paper, "replay start")) :
+                                        core::failure(folder.message());
   if (!written)
     return written;
   const core::Status loaded = client.load(name);
