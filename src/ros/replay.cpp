@@ -36,8 +36,8 @@ core::Status startWhereTheRecordingStarted(const Recording& recording, Operation
   const std::string path = options.data_dir + "/" + name;
   // Through the folder's descriptor, as paper_model reads it.
   const core::Expected<core::DataFolder> folder = core::DataFolder::open(options.data_dir);
-  const core::Status written = folder ? folder->writeFile(name, core::formatFold(*paper, "replay start")) :
-                                        core::failure(folder.message());
+  const core::Status written =
+      folder ? folder->writeFile(name, core::formatFold(*paper, "replay start")) : core::failure(folder.message());
   if (!written)
     return written;
   const core::Status loaded = client.load(name);

@@ -268,6 +268,7 @@ TEST(Durability, AStoppedSolverHoldsUpNoOtherClient)
 TEST(Durability, NoPathAClientSendsReachesTheJournal)
 {
   PaperClient client;
+  ASSERT_TRUE(client.trigger("reset").response.success);
   creaseLines(client, 2, 0.15);
   const std::string data = core::defaultDataFolder();
   std::filesystem::remove(data + "/journal_link.fold");
@@ -297,6 +298,7 @@ TEST(Durability, NoPathAClientSendsReachesTheJournal)
 TEST(Durability, ARespawnWithALargeSessionAnswersWithinTenSeconds)
 {
   PaperClient client;
+  ASSERT_TRUE(client.trigger("reset").response.success);
   const uint64_t before = creaseLines(client, 1, 0.45);
   std::string run_id;
   ASSERT_TRUE(ros::param::get("/run_id", run_id));
