@@ -21,6 +21,7 @@
 
 #include <dynamic_reconfigure/Reconfigure.h>
 #include <ros/callback_queue.h>
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 #include <virtual_origami/Load.h>
@@ -332,6 +333,22 @@ TEST_F(Faults, AFifoIsRefusedAtOnceAndHoldsUpNoOne)
       const bool called = ros::service::call("/origami/load", srv);
       return std::make_pair(called, srv.response);
     }));
+  // Whatever the test finds, no call is left waiting on a FIFO: each gets a writer that closes
+  // at once (before the futures, which wait for their calls, go).
+  struct Unblock
+  {
+    const std::vector<std::string>& fifos;
+    ~Unblock()
+    {
+      for (const std::string& fifo : fifos)
+        for (int i = 0; i < 6; ++i)
+        {
+          const int fd = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
+          if (fd >= 0)
+            ::close(fd);
+        }
+    }
+  } unblock{ fifos };
   auto crease = std::async(std::launch::async, [] {
     Crease srv;
     srv.request.start.x = srv.request.end.x = 0.4;
