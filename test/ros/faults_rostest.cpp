@@ -333,22 +333,6 @@ TEST_F(Faults, AFifoIsRefusedAtOnceAndHoldsUpNoOne)
       const bool called = ros::service::call("/origami/load", srv);
       return std::make_pair(called, srv.response);
     }));
-  // Whatever the test finds, no call is left waiting on a FIFO: each gets a writer that closes
-  // at once (before the futures, which wait for their calls, go).
-  struct Unblock
-  {
-    const std::vector<std::string>& fifos;
-    ~Unblock()
-    {
-      for (const std::string& fifo : fifos)
-        for (int i = 0; i < 6; ++i)
-        {
-          const int fd = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
-          if (fd >= 0)
-            ::close(fd);
-        }
-    }
-  } unblock{ fifos };
   auto crease = std::async(std::launch::async, [] {
     Crease srv;
     srv.request.start.x = srv.request.end.x = 0.4;
@@ -357,6 +341,32 @@ TEST_F(Faults, AFifoIsRefusedAtOnceAndHoldsUpNoOne)
     const bool called = ros::service::call("/origami/crease", srv);
     return std::make_pair(called, srv.response);
   });
+  // Whatever the test finds, no call is left waiting on a FIFO: each gets a writer that closes
+  // at once (before the futures above, which wait for their calls, go).
+  struct Unblock
+  {
+    const std::vector<std::string>& fifos;
+    std::vector<std::future<std::pair<bool, Load::Response>>>& loads;
+    ~Unblock()
+    {
+      const auto answered = [&] {
+        for (auto& load : loads)
+          if (load.valid() && load.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
+            return false;
+        return true;
+      };
+      for (int round = 0; round < 300 && !answered(); ++round)
+      {
+        for (const std::string& fifo : fifos)
+        {
+          const int fd = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
+          if (fd >= 0)
+            ::close(fd);
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      }
+    }
+  } unblock{ fifos, loads };
   ASSERT_EQ(crease.wait_for(std::chrono::seconds(10)), std::future_status::ready);
   const auto [creased, crease_response] = crease.get();
   ASSERT_TRUE(creased);
