@@ -302,9 +302,11 @@ TEST(Durability, ARespawnWithALargeSessionAnswersWithinTenSeconds)
   const uint64_t before = creaseLines(client, 1, 0.45);
   std::string run_id;
   ASSERT_TRUE(ros::param::get("/run_id", run_id));
-  // The journal of the session gone on to a 200,704-vertex model (as a load with a larger
-  // max_load_vertices makes), written aside first and renamed in while no process has it open.
+  // The journal of a session gone on to a 200,704-vertex model and folded on (as loads with a
+  // larger max_load_vertices make): a header and ten events, each with the state it made, as
+  // the probe's journal held many. Written aside first, renamed in while no process has it open.
   const std::string large = core::defaultDataFolder() + "/large_session.jsonl";
+  constexpr int kEvents = 10;
   {
     core::History history;
     history.paper = grid(447);
@@ -316,6 +318,12 @@ TEST(Durability, ARespawnWithALargeSessionAnswersWithinTenSeconds)
     history.log.push_back(load);
     core::SessionJournal journal;
     ASSERT_TRUE(journal.start(large, core::Session(history), run_id));
+    const std::string paper = core::formatPaperJson(history.paper);
+    std::ofstream events(large, std::ios::app);
+    for (int i = 1; i <= kEvents; ++i)
+      events << R"({"operation":{"kind":"load","path":"large.fold","revision":)" << before + 1 + i << R"(},"paper":)"
+             << paper << "}\n";
+    ASSERT_TRUE(events.good());
   }
   const int received = client.received();
   const int pid = pidOf("paper_model");
@@ -330,18 +338,20 @@ TEST(Durability, ARespawnWithALargeSessionAnswersWithinTenSeconds)
       30.0));
   // From the respawned process's start: its services within 10 s, and an answer within 10 s, a
   // refusal while it resumes or the answer itself.
-  ASSERT_TRUE(ros::service::waitForService("/origami/undo", ros::Duration(10)));
-  auto undo = std::async(std::launch::async, [] {
+  ASSERT_TRUE(ros::service::waitForService("/origami/redo", ros::Duration(10)));
+  // redo: nothing to redo in that session, so the answer changes nothing either way.
+  auto redo = std::async(std::launch::async, [] {
     std_srvs::Trigger t;
-    const bool called = ros::service::call("/origami/undo", t);
+    const bool called = ros::service::call("/origami/redo", t);
     return std::make_pair(called, t.response);
   });
-  ASSERT_EQ(undo.wait_for(std::chrono::seconds(10)), std::future_status::ready);
-  const auto [called, undone] = undo.get();
+  ASSERT_EQ(redo.wait_for(std::chrono::seconds(10)), std::future_status::ready);
+  const auto [called, redone] = redo.get();
   EXPECT_TRUE(called);
-  EXPECT_FALSE(undone.success) << undone.message;  // resuming, or nothing to undo: never a change
+  EXPECT_FALSE(redone.success) << redone.message;  // resuming, or nothing to redo
   // And the session comes back whole.
-  ASSERT_TRUE(waitFor([&] { return client.received() > received && client.state().revision == before + 1; }, 120.0));
+  ASSERT_TRUE(
+      waitFor([&] { return client.received() > received && client.state().revision == before + 1 + kEvents; }, 120.0));
   EXPECT_EQ(client.state().vertices_folded.size(), 448u * 448u);
   ASSERT_TRUE(client.trigger("reset").response.success);  // small again for what follows
 }
