@@ -241,11 +241,11 @@ void PaperModelNode::restoreOrStart(const std::string& path, const std::string& 
   // journal, and `resume: false` means a new session per launch, not per process.
   if (std::filesystem::exists(path))
   {
-    const core::Expected<core::JournalRecovery> recovered = core::recoverJournal(path);
+    core::Expected<core::JournalRecovery> recovered = core::recoverJournal(path);
     const bool same_launch = recovered && !run_id.empty() && recovered->run_id == run_id;
     if (recovered && (resume || same_launch))
     {
-      restored = core::Session(recovered->history);
+      restored = core::Session(std::move(recovered->history));  // moved: a large history is not held twice
       ROS_INFO("paper_model: resumed revision %lu (%zu operations) from %s (%s)",
                static_cast<unsigned long>(restored.revision()), restored.log().size(), path.c_str(),
                resume ? "resume is on" : "respawned in the launch that started this session");
