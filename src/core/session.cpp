@@ -100,11 +100,36 @@ Expected<Computed<RotateResult>> computeRotate(Workspace workspace, const Rotate
   return Computed<RotateResult>{ std::move(*result), std::move(change) };
 }
 
+namespace
+{
+/// Whether `after` is `before` to within rounding: every vertex where it was, every crease at its angle.
+bool samePaper(const Paper& before, const Paper& after)
+{
+  if (before.vertices.size() != after.vertices.size() || before.edges.size() != after.edges.size() ||
+      before.faces.size() != after.faces.size())
+    return false;
+  const double still = 1e-12 * before.scale();
+  for (size_t v = 0; v < before.vertices.size(); ++v)
+    if ((before.vertices[v].folded - after.vertices[v].folded).norm() > still ||
+        (before.vertices[v].crease_pattern - after.vertices[v].crease_pattern).norm() > still)
+      return false;
+  for (size_t e = 0; e < before.edges.size(); ++e)
+    if (std::abs(before.edges[e].fold_angle - after.edges[e].fold_angle) > 1e-12 ||
+        before.edges[e].assignment != after.edges[e].assignment)
+      return false;
+  return true;
+}
+}  // namespace
+
 Expected<Computed<SquashResult>> computeSquash(Workspace workspace)
 {
+  const Paper before = workspace.paper;
   Expected<SquashResult> result = core::squash(workspace.paper, workspace.solver.get());
   if (!result)
     return Expected<Computed<SquashResult>>::failure(result.message());
+  // Found by the round-3 probe: a flat sheet answered "pressed flat" with a new revision.
+  if (samePaper(before, workspace.paper))
+    return Expected<Computed<SquashResult>>::failure("the paper is flat already: pressing it changes nothing");
   return Computed<SquashResult>{ std::move(*result),
                                  makeChange(workspace.revision, Operation::Kind::Squash, std::move(workspace.paper)) };
 }
@@ -301,7 +326,7 @@ Expected<Change> Session::prepareRedo() const
   return makeChange(history_.revision, Operation::Kind::Redo, std::nullopt);
 }
 
-Status Session::commit(Change change)
+Status Session::check(const Change& change) const
 {
   if (change.base_revision != history_.revision)
     return failure("the model changed (revision " + std::to_string(change.base_revision) + " to " +
@@ -309,10 +334,28 @@ Status Session::commit(Change change)
   const Operation::Kind kind = change.operation.kind;
   if (kind == Operation::Kind::Undo || kind == Operation::Kind::Redo)
   {
+    if ((kind == Operation::Kind::Undo ? history_.undo : history_.redo).empty())
+      return failure(std::string("nothing to ") + kindName(kind));
+    return success();
+  }
+  if (!change.next)
+    return failure(std::string("a ") + kindName(kind) + " without the state it makes");
+  // A load answered "loaded" must have changed the paper (found by the round-3 probe).
+  if (kind == Operation::Kind::Load && *change.next == history_.paper)
+    return failure("the model in " + change.operation.path + " is the paper as it is: " + kNothingLoaded);
+  return success();
+}
+
+Status Session::commit(Change change)
+{
+  const Status checked = check(change);
+  if (!checked)
+    return checked;
+  const Operation::Kind kind = change.operation.kind;
+  if (kind == Operation::Kind::Undo || kind == Operation::Kind::Redo)
+  {
     std::vector<Paper>& from = kind == Operation::Kind::Undo ? history_.undo : history_.redo;
     std::vector<Paper>& to = kind == Operation::Kind::Undo ? history_.redo : history_.undo;
-    if (from.empty())
-      return failure(std::string("nothing to ") + kindName(kind));
     history_bytes_ += approximateBytes(history_.paper);
     history_bytes_ -= approximateBytes(from.back());
     to.push_back(std::move(history_.paper));
@@ -321,8 +364,6 @@ Status Session::commit(Change change)
   }
   else
   {
-    if (!change.next)
-      return failure(std::string("a ") + kindName(kind) + " without the state it makes");
     for (const Paper& p : history_.redo)
       history_bytes_ -= approximateBytes(p);
     history_.redo.clear();

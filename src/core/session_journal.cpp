@@ -470,6 +470,7 @@ Status SessionJournal::start(const std::string& path, const Session& session, co
   // The descriptor now names the journal itself; events are written after the header.
   file_ = std::move(file);
   written_ = line.size();
+  header_bytes_ = line.size();
   recorded_ = h.log.size();
   revision_ = h.revision;
   undo_depth_ = h.undo.size();

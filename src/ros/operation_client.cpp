@@ -10,6 +10,7 @@
 #include <virtual_origami/PinVertex.h>
 #include <virtual_origami/Pull.h>
 #include <virtual_origami/Rotate.h>
+#include <virtual_origami/Save.h>
 
 namespace virtual_origami
 {
@@ -42,6 +43,13 @@ core::Status OperationClient::load(const std::string& path)
   Load srv;
   srv.request.path = path;
   return call(nh_, "load", srv);
+}
+
+core::Status OperationClient::save(const std::string& path)
+{
+  Save srv;
+  srv.request.path = path;
+  return call(nh_, "save", srv);
 }
 
 core::Status OperationClient::apply(const Operation& op, int animation_steps, double animation_seconds,

@@ -14,8 +14,8 @@
 
 #include "virtual_origami/core/bend_reach.h"
 #include "virtual_origami/core/fold_io.h"
+#include "virtual_origami/core/model_file.h"
 #include "virtual_origami/core/obj_export.h"
-#include "virtual_origami/core/oripa_io.h"
 #include "virtual_origami/ros/remote_solver.h"
 #include "virtual_origami/solvers/crease_driver_factory.h"
 
@@ -110,24 +110,35 @@ PaperModelNode::PaperModelNode(ros::NodeHandle nh, ros::NodeHandle private_nh) :
       folder_->resolve(private_nh.param<std::string>("journal", defaultJournalName(nh_)));
   if (!journal)
     throw std::runtime_error("the journal: " + journal.message());
+  std::error_code made;
+  std::filesystem::create_directories(std::filesystem::path(*journal).parent_path(), made);
+  // No client loads or saves over the journal or its copies (found by the round-3 probe).
+  const core::Status guarded = folder_->protect(*journal);
+  if (!guarded)
+    throw std::runtime_error("the journal: " + guarded.message());
   journal_.setSync(private_nh.param("journal_sync", true));
+  load_limits_.max_vertices = static_cast<size_t>(
+      std::max(0, private_nh.param("max_load_vertices", static_cast<int>(load_limits_.max_vertices))));
+  load_limits_.max_face_vertices = static_cast<size_t>(
+      std::max(0, private_nh.param("max_face_vertices", static_cast<int>(load_limits_.max_face_vertices))));
+  max_load_bytes_ = static_cast<size_t>(std::max(0.0, private_nh.param("max_load_mb", 64.0)) * (1 << 20));
+  journal_snapshot_bytes_ =
+      static_cast<uint64_t>(std::max(0.0, private_nh.param("journal_snapshot_mb", 64.0)) * (1 << 20));
 
-  // First: it replaces the session, and with it the solver and snap settings set below (a
-  // resumed model had no solver, so every fold that needs one was refused: found by chaos).
-  restoreOrStart(private_nh, *journal);
-  core::SnapSettings& snap = session_.snapSettings();
-  snap.radius = private_nh.param("snap_radius", snap.radius * size_);
-  private_nh.param("edge_divisions", snap.edge_divisions, snap.edge_divisions);
-  private_nh.param("angle_divisions", snap.angle_divisions, snap.angle_divisions);
-  session_.setSolver(std::make_shared<RemoteSolver>(nh_, private_nh.param<std::string>("solver_service", "solve"),
-                                                    private_nh.param("solver_timeout", 5.0)));
-  session_.setHistoryLimit(static_cast<size_t>(std::max(0.0, private_nh.param("history_memory_mb", 256.0)) * 1e6));
+  snap_ = session_.snapSettings();
+  snap_.radius = private_nh.param("snap_radius", snap_.radius * size_);
+  private_nh.param("edge_divisions", snap_.edge_divisions, snap_.edge_divisions);
+  private_nh.param("angle_divisions", snap_.angle_divisions, snap_.angle_divisions);
+  solver_ = std::make_shared<RemoteSolver>(nh_, private_nh.param<std::string>("solver_service", "solve"),
+                                           private_nh.param("solver_timeout", 5.0));
+  history_limit_ = static_cast<size_t>(std::max(0.0, private_nh.param("history_memory_mb", 256.0)) * 1e6);
   const std::string driver = private_nh.param<std::string>("crease_driver", "quasi_newton");
   crease_driver_ = core::makeCreaseDriver(driver);
   preview_driver_ = core::makeCreaseDriver(driver);
   if (!crease_driver_ || !preview_driver_)
     throw std::runtime_error("crease_driver \"" + driver + "\" is not a crease driver");
-  session_.setCreaseDrivers(crease_driver_, preview_driver_);
+  const std::string run_id = nh_.param<std::string>("/run_id", "");
+  const bool resume = private_nh.param("resume", true);
 
   state_pub_ = nh_.advertise<PaperState>("state", 1, true);
   markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("markers", 1, true);
@@ -166,8 +177,41 @@ PaperModelNode::PaperModelNode(ros::NodeHandle nh, ros::NodeHandle private_nh) :
   // Calls reconfigure() at once with the parameters (or their defaults).
   reconfigure_server_ = std::make_unique<dynamic_reconfigure::Server<PaperModelConfig>>(private_nh);
   reconfigure_server_->setCallback([this](PaperModelConfig& c, uint32_t level) { reconfigure(c, level); });
-  std::lock_guard<std::mutex> lock(mutex_);
-  publishState();
+  // The services answer from now on: "resuming" until the journal is read back (a large
+  // session took 2 minutes, all of them without an answer: found by the round-3 probe).
+  resume_thread_ = std::thread([this, path = *journal, run_id, resume] {
+    try
+    {
+      restoreOrStart(path, run_id, resume);
+    }
+    catch (const std::exception& e)
+    {
+      ROS_FATAL("paper_model: %s", e.what());
+      std::_Exit(1);  // as a failed start: nothing was served, nothing to save
+    }
+  });
+}
+
+PaperModelNode::~PaperModelNode()
+{
+  if (resume_thread_.joinable())
+    resume_thread_.join();
+}
+
+void PaperModelNode::configureSession()
+{
+  // A resumed model had no solver, so every fold that needs one was refused: found by chaos.
+  session_.snapSettings() = snap_;
+  session_.setSolver(solver_);
+  session_.setHistoryLimit(history_limit_);
+  session_.setCreaseDrivers(crease_driver_, preview_driver_);
+}
+
+bool PaperModelNode::stillResuming()
+{
+  std::unique_lock<std::mutex> lock(resume_mutex_);
+  // A small journal is read back in moments: a client that calls at once is served, not refused.
+  return !resumed_.wait_for(lock, std::chrono::milliseconds(1000), [this] { return !resuming_; });
 }
 
 void PaperModelNode::reconfigure(PaperModelConfig& config, uint32_t)
@@ -187,21 +231,23 @@ void PaperModelNode::reconfigure(PaperModelConfig& config, uint32_t)
     publishMarkers(session_.preview() ? *session_.preview() : session_.paper());
 }
 
-void PaperModelNode::restoreOrStart(ros::NodeHandle& private_nh, const std::string& path)
+void PaperModelNode::restoreOrStart(const std::string& path, const std::string& run_id, bool resume)
 {
+  // Built aside and swapped in: the services refuse ("resuming") until then, and nothing else
+  // touches the session or the journal meanwhile.
+  core::Session restored;
+  std::string notice;
   // roslaunch sets /run_id once per launch: a respawned node finds its own launch's id in the
   // journal, and `resume: false` means a new session per launch, not per process.
-  const std::string run_id = nh_.param<std::string>("/run_id", "");
-  const bool resume = private_nh.param("resume", true);
   if (std::filesystem::exists(path))
   {
-    const core::Expected<core::JournalRecovery> recovered = core::recoverJournal(path);
+    core::Expected<core::JournalRecovery> recovered = core::recoverJournal(path);
     const bool same_launch = recovered && !run_id.empty() && recovered->run_id == run_id;
     if (recovered && (resume || same_launch))
     {
-      session_ = core::Session(recovered->history);
+      restored = core::Session(std::move(recovered->history));  // moved: a large history is not held twice
       ROS_INFO("paper_model: resumed revision %lu (%zu operations) from %s (%s)",
-               static_cast<unsigned long>(session_.revision()), session_.log().size(), path.c_str(),
+               static_cast<unsigned long>(restored.revision()), restored.log().size(), path.c_str(),
                resume ? "resume is on" : "respawned in the launch that started this session");
       if (!recovered->dropped.empty())
       {
@@ -209,10 +255,10 @@ void PaperModelNode::restoreOrStart(ros::NodeHandle& private_nh, const std::stri
         const std::string kept = core::keepAsideName(path);
         std::error_code error;
         std::filesystem::copy_file(path, kept, error);
-        notice_ = "the journal " + path + " was damaged: " + recovered->dropped.front() + "; revision " +
-                  std::to_string(session_.revision()) + " and everything before it were recovered" +
-                  (error ? "" : ", the damaged journal is kept as " + kept);
-        ROS_WARN("paper_model: %s", notice_.c_str());
+        notice = "the journal " + path + " was damaged: " + recovered->dropped.front() + "; revision " +
+                 std::to_string(restored.revision()) + " and everything before it were recovered" +
+                 (error ? "" : ", the damaged journal is kept as " + kept);
+        ROS_WARN("paper_model: %s", notice.c_str());
       }
     }
     else
@@ -233,20 +279,32 @@ void PaperModelNode::restoreOrStart(ros::NodeHandle& private_nh, const std::stri
   }
   else
     ROS_INFO("paper_model: a new session, journaled in %s", path.c_str());
-  if (session_.revision() == 0 && size_ != 1.0)
-    session_ = core::Session(core::Paper::square(size_));
-  std::error_code error;
-  std::filesystem::create_directories(std::filesystem::path(path).parent_path(), error);
-  const core::Status started = journal_.start(path, session_, run_id);
+  if (restored.revision() == 0 && size_ != 1.0)
+    restored = core::Session(core::Paper::square(size_));
+  const core::Status started = journal_.start(path, restored, run_id);
   if (!started)
     ROS_ERROR("paper_model: %s; every change is refused until the journal can be written", started.message().c_str());
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    session_ = std::move(restored);
+    notice_ = std::move(notice);
+    configureSession();
+    publishState();
+  }
+  {
+    std::lock_guard<std::mutex> lock(resume_mutex_);
+    resuming_ = false;
+  }
+  resumed_.notify_all();
 }
 
 core::Status PaperModelNode::commit(core::Change change, const std::string& what, const ros::Time& stamp,
                                    const core::JournalEvent* event)
 {
-  if (change.base_revision != session_.revision())
-    return core::failure("the model changed while this was computed; try again");
+  // Checked before it is journaled: the journal must hold only what the session takes.
+  const core::Status acceptable = session_.check(change);
+  if (!acceptable)
+    return acceptable;
   // Journaled first: an operation answered `success` survives a crash.
   const core::Status journaled =
       event ? journal_.append(session_, *event) :
@@ -260,6 +318,14 @@ core::Status PaperModelNode::commit(core::Change change, const std::string& what
   const core::Status committed = session_.commit(std::move(change));
   if (!committed)
     return committed;
+  // A restart reads the header and the events after it: once the events outweigh the header,
+  // they become a new one (every state a large model made took 2 minutes to read back).
+  if (journal_.wantsSnapshot(journal_snapshot_bytes_))
+  {
+    const core::Status snapped = journal_.snapshot(session_);
+    if (!snapped)  // the next append starts it again (SessionJournal::append)
+      ROS_WARN("paper_model: the journal's snapshot failed: %s", snapped.message().c_str());
+  }
   if (session_.forgottenStates() > forgotten)
     ROS_WARN_THROTTLE(10.0, "paper_model: the oldest undo states were forgotten to keep the history within "
                       "history_memory_mb (%zu so far); the journal keeps every operation",
@@ -448,6 +514,11 @@ void PaperModelNode::publishMarkers(const core::Paper& paper)
 
 void PaperModelNode::broadcastFrames(const ros::TimerEvent&)
 {
+  {
+    std::lock_guard<std::mutex> resume(resume_mutex_);
+    if (resuming_)
+      return;  // no frames of the placeholder sheet
+  }
   std::lock_guard<std::mutex> lock(mutex_);
   broadcastFaces(ros::Time::now());
   std::vector<geometry_msgs::TransformStamped> frames;
@@ -461,6 +532,8 @@ void PaperModelNode::broadcastFrames(const ros::TimerEvent&)
 
 bool PaperModelNode::crease(Crease::Request& req, Crease::Response& res)
 {
+  if (refuseWhileResuming(res))
+    return true;
   core::CreaseRequest request;
   request.start = toVec3(req.start);
   request.end = toVec3(req.end);
@@ -484,6 +557,8 @@ bool PaperModelNode::crease(Crease::Request& req, Crease::Response& res)
 
 bool PaperModelNode::rotate(Rotate::Request& req, Rotate::Response& res)
 {
+  if (refuseWhileResuming(res))
+    return true;
   core::RotateRequest request;
   request.face = req.face;
   request.axis_edge = req.axis_edge;
@@ -509,6 +584,8 @@ bool PaperModelNode::answer(const core::Status& status, const std::string& done,
 
 bool PaperModelNode::squash(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res)
 {
+  if (refuseWhileResuming(res))
+    return true;
   uint64_t revision = 0;
   const auto result = computeAndCommit<core::SquashResult>(
       [](core::Workspace workspace) { return core::computeSquash(std::move(workspace)); }, true, "squashed", revision);
@@ -518,6 +595,8 @@ bool PaperModelNode::squash(std_srvs::Trigger::Request&, std_srvs::Trigger::Resp
 
 bool PaperModelNode::undo(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res)
 {
+  if (refuseWhileResuming(res))
+    return true;
   std::lock_guard<std::mutex> lock(mutex_);
   core::Expected<core::Change> change = session_.prepareUndo();
   return answer(change ? commit(std::move(*change), "undone") : core::failure(change.message()), "undone", res);
@@ -525,6 +604,8 @@ bool PaperModelNode::undo(std_srvs::Trigger::Request&, std_srvs::Trigger::Respon
 
 bool PaperModelNode::redo(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res)
 {
+  if (refuseWhileResuming(res))
+    return true;
   std::lock_guard<std::mutex> lock(mutex_);
   core::Expected<core::Change> change = session_.prepareRedo();
   return answer(change ? commit(std::move(*change), "redone") : core::failure(change.message()), "redone", res);
@@ -532,6 +613,8 @@ bool PaperModelNode::redo(std_srvs::Trigger::Request&, std_srvs::Trigger::Respon
 
 bool PaperModelNode::reset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res)
 {
+  if (refuseWhileResuming(res))
+    return true;
   std::lock_guard<std::mutex> lock(mutex_);
   core::Expected<core::Change> change = core::computeReset(session_.revision(), size_);
   const core::Status status = change ? commit(std::move(*change), "reset") : core::failure(change.message());
@@ -547,6 +630,8 @@ bool PaperModelNode::reset(std_srvs::Trigger::Request&, std_srvs::Trigger::Respo
 
 bool PaperModelNode::pin(PinVertex::Request& req, PinVertex::Response& res)
 {
+  if (refuseWhileResuming(res))
+    return true;
   res.success = false;
   const auto missing = [&] {
     const int count = static_cast<int>(session_.paper().vertices.size());
@@ -604,6 +689,8 @@ bool PaperModelNode::pin(PinVertex::Request& req, PinVertex::Response& res)
 
 bool PaperModelNode::pull(Pull::Request& req, Pull::Response& res)
 {
+  if (refuseWhileResuming(res))
+    return true;
   res.success = false;
   if (req.vertices.size() != req.positions.size())
     res.message = "pull needs one position per vertex (" + std::to_string(req.vertices.size()) + " vertices, " +
@@ -633,6 +720,8 @@ bool PaperModelNode::pull(Pull::Request& req, Pull::Response& res)
 
 bool PaperModelNode::foldByAssignment(FoldByAssignment::Request& req, FoldByAssignment::Response& res)
 {
+  if (refuseWhileResuming(res))
+    return true;
   const bool commit_it = !req.preview;
   const auto result = computeAndCommit<core::AssignmentFoldResult>(
       [&](core::Workspace workspace) {
@@ -665,6 +754,8 @@ bool PaperModelNode::foldByAssignment(FoldByAssignment::Request& req, FoldByAssi
 
 bool PaperModelNode::flatFold(FlatFold::Request& req, FlatFold::Response& res)
 {
+  if (refuseWhileResuming(res))
+    return true;
   res.success = false;
   const core::Expected<core::FlatFoldRequest> request = flatFoldRequest(req.starts, req.ends, req.angles, req.fixed);
   if (!request)
@@ -703,6 +794,8 @@ bool PaperModelNode::flatFold(FlatFold::Request& req, FlatFold::Response& res)
 
 bool PaperModelNode::dragVertex(DragVertex::Request& req, DragVertex::Response& res)
 {
+  if (refuseWhileResuming(res))
+    return true;
   const core::PullTarget target{ req.vertex, toVec3(req.position) };
   const bool commit_it = req.commit;
   const auto result = computeAndCommit<core::PullResult>(
@@ -725,41 +818,56 @@ bool PaperModelNode::dragVertex(DragVertex::Request& req, DragVertex::Response& 
 
 bool PaperModelNode::load(Load::Request& req, Load::Response& res)
 {
-  // Read and checked outside the lock: a large file does not hold up other clients.
-  const core::Expected<std::string> path = folder_->resolve(req.path);
-  // ORIPA's crease patterns as designers keep them, scaled to the sheet's size; else FOLD.
-  const bool oripa = hasSuffix(req.path, ".cp") || hasSuffix(req.path, ".opx");
-  const core::Expected<core::Paper> paper = !path ? core::Expected<core::Paper>::failure(path.message()) :
-                                            oripa ? core::readCreasePatternFile(*path, size_) :
-                                                    core::loadPaper(*path);
-  // So is its journal line, for the revision it will most likely make.
+  if (refuseWhileResuming(res))
+    return true;
+  // Read, sized, parsed, checked and journaled outside the lock: a large file holds up no other
+  // client, and a FIFO or device is refused without waiting (DataFolder::readFile).
+  const std::optional<core::ModelFormat> format = core::modelFormat(req.path);
+  core::Expected<core::Paper> paper = core::Expected<core::Paper>::failure("\"" + req.path +
+                                                                           "\" is a recording or a journal, not a "
+                                                                           "model: load takes .fold, .cp or .opx "
+                                                                           "files");
+  if (format)
+  {
+    const core::Expected<std::string> text = folder_->readFile(req.path, max_load_bytes_);
+    const core::Status sized =
+        text ? core::checkModelSize(*text, *format, load_limits_) : core::failure(text.message());
+    paper = sized ? core::parseModel(*text, *format, size_) : core::Expected<core::Paper>::failure(sized.message());
+    const core::Status faces = paper ? core::checkFaceSizes(*paper, load_limits_) : core::success();
+    if (!faces)
+      paper = core::Expected<core::Paper>::failure(faces.message());
+  }
   uint64_t base = 0;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     base = session_.revision();
   }
-  core::Expected<core::Change> change =
-      paper ? core::computeLoad(base, *paper, req.path) : core::Expected<core::Change>::failure(paper.message());
+  core::Expected<core::Change> change = paper ? core::computeLoad(base, std::move(*paper), req.path) :
+                                                core::Expected<core::Change>::failure(paper.message());
+  // Its journal line too, for the revision it will most likely make.
   std::optional<core::JournalEvent> event;
   if (change)
     event = core::journalEvent(change->operation, &*change->next);
-  std::lock_guard<std::mutex> lock(mutex_);
-  if (change && change->base_revision != session_.revision())  // another client came first
+  core::Status status = core::failure(change ? "" : change.message());
   {
-    change = core::computeLoad(session_.revision(), std::move(*change->next), req.path);
-    event.reset();
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (change && change->base_revision != session_.revision())  // another client came first
+    {
+      change = core::computeLoad(session_.revision(), std::move(*change->next), req.path);
+      event.reset();
+    }
+    if (change)
+      status = commit(std::move(*change), "loaded", ros::Time(0), event ? &*event : nullptr);
+    if (status)
+    {
+      pins_.clear();
+      ++pins_changes_;
+      pulled_to_.clear();
+      publishState();
+    }
   }
-  const core::Status status =
-      change ? commit(std::move(*change), "loaded", ros::Time(0), event ? &*event : nullptr) : core::failure(change.message());
   res.success = status.ok();
   res.message = status ? "loaded " + req.path : status.message();
-  if (status)
-  {
-    pins_.clear();
-    ++pins_changes_;
-    pulled_to_.clear();
-    publishState();
-  }
   // Parsing a large file peaks at several times the model's size, on whichever thread served
   // the call; glibc keeps what was freed in that thread's arena unless asked (100,000 vertices:
   // 390 MB resident after the load without this, measured).
@@ -769,22 +877,25 @@ bool PaperModelNode::load(Load::Request& req, Load::Response& res)
 
 bool PaperModelNode::save(Save::Request& req, Save::Response& res)
 {
+  if (refuseWhileResuming(res))
+    return true;
+  // Control characters first: "x.jsonl\0.fold" ends in .fold only as a whole string.
+  core::Status status = core::checkPathCharacters(req.path);
   const bool fold = hasSuffix(req.path, ".fold"), obj = hasSuffix(req.path, ".obj");
-  const core::Expected<std::string> path = folder_->resolve(req.path);
-  core::Status status = core::failure("save needs a path ending in .fold or .obj, not \"" + req.path + "\"");
-  if ((fold || obj) && !path)
-    status = core::failure(path.message());
-  else if (fold || obj)
+  if (status && !fold && !obj)
+    status = core::failure("save needs a path ending in .fold or .obj, not \"" + req.path + "\"");
+  if (status)
   {
-    std::string text;
+    // Copied under the lock, written out of it.
+    core::Paper paper;
     {
       std::lock_guard<std::mutex> lock(mutex_);
-      text = fold ? core::formatFold(session_.paper()) : core::formatObj(session_.paper());
+      paper = session_.paper();
     }
-    status = core::writeTextFile(*path, text);
+    status = folder_->writeFile(req.path, fold ? core::formatFold(paper) : core::formatObj(paper));
   }
   res.success = status.ok();
-  res.message = status ? "saved " + *path : status.message();
+  res.message = status ? "saved " + req.path + " in " + folder_->root() : status.message();
   return true;
 }
 

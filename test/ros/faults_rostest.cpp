@@ -6,10 +6,12 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <climits>
 #include <cstdio>
 #include <cmath>
 #include <fstream>
+#include <future>
 #include <limits>
 #include <map>
 #include <mutex>
@@ -19,7 +21,9 @@
 
 #include <dynamic_reconfigure/Reconfigure.h>
 #include <ros/callback_queue.h>
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 #include <virtual_origami/Load.h>
 #include <virtual_origami/Operation.h>
 #include <virtual_origami/PinVertex.h>
@@ -305,6 +309,138 @@ TEST_F(Faults, PinLoadSaveBadInput)
     EXPECT_FALSE(res.response.message.empty());
   }
   EXPECT_TRUE(sameGeometry(client_.state(), before));
+  expectAlive();
+}
+
+// Found by the round-3 probe: a load of a FIFO named *.cp or *.opx never answered, and while
+// 4 + 2 such loads waited, crease and undo from other clients got no answer for 15 s.
+TEST_F(Faults, AFifoIsRefusedAtOnceAndHoldsUpNoOne)
+{
+  const std::string dir = core::defaultDataFolder() + "/faults_fifo_" + std::to_string(::getpid());
+  ::mkdir(dir.c_str(), 0755);
+  std::vector<std::string> fifos;
+  for (const char* name : { "pipe.cp", "pipe.opx", "pipe.fold" })
+  {
+    fifos.push_back(dir + "/" + name);
+    ASSERT_EQ(::mkfifo(fifos.back().c_str(), 0600), 0) << fifos.back();
+  }
+  // More loads than the node has threads (4 by default).
+  std::vector<std::future<std::pair<bool, Load::Response>>> loads;
+  for (int i = 0; i < 6; ++i)
+    loads.push_back(std::async(std::launch::async, [path = fifos[i % fifos.size()]] {
+      Load srv;
+      srv.request.path = path;
+      const bool called = ros::service::call("/origami/load", srv);
+      return std::make_pair(called, srv.response);
+    }));
+  auto crease = std::async(std::launch::async, [] {
+    Crease srv;
+    srv.request.start.x = srv.request.end.x = 0.4;
+    srv.request.start.y = -0.1;
+    srv.request.end.y = 1.1;
+    const bool called = ros::service::call("/origami/crease", srv);
+    return std::make_pair(called, srv.response);
+  });
+  // Whatever the test finds, no call is left waiting on a FIFO: each gets a writer that closes
+  // at once (before the futures above, which wait for their calls, go).
+  struct Unblock
+  {
+    const std::vector<std::string>& fifos;
+    std::vector<std::future<std::pair<bool, Load::Response>>>& loads;
+    ~Unblock()
+    {
+      const auto answered = [&] {
+        for (auto& load : loads)
+          if (load.valid() && load.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
+            return false;
+        return true;
+      };
+      for (int round = 0; round < 300 && !answered(); ++round)
+      {
+        for (const std::string& fifo : fifos)
+        {
+          const int fd = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
+          if (fd >= 0)
+            ::close(fd);
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      }
+    }
+  } unblock{ fifos, loads };
+  ASSERT_EQ(crease.wait_for(std::chrono::seconds(10)), std::future_status::ready);
+  const auto [creased, crease_response] = crease.get();
+  ASSERT_TRUE(creased);
+  ASSERT_TRUE(crease_response.success) << crease_response.message;
+  advanced(crease_response.revision);
+  for (auto& load : loads)
+  {
+    ASSERT_EQ(load.wait_for(std::chrono::seconds(10)), std::future_status::ready);
+    const auto [called, response] = load.get();
+    EXPECT_TRUE(called);
+    EXPECT_FALSE(response.success);
+    EXPECT_NE(response.message.find("not a regular file"), std::string::npos) << response.message;
+  }
+  ASSERT_TRUE(client_.trigger("undo").response.success);
+  advanced(revision_ + 1);
+  for (const std::string& fifo : fifos)
+    std::remove(fifo.c_str());
+  ::rmdir(dir.c_str());
+}
+
+// Found by the round-3 probe: a 30,000-line parallel-crease .cp answered "loaded ..." with the
+// revision and the paper unchanged. A load makes a new revision with the file's paper, or is
+// refused with nothing changed; a load of the paper as it is is refused.
+TEST_F(Faults, ALoadChangesThePaperOrIsRefused)
+{
+  const std::string name = "parallel_" + std::to_string(::getpid()) + ".cp";
+  const std::string path = core::defaultDataFolder() + "/" + name;
+  {
+    std::ofstream cp(path);
+    cp << "1 0 0 1 0\n1 1 0 1 1\n1 1 1 0 1\n1 0 1 0 0\n";
+    constexpr int kLines = 30000;
+    for (int i = 1; i <= kLines; ++i)
+    {
+      const double x = static_cast<double>(i) / (kLines + 1);
+      cp << (i % 2 ? 2 : 3) << " " << x << " 0 " << x << " 1\n";
+    }
+  }
+  const PaperState before = client_.stateAt(revision_);
+  Load::Request load;
+  load.path = name;
+  const Load first = client_.call<Load>("load", load);
+  if (first.response.success)
+  {
+    const PaperState& loaded = client_.stateAt(revision_ + 1);
+    ++revision_;
+    EXPECT_EQ(loaded.faces.size(), 30001u);
+    // The same file again: the paper as it is, so nothing loaded and no revision.
+    const Load again = client_.call<Load>("load", load);
+    EXPECT_FALSE(again.response.success);
+    EXPECT_NE(again.response.message.find("nothing loaded"), std::string::npos) << again.response.message;
+    ros::WallDuration(0.3).sleep();
+    ros::spinOnce();
+    EXPECT_EQ(client_.state().revision, revision_);
+  }
+  else
+  {
+    EXPECT_FALSE(first.response.message.empty());
+    ros::WallDuration(0.3).sleep();
+    ros::spinOnce();
+    EXPECT_EQ(client_.state().revision, before.revision);
+    EXPECT_TRUE(sameGeometry(client_.state(), before)) << first.response.message;
+  }
+  std::remove(path.c_str());
+  // The sheet saved and loaded back: the paper as it is.
+  ASSERT_TRUE(client_.trigger("reset").response.success);
+  advanced(revision_ + 1);
+  Save::Request save;
+  save.path = "faults_sheet.fold";
+  ASSERT_TRUE(client_.call<Save>("save", save).response.success);
+  load.path = save.path;
+  const Load same = client_.call<Load>("load", load);
+  EXPECT_FALSE(same.response.success);
+  EXPECT_NE(same.response.message.find("nothing loaded"), std::string::npos) << same.response.message;
+  std::remove((core::defaultDataFolder() + "/faults_sheet.fold").c_str());
   expectAlive();
 }
 

@@ -2,9 +2,12 @@
 // the recording survives kill -9 of the recorder.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <future>
+#include <vector>
 
 #include <virtual_origami/DragVertex.h>
 #include <virtual_origami/FlatFold.h>
@@ -39,9 +42,11 @@ TEST(RecordReplay, AReplayEndsInTheRecordedState)
   ASSERT_TRUE(recorded.trigger("redo").response.success);
   ASSERT_TRUE(recorded.trigger("undo").response.success);
   ASSERT_TRUE(recorded.crease(-0.1, 0.25, 1.1, 0.25).response.success);
-  const Rotate folded = recorded.rotate(-1, -1, 0.3, 0.1, M_PI);
+  // Part way, so that the squash presses something (a squash of flat paper is refused).
+  const Rotate folded = recorded.rotate(-1, -1, 0.3, 0.1, 2.0);
   ASSERT_TRUE(folded.response.success) << folded.response.message;
-  ASSERT_TRUE(recorded.trigger("squash").response.success);
+  const std_srvs::Trigger squashed = recorded.trigger("squash");
+  ASSERT_TRUE(squashed.response.success) << squashed.response.message;
 
   // Then afresh: a fold on a chosen crease (previewed half way first), pins, a vertex dragged
   // (previewed first), a rotation of the picked layers only.
@@ -168,6 +173,72 @@ TEST(RecordReplay, AReplayEndsInTheRecordedState)
     EXPECT_NEAR(got.vertices_folded[v].z, expected.vertices_folded[v].z, 1e-9);
   }
   std::filesystem::remove(bag);
+}
+
+// Found by the round-3 probe: two creases stamped 1e9 s apart replayed at speed 1 never ended
+// (no message), and a bag refused half way left the paper half replayed.
+TEST(RecordReplay, GapsAreCappedAndAFailureRollsBack)
+{
+  PaperClient replayed("/replayed");
+  OperationClient client("/replayed");
+  ASSERT_TRUE(client.waitForServices(30.0));
+  const auto crease = [](double x, double stamp) {
+    Operation op;
+    op.type = "crease";
+    op.start.x = op.end.x = x;
+    op.start.y = -0.1;
+    op.end.y = 1.1;
+    op.header.stamp = ros::Time(stamp);
+    return op;
+  };
+  Recording gap;
+  gap.operations = { crease(0.3, 1.0), crease(0.6, 1.0 + 1e9) };
+  ReplayOptions options;
+  options.speed = 1.0;  // as recorded, but for the gap
+  options.max_gap = 0.5;
+  std::vector<size_t> progress;
+  options.progress = [&](size_t done, size_t total) {
+    EXPECT_EQ(total, 2u);
+    progress.push_back(done);
+  };
+  auto replaying = std::async(std::launch::async, [&] { return replay(gap, client, options); });
+  ASSERT_EQ(replaying.wait_for(std::chrono::seconds(60)), std::future_status::ready);
+  const core::Status done = replaying.get();
+  ASSERT_TRUE(done) << done.message();
+  EXPECT_EQ(progress, (std::vector<size_t>{ 1, 2 }));
+  ASSERT_TRUE(waitFor([&] { return replayed.state().faces.size() == 3u; }));
+  const PaperState before = replayed.state();
+
+  // Refused on its third operation (a face that does not exist): rolled back.
+  Recording broken;
+  broken.operations = { crease(0.2, 0.0), crease(0.8, 0.0), crease(0.5, 0.0) };
+  broken.operations[2].type = "rotate";
+  broken.operations[2].face = broken.operations[2].axis_edge = 100000;
+  broken.operations[2].angle = 1.0;
+  options.speed = 0;
+  options.progress = {};
+  const core::Status failed = replay(broken, client, options);
+  ASSERT_FALSE(failed);
+  EXPECT_NE(failed.message().find("operation 3 of 3"), std::string::npos) << failed.message();
+  EXPECT_NE(failed.message().find("as it was before the replay"), std::string::npos) << failed.message();
+  ASSERT_TRUE(waitFor([&] {
+    const PaperState& now = replayed.state();
+    return now.revision > before.revision && now.faces.size() == before.faces.size() &&
+           now.edges.size() == before.edges.size() && now.vertices_folded.size() == before.vertices_folded.size();
+  })) << "the paper was not rolled back: "
+      << replayed.state().faces.size() << " faces";
+
+  // An operation of a type no model knows: refused before anything is applied.
+  const uint64_t revision = replayed.state().revision;
+  Recording unknown;
+  unknown.operations = { crease(0.5, 0.0), crease(0.5, 0.0) };
+  unknown.operations[1].type = "fold_everything";
+  const core::Status refused = replay(unknown, client, options);
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.message().find("nothing was replayed"), std::string::npos) << refused.message();
+  ros::WallDuration(0.3).sleep();
+  ros::spinOnce();
+  EXPECT_EQ(replayed.state().revision, revision);
 }
 
 TEST(RecordReplay, ABrokenBagIsReportedNotReplayed)

@@ -632,12 +632,61 @@ TEST(SessionJournal, ALoadedFileNameThatIsNotUtf8IsJournaledNotThrown)
   SessionJournal journal;
   Session session;
   ASSERT_TRUE(journal.start(path, session).ok());
-  ASSERT_TRUE(session.load(Paper::square(1.0), "/tmp/\xff\xfe.fold").ok());
+  // A sheet of another size: a load of the paper as it is makes no revision.
+  ASSERT_TRUE(session.load(Paper::square(2.0), "/tmp/\xff\xfe.fold").ok());
   const Status recorded = journal.record(session);  // nlohmann's dump() threw on the name
   ASSERT_TRUE(recorded.ok()) << recorded.message();
   const Expected<JournalRecovery> read = recoverJournal(path);
   ASSERT_TRUE(read.ok()) << read.message();
   EXPECT_TRUE(read->dropped.empty());
   EXPECT_TRUE(read->history.paper == session.paper());
+  std::filesystem::remove(path);
+}
+
+// Found by the round-3 probe: a respawn read back every state a large session had made (2
+// minutes). Once the events outweigh the header they become a new header: a restart reads
+// within twice a header, and reads back the same history.
+TEST(SessionJournal, ASnapshotBoundsWhatARestartReads)
+{
+  const std::string path = tempPath("snapshot.jsonl");
+  SessionJournal journal;
+  Session session;
+  ASSERT_TRUE(journal.start(path, session));
+  session.setHistoryLimit(4 * approximateBytes(session.paper()) + 1);
+  int snapshots = 0;
+  for (int i = 0; i < 60; ++i)
+  {
+    CreaseRequest line;
+    line.start = p3(0.01 + 0.98 * i / 60.0, -0.1);
+    line.end = p3(0.01 + 0.98 * i / 60.0, 1.1);
+    // As paper_model journals: the change appended before it is committed.
+    Expected<Computed<CreaseResult>> creased = computeCrease(session.workspace(), line);
+    ASSERT_TRUE(creased) << creased.message();
+    const uint64_t before = journal.eventBytes();
+    ASSERT_TRUE(journal.append(session, creased->change.operation, &*creased->change.next));
+    ASSERT_TRUE(session.commit(std::move(creased->change)));
+    const uint64_t event = journal.eventBytes() - before;
+    // What a restart would read now: a header and events no heavier, but for the last one.
+    EXPECT_EQ(std::filesystem::file_size(path), journal.headerBytes() + journal.eventBytes());
+    EXPECT_LE(journal.eventBytes(), journal.headerBytes() + event);
+    if (journal.wantsSnapshot(0))
+    {
+      ASSERT_TRUE(journal.snapshot(session));
+      ++snapshots;
+      EXPECT_EQ(std::filesystem::file_size(path), journal.headerBytes());
+    }
+  }
+  EXPECT_GT(snapshots, 3);
+  const Expected<History> read = readJournal(path);
+  ASSERT_TRUE(read) << read.message();
+  // The same paper, revision and log; undo states as deep as the session's at least (the
+  // session forgets the oldest by its memory limit, the journal since its last snapshot).
+  const History& kept = session.history();
+  EXPECT_TRUE(read->paper == kept.paper);
+  EXPECT_EQ(read->revision, kept.revision);
+  EXPECT_EQ(read->log.size(), kept.log.size());
+  ASSERT_GE(read->undo.size(), kept.undo.size());
+  for (size_t i = 1; i <= kept.undo.size(); ++i)
+    EXPECT_TRUE(read->undo[read->undo.size() - i] == kept.undo[kept.undo.size() - i]);
   std::filesystem::remove(path);
 }

@@ -237,3 +237,45 @@ TEST(Session, TheHistoryStaysWithinItsMemoryLimitOldestFirst)
   }
   EXPECT_EQ(session.log().size(), 8u + 3u + 3u);
 }
+
+// Found by the round-3 probe: undo at the start of history and squash on a flat sheet answered
+// success and made new revisions.
+TEST(Session, NothingToUndoAndNothingToSquashAreRefusedWithoutARevision)
+{
+  Session session;
+  EXPECT_FALSE(session.undo());
+  EXPECT_FALSE(session.redo());
+  const Expected<SquashResult> squashed = session.squash();
+  EXPECT_FALSE(squashed);
+  EXPECT_EQ(session.revision(), 0u);
+  EXPECT_TRUE(session.log().empty());
+  // After a load: one undo goes back to the sheet before it, the next is refused.
+  Paper loaded = Paper::square(2.0);
+  ASSERT_TRUE(session.load(loaded, "two.fold"));
+  ASSERT_TRUE(session.undo());
+  const uint64_t revision = session.revision();
+  EXPECT_FALSE(session.undo());
+  EXPECT_EQ(session.revision(), revision);
+  // A session resumed from a history with nothing to undo.
+  Session resumed(session.history());
+  ASSERT_TRUE(resumed.redo());
+  ASSERT_TRUE(resumed.undo());
+  EXPECT_FALSE(resumed.undo());
+  EXPECT_EQ(resumed.revision(), revision + 2);
+}
+
+// Found by the round-3 probe: loads answered "loaded" and the paper was as before.
+TEST(Session, ALoadOfThePaperAsItIsIsRefused)
+{
+  Session session;
+  const Status same = session.load(Paper::square(1.0), "same.fold");
+  ASSERT_FALSE(same);
+  EXPECT_NE(same.message().find(kNothingLoaded), std::string::npos) << same.message();
+  EXPECT_EQ(session.revision(), 0u);
+  // The check a node makes before it journals says the same.
+  const Expected<Change> change = computeLoad(0, Paper::square(1.0), "same.fold");
+  ASSERT_TRUE(change);
+  EXPECT_FALSE(session.check(*change));
+  EXPECT_TRUE(session.load(Paper::square(2.0), "other.fold"));
+  EXPECT_EQ(session.revision(), 1u);
+}

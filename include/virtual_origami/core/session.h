@@ -50,6 +50,9 @@ struct Operation
 
 const char* kindName(Operation::Kind kind);
 
+/// Said by a load refused because the model is the paper as it is (no new revision).
+constexpr const char* kNothingLoaded = "nothing loaded (no new revision)";
+
 /// Sheet sizes reset() accepts, in metres.
 constexpr double kMinSheetSize = 1e-6;
 constexpr double kMaxSheetSize = 1e6;
@@ -103,6 +106,7 @@ struct Workspace
 /// its preview too.
 Expected<Computed<CreaseResult>> computeCrease(Workspace workspace, const CreaseRequest& request);
 Expected<Computed<RotateResult>> computeRotate(Workspace workspace, const RotateRequest& request);
+/// Refused when the paper is flat already (pressing it would change nothing).
 Expected<Computed<SquashResult>> computeSquash(Workspace workspace);
 Expected<Computed<PullResult>> computePull(Workspace workspace, const std::vector<PullTarget>& targets);
 /// Folds every driven crease to `fraction` of its target (assignment_fold.h). `commit` true:
@@ -184,8 +188,11 @@ public:
   Workspace workspace() const;
   Expected<Change> prepareUndo() const;
   Expected<Change> prepareRedo() const;
-  /// Commits a computed change; refused (nothing changed) when the session has moved on from
-  /// the revision the change was computed from.
+  /// Whether commit would take `change`: refused when the session has moved on from the
+  /// revision it was computed from, an undo or redo with nothing to step to, and a load of the
+  /// paper as it is (a new revision that changes nothing). A node checks before it journals.
+  Status check(const Change& change) const;
+  /// Commits a computed change; refused (nothing changed) as check refuses.
   Status commit(Change change);
   /// Shows a computed rotation, fold or drag as the preview, unless the session has
   /// moved on since.

@@ -2,6 +2,7 @@
 // crashes: one JSON line per event, written and synced to disk before it is acknowledged.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -58,6 +59,29 @@ public:
   /// crash of the machine, not of the node, can lose the last events. start() always syncs.
   void setSync(bool sync) { sync_ = sync; }
   bool sync() const { return sync_; }
+  /// Whether the events after the header outweigh it (and `min_bytes`): then a snapshot (start
+  /// again from the session as it is) keeps what a restart reads within twice a header, the
+  /// history the session holds (bounded by its history limit), not every state it ever made.
+  bool wantsSnapshot(uint64_t min_bytes = uint64_t{ 64 } << 20) const
+  {
+    return healthy_ && written_ - header_bytes_ > std::max(header_bytes_, min_bytes);
+  }
+  /// Starts again at the same path from `session`, which must be the session the journal
+  /// recorded (the events so far become its header).
+  Status snapshot(const Session& session)
+  {
+    return start(path_, session, run_id_);
+  }
+  /// Bytes of the header and of the events after it.
+  uint64_t headerBytes() const
+  {
+    return header_bytes_;
+  }
+  uint64_t eventBytes() const
+  {
+    return written_ - header_bytes_;
+  }
+
   /// False before a successful start and after a failed write, until the next start.
   bool healthy() const { return healthy_; }
   const std::string& path() const { return path_; }
@@ -95,6 +119,7 @@ private:
   bool sync_ = true;
   std::string failure_;       // why it is unhealthy
   uint64_t written_ = 0;      // bytes of whole lines in the file
+  uint64_t header_bytes_ = 0;  // of its first line
   size_t recorded_ = 0;       // operations of the session's log in the journal
   uint64_t revision_ = 0;     // the revision the journal's last line leaves the session at
   size_t undo_depth_ = 0;     // states undo could go back to, after the last line

@@ -25,6 +25,8 @@ public:
                      std::optional<double> folded_from = std::nullopt);
   /// Loads a paper (as a FOLD file) so that a replay starts where the recording started.
   core::Status load(const std::string& path);
+  /// Saves the paper as it is (a replay keeps it to roll back to).
+  core::Status save(const std::string& path);
 
 private:
   ros::NodeHandle nh_;

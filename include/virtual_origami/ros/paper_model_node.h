@@ -3,12 +3,14 @@
 #pragma once
 
 #include <atomic>
+#include <condition_variable>
 #include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <dynamic_reconfigure/server.h>
@@ -31,6 +33,7 @@
 #include <virtual_origami/VertexTarget.h>
 
 #include "virtual_origami/core/data_folder.h"
+#include "virtual_origami/core/model_file.h"
 #include "virtual_origami/core/session.h"
 #include "virtual_origami/core/session_journal.h"
 #include "virtual_origami/ros/conversions.h"
@@ -45,7 +48,10 @@ namespace virtual_origami
 class PaperModelNode
 {
 public:
+  /// Advertises the services at once; the session is read back from the journal on a thread
+  /// of its own, and until then every service answers a "resuming" refusal.
   PaperModelNode(ros::NodeHandle nh, ros::NodeHandle private_nh);
+  ~PaperModelNode();
 
 private:
   bool crease(Crease::Request& req, Crease::Response& res);
@@ -93,7 +99,23 @@ private:
   /// the solver re-solves the paper around every pin.
   void followPins(const ros::TimerEvent&);
   std::vector<int> pinnedVertices() const;
-  void restoreOrStart(ros::NodeHandle& private_nh, const std::string& journal);
+  /// Reads the journal back (or starts a new one), then swaps the session in and ends resuming.
+  void restoreOrStart(const std::string& journal, const std::string& run_id, bool resume);
+  /// The solver, snap settings, history limit and drivers, on the session as it is.
+  void configureSession();
+  /// Whether the session is still being resumed, after a short wait for it (so that a small
+  /// journal never makes a client try again).
+  bool stillResuming();
+  /// True, with the refusal in `res`, while the session is being resumed.
+  template <class Response>
+  bool refuseWhileResuming(Response& res)
+  {
+    if (!stillResuming())
+      return false;
+    res.success = false;
+    res.message = "resuming: the session is being read back from its journal; nothing was done, try again shortly";
+    return true;
+  }
   bool answer(const core::Status& status, const std::string& done, std_srvs::Trigger::Response& res);
 
   ros::NodeHandle nh_;
@@ -139,6 +161,20 @@ private:
   std::shared_ptr<core::CreaseDriver> crease_driver_, preview_driver_;
   std::mutex drivers_mutex_;
   std::unique_ptr<dynamic_reconfigure::Server<PaperModelConfig>> reconfigure_server_;
+  // What configureSession puts on a resumed session.
+  core::SnapSettings snap_;
+  std::shared_ptr<core::ShapeSolver> solver_;
+  size_t history_limit_ = 0;
+  /// Load refuses files over these before the expensive work (parameters max_load_vertices,
+  /// max_face_vertices, max_load_mb).
+  core::ModelLimits load_limits_;
+  size_t max_load_bytes_ = size_t{ 64 } << 20;
+  /// Events after the journal's header, in bytes, that make a snapshot once they outweigh it too.
+  uint64_t journal_snapshot_bytes_ = uint64_t{ 64 } << 20;
+  std::mutex resume_mutex_;
+  std::condition_variable resumed_;
+  bool resuming_ = true;  // guarded by resume_mutex_
+  std::thread resume_thread_;
 };
 
 }  // namespace virtual_origami
