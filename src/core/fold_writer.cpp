@@ -4,12 +4,10 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <functional>
 #include <map>
-#include <random>
 #include <set>
 #include <sstream>
 
@@ -20,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fold_format.h"
+#include "virtual_origami/core/atomic_write.h"
 
 namespace virtual_origami::core
 {
@@ -252,11 +251,6 @@ std::string dumpFold(const ordered_json& file)
   return out + "\n";
 }
 
-std::string errnoText()
-{
-  return std::strerror(errno);
-}
-
 }  // namespace
 
 std::string formatFold(const Paper& paper, const std::string& title)
@@ -295,82 +289,15 @@ std::string formatFoldSequence(const std::vector<Paper>& steps, const std::strin
 
 Status writeTextFile(const std::string& path, const std::string& text)
 {
-  // Replace only a regular file the user may write: never a link (rename would replace the
-  // link, not what it points to), a device or folder, or a read-only file (rename would
-  // replace it anyway, as the folder is writable). As root access() calls every file
-  // writable, so a file with no write permission at all counts as read-only too.
-  struct stat target;
-  const bool replacing = ::lstat(path.c_str(), &target) == 0;
-  if (!replacing && errno != ENOENT)
-    return failure("cannot write " + path + ": " + errnoText());
-  if (replacing && S_ISLNK(target.st_mode))
-    return failure("cannot write " + path + ": it is a symbolic link (not followed, not replaced)");
-  if (replacing && !S_ISREG(target.st_mode))
-    return failure("cannot write " + path + ": not a regular file");
-  if (replacing && ((target.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0 || ::access(path.c_str(), W_OK) != 0))
-    return failure("cannot write " + path + ": the file is read-only");
-  const std::filesystem::path target_path(path);
-  const std::string name = target_path.filename().string();
-  if (name.empty() || name == "." || name == "..")
-    return failure("cannot write " + path + ": not a file name");
-  const std::string folder = target_path.has_parent_path() ? target_path.parent_path().string() : ".";
-
-  // Write beside the target, then rename: readers never see a half-written file. The
-  // temporary file gets a new name and is created exclusively, without following links,
-  // so nothing planted in the folder (a link at <name>.tmp) is written through.
-  thread_local std::mt19937_64 random{ std::random_device{}() };
-  std::string temporary;
-  int fd = -1;
-  for (int attempt = 0; fd < 0; ++attempt)
-  {
-    std::ostringstream unique;
-    unique << folder << "/." << name << "." << ::getpid() << "." << std::hex << random() << ".tmp";
-    temporary = unique.str();
-    fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
-    if (fd < 0 && (errno != EEXIST || attempt == 100))
-      return failure("cannot write " + path + ": " + errnoText());
-  }
-  const auto abandon = [&](const std::string& reason) {
-    ::close(fd);
-    ::unlink(temporary.c_str());
-    return failure("cannot write " + path + ": " + reason);
-  };
-  // The new file keeps the permissions of the one it replaces.
-  if (replacing && ::fchmod(fd, target.st_mode & 07777) != 0)
-    return abandon(errnoText());
-  for (size_t done = 0; done < text.size();)
-  {
-    const ssize_t wrote = ::write(fd, text.data() + done, text.size() - done);
-    if (wrote < 0 && errno == EINTR)
-      continue;
-    if (wrote <= 0)
-      return abandon(errnoText());
-    done += static_cast<size_t>(wrote);
-  }
-  // On disk before the rename makes it the file: a crash then leaves the old file or the
-  // whole new one, never an empty one.
-  if (::fsync(fd) != 0)
-    return abandon(errnoText());
-  if (::close(fd) != 0)
-  {
-    const std::string reason = errnoText();
-    ::unlink(temporary.c_str());
-    return failure("cannot write " + path + ": " + reason);
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0)
-  {
-    const std::string reason = errnoText();
-    ::unlink(temporary.c_str());
-    return failure("cannot rename " + temporary + " to " + path + ": " + reason);
-  }
-  // The rename itself on disk too (best effort: some file systems refuse to sync a folder).
-  const int folder_fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (folder_fd >= 0)
-  {
-    ::fsync(folder_fd);
-    ::close(folder_fd);
-  }
-  return success();
+  const std::filesystem::path target(path);
+  const std::string name = target.filename().string();
+  const std::string folder_name = target.has_parent_path() ? target.parent_path().string() : ".";
+  const int folder = ::open(folder_name.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (folder < 0)
+    return failure("cannot write " + path + ": " + std::strerror(errno));
+  const Status written = writeFileAt(folder, name, text, path);
+  ::close(folder);
+  return written;
 }
 
 }  // namespace virtual_origami::core

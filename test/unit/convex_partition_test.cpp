@@ -12,14 +12,6 @@ using namespace virtual_origami::core;
 
 namespace
 {
-std::vector<Vec2> cornersOf(const std::vector<Vec2>& polygon, const std::vector<int>& piece)
-{
-  std::vector<Vec2> corners;
-  for (int i : piece)
-    corners.push_back(polygon[i]);
-  return corners;
-}
-
 /// Each piece convex and counter-clockwise, their areas adding up to the polygon's, and one
 /// diagonal fewer than pieces (a tree of pieces).
 void expectConvexTiling(const std::vector<Vec2>& polygon, const ConvexPieces& split)

@@ -13,14 +13,6 @@ using namespace virtual_origami::core;
 
 namespace
 {
-std::vector<Vec2> cornersOf(const std::vector<Vec2>& points, const std::vector<int>& cycle)
-{
-  std::vector<Vec2> corners;
-  for (int v : cycle)
-    corners.push_back(points[v]);
-  return corners;
-}
-
 /// The unit square and its diagonal from (0, 0) to (1, 1).
 const std::vector<Vec2> kSquare{ { 0, 0 }, { 1, 0 }, { 1, 1 }, { 0, 1 } };
 const std::vector<std::array<int, 2>> kSquareWithDiagonal{ { 0, 1 }, { 1, 2 }, { 2, 3 }, { 3, 0 }, { 0, 2 } };

@@ -56,4 +56,14 @@ double segmentDistance(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& 
 /// Length of the diagonal of the points' bounding box; the points must not be empty.
 double boundingDiagonal(const std::vector<Vec2>& points);
 
+/// The points a cycle of indices names, in its order (a face or piece as a polygon).
+inline std::vector<Vec2> cornersOf(const std::vector<Vec2>& points, const std::vector<int>& cycle)
+{
+  std::vector<Vec2> corners;
+  corners.reserve(cycle.size());
+  for (int v : cycle)
+    corners.push_back(points[v]);
+  return corners;
+}
+
 }  // namespace virtual_origami::core
