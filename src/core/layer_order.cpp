@@ -158,17 +158,12 @@ struct Clause
   std::string why;
 };
 
-/// Every rule of the stack as clauses.
-std::vector<Clause> rulesOf(const Paper& paper, const StackProblem& stack, const std::vector<int>& faces,
-                            const std::vector<FaceOrder>& kept)
-{
-  std::vector<Clause> clauses;
-  const double tolerance = stack.tolerance();
-  std::vector<char> member(paper.faces.size(), 0);
-  for (int f : faces)
-    member[f] = 1;
+using Clauses = std::vector<Clause>;
 
-  // A face folded flat over a crease lies on the side its fold angle says.
+/// A face folded flat over a crease lies on the side its fold angle says; returns those creases.
+std::vector<FlatCrease> creaseRules(const Paper& paper, const StackProblem& stack, const std::vector<char>& member,
+                                    Clauses& clauses)
+{
   std::vector<FlatCrease> creases;
   for (size_t e = 0; e < paper.edges.size(); ++e)
   {
@@ -194,10 +189,17 @@ std::vector<Clause> rulesOf(const Paper& paper, const StackProblem& stack, const
     crease.side = cross2(crease.b - crease.a, centroid - crease.a) > 0 ? 1 : -1;
     creases.push_back(crease);
   }
+  return creases;
+}
+
+/// Orders known beforehand hold.
+void keptRules(const StackProblem& stack, const std::vector<char>& member, const std::vector<FaceOrder>& kept,
+               Clauses& clauses)
+{
+  const auto inStack = [&](int f) { return f >= 0 && f < static_cast<int>(member.size()) && member[f]; };
   for (const FaceOrder& o : kept)
   {
-    if (o.face < 0 || o.other < 0 || o.face >= static_cast<int>(member.size()) ||
-        o.other >= static_cast<int>(member.size()) || !member[o.face] || !member[o.other] || o.above == 0)
+    if (!inStack(o.face) || !inStack(o.other) || o.above == 0)
       continue;
     const int literal = stack.higher(o.face, o.other);
     if (literal != 0)
@@ -205,8 +207,12 @@ std::vector<Clause> rulesOf(const Paper& paper, const StackProblem& stack, const
           { { o.above * stack.facing(o.face) > 0 ? literal : -literal },
             "faces " + std::to_string(o.face) + " and " + std::to_string(o.other) + " keep their order" });
   }
+}
 
-  // Three layers over one place stack one way.
+/// Three layers over one place stack one way.
+void transitivityRules(const StackProblem& stack, const std::vector<int>& faces, Clauses& clauses)
+{
+  const double tolerance = stack.tolerance();
   for (size_t i = 0; i < faces.size(); ++i)
     for (size_t j = i + 1; j < faces.size(); ++j)
     {
@@ -226,87 +232,118 @@ std::vector<Clause> rulesOf(const Paper& paper, const StackProblem& stack, const
         clauses.push_back({ { -stack.higher(g, f), -stack.higher(h, g), -stack.higher(f, h) }, why });
       }
     }
+}
 
-  // No layer lies between the two faces of a fold where the fold's line crosses it (taco–tortilla).
+/// Whether the crease's line runs through the inside of `poly` (off its sides), for a length.
+bool crossesInside(const FlatCrease& c, const Polygon& poly, double tolerance)
+{
+  double t0 = 0.0, t1 = 1.0;  // the part of the crease inside poly
+  for (size_t s = 0; s < poly.size() && t0 <= t1; ++s)
+  {
+    const Vec2 a = poly[s], b = poly[(s + 1) % poly.size()];
+    const double da = cross2(b - a, c.a - a), db = cross2(b - a, c.b - a);
+    if (da < 0 && db < 0)
+      t1 = -1.0;
+    else if (da < 0)
+      t0 = std::max(t0, da / (da - db));
+    else if (db < 0)
+      t1 = std::min(t1, da / (da - db));
+  }
+  if (t1 - t0 <= 0 || (t1 - t0) * (c.b - c.a).norm() <= tolerance)
+    return false;
+  return depthInside(poly, c.a + 0.5 * (t0 + t1) * (c.b - c.a)) > tolerance;
+}
+
+/// No layer lies between the two faces of a fold where the fold's line crosses it (taco–tortilla).
+void tacoTortillaRules(const StackProblem& stack, const std::vector<int>& faces, const std::vector<FlatCrease>& creases,
+                       Clauses& clauses)
+{
   for (const FlatCrease& c : creases)
     for (int h : faces)
     {
-      if (h == c.face || h == c.other || stack.higher(c.face, h) == 0 || stack.higher(c.other, h) == 0)
-        continue;
-      const Polygon& poly = stack.polygon(h);
-      // The part of the crease inside h, and whether its middle is inside h, off h's sides.
-      double t0 = 0.0, t1 = 1.0;
-      for (size_t s = 0; s < poly.size() && t0 <= t1; ++s)
-      {
-        const Vec2 a = poly[s], b = poly[(s + 1) % poly.size()];
-        const double da = cross2(b - a, c.a - a), db = cross2(b - a, c.b - a);
-        if (da < 0 && db < 0)
-          t1 = -1.0;
-        else if (da < 0)
-          t0 = std::max(t0, da / (da - db));
-        else if (db < 0)
-          t1 = std::min(t1, da / (da - db));
-      }
-      if (t1 - t0 <= 0 || (t1 - t0) * (c.b - c.a).norm() <= tolerance)
-        continue;
-      if (depthInside(poly, c.a + 0.5 * (t0 + t1) * (c.b - c.a)) <= tolerance)
+      if (h == c.face || h == c.other || stack.higher(c.face, h) == 0 || stack.higher(c.other, h) == 0 ||
+          !crossesInside(c, stack.polygon(h), stack.tolerance()))
         continue;
       const std::string why =
           "face " + std::to_string(h) + " would pass through the fold at crease " + std::to_string(c.edge);
       clauses.push_back({ { -stack.higher(c.face, h), -stack.higher(h, c.other) }, why });
       clauses.push_back({ { -stack.higher(c.other, h), -stack.higher(h, c.face) }, why });
     }
+}
 
-  // Two folds on one line with their faces on one side nest or lie apart, never interleave (taco–taco).
+/// Whether two folds lie on one line, overlapping, with their faces on the same side of it.
+bool foldsOnOneSide(const FlatCrease& p, const FlatCrease& q, double tolerance)
+{
+  const Vec2 d = (p.b - p.a).normalized();
+  if (std::abs(cross2(d, q.a - p.a)) > tolerance || std::abs(cross2(d, q.b - p.a)) > tolerance)
+    return false;
+  const double pb = (p.b - p.a).norm(), qa = d.dot(q.a - p.a), qb = d.dot(q.b - p.a);
+  if (std::min(pb, std::max(qa, qb)) - std::max(0.0, std::min(qa, qb)) <= tolerance)
+    return false;
+  const int q_side = d.dot(q.b - q.a) > 0 ? q.side : -q.side;  // q.side measured along p's direction
+  return q_side == p.side;
+}
+
+/// The clauses forbidding every order of the four faces of two folds on one line that
+/// interleaves them, over the six pairs' literals (pair (x, y) of faces4, x < y, in the order
+/// (0,1), (0,2), (0,3), (1,2), (1,3), (2,3)).
+void forbidInterleaving(const std::vector<int>& literals, const std::string& why, Clauses& clauses)
+{
+  for (int mask = 0; mask < 64; ++mask)
+  {
+    const auto bit = [](int x, int y) { return x == 0 ? y - 1 : x == 1 ? y + 1 : 5; };
+    const auto above = [&](int x, int y) {  // faces4[y] higher than faces4[x]
+      return x < y ? ((mask >> bit(x, y)) & 1) != 0 : ((mask >> bit(y, x)) & 1) == 0;
+    };
+    const auto between = [&](int x, int lo, int hi) {
+      return (above(lo, x) && above(x, hi)) || (above(hi, x) && above(x, lo));
+    };
+    if (between(2, 0, 1) == between(3, 0, 1) && between(0, 2, 3) == between(1, 2, 3))
+      continue;
+    Clause clause{ {}, why };
+    for (int b = 0; b < 6; ++b)
+      clause.literals.push_back(((mask >> b) & 1) ? -literals[b] : literals[b]);
+    clauses.push_back(std::move(clause));
+  }
+}
+
+/// Two folds on one line with their faces on one side nest or lie apart, never interleave (taco–taco).
+void tacoTacoRules(const StackProblem& stack, const std::vector<FlatCrease>& creases, Clauses& clauses)
+{
   for (size_t i = 0; i < creases.size(); ++i)
     for (size_t j = i + 1; j < creases.size(); ++j)
     {
       const FlatCrease &p = creases[i], &q = creases[j];
-      if (p.face == q.face || p.face == q.other || p.other == q.face || p.other == q.other)
-        continue;
-      const Vec2 d = (p.b - p.a).normalized();
-      const double off_a = std::abs(cross2(d, q.a - p.a)), off_b = std::abs(cross2(d, q.b - p.a));
-      if (off_a > tolerance || off_b > tolerance)
-        continue;
-      const double pa = 0.0, pb = (p.b - p.a).norm(), qa = d.dot(q.a - p.a), qb = d.dot(q.b - p.a);
-      if (std::min(pb, std::max(qa, qb)) - std::max(pa, std::min(qa, qb)) <= tolerance)
-        continue;
-      const int q_side = d.dot(q.b - q.a) > 0 ? q.side : -q.side;  // q.side measured along p's direction
-      if (q_side != p.side)
+      if (p.face == q.face || p.face == q.other || p.other == q.face || p.other == q.other ||
+          !foldsOnOneSide(p, q, stack.tolerance()))
         continue;
       const int faces4[4] = { p.face, p.other, q.face, q.other };
-      std::vector<int> literals;  // the six pairs among the four faces
-      bool all = true;
-      for (int x = 0; x < 4 && all; ++x)
-        for (int y = x + 1; y < 4 && all; ++y)
-        {
+      std::vector<int> literals;
+      for (int x = 0; x < 4; ++x)
+        for (int y = x + 1; y < 4; ++y)
           literals.push_back(stack.higher(faces4[x], faces4[y]));
-          all = literals.back() != 0;
-        }
-      if (!all)
-        continue;
-      // Heights from an assignment of the six pairs; the rule on the resulting order.
-      const std::string why = "creases " + std::to_string(p.edge) + " and " + std::to_string(q.edge) +
-                              " fold on one line: their layers cannot interleave";
-      for (int mask = 0; mask < 64; ++mask)
-      {
-        const auto above = [&](int x, int y) {  // faces4[y] higher than faces4[x]
-          if (x < y)
-            return ((mask >> (x == 0 ? y - 1 : x == 1 ? y + 1 : 5)) & 1) != 0;
-          return ((mask >> (y == 0 ? x - 1 : y == 1 ? x + 1 : 5)) & 1) == 0;
-        };
-        const auto between = [&](int x, int lo, int hi) {
-          return (above(lo, x) && above(x, hi)) || (above(hi, x) && above(x, lo));
-        };
-        const bool interleaved = between(2, 0, 1) != between(3, 0, 1) || between(0, 2, 3) != between(1, 2, 3);
-        if (!interleaved)
-          continue;
-        Clause clause{ {}, why };
-        for (int bit = 0; bit < 6; ++bit)
-          clause.literals.push_back(((mask >> bit) & 1) ? -literals[bit] : literals[bit]);
-        clauses.push_back(std::move(clause));
-      }
+      if (std::find(literals.begin(), literals.end(), 0) != literals.end())
+        continue;  // two of the faces do not overlap
+      forbidInterleaving(literals,
+                         "creases " + std::to_string(p.edge) + " and " + std::to_string(q.edge) +
+                             " fold on one line: their layers cannot interleave",
+                         clauses);
     }
+}
+
+/// Every rule of the stack as clauses.
+Clauses rulesOf(const Paper& paper, const StackProblem& stack, const std::vector<int>& faces,
+                const std::vector<FaceOrder>& kept)
+{
+  std::vector<char> member(paper.faces.size(), 0);
+  for (int f : faces)
+    member[f] = 1;
+  Clauses clauses;
+  const std::vector<FlatCrease> creases = creaseRules(paper, stack, member, clauses);
+  keptRules(stack, member, kept, clauses);
+  transitivityRules(stack, faces, clauses);
+  tacoTortillaRules(stack, faces, creases, clauses);
+  tacoTacoRules(stack, creases, clauses);
   return clauses;
 }
 
