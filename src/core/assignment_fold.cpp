@@ -254,7 +254,12 @@ Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFo
     // closing moves no vertex further than the last stiffening did.
     if (!taken && strain > 0.0)
     {
+      // A balance near a rigid state stiffens in a few steps (3–4 for that Miura-ori); one
+      // far from any may crawl, and is not worth a long wait to refuse.
       const std::unique_ptr<CreaseDriver> stiff = driver.clone();
+      SolveLimits limits = driver.limits();
+      limits.max_iterations = std::min(limits.max_iterations, 100);
+      stiff->setLimits(limits);
       Paper stiffer = work;
       double moves[2] = { 0.0, 0.0 };
       bool balanced = true;
