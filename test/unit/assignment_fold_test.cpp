@@ -13,6 +13,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "closed_form_search.h"
 #include "virtual_origami/core/fold_io.h"
 #include "virtual_origami/core/layer_order.h"
 #include "virtual_origami/core/reference_patterns.h"
@@ -26,6 +27,9 @@ namespace virtual_origami::core
 {
 namespace
 {
+using test::hingeWeights;
+using test::minimise;
+
 using ::testing::HasSubstr;
 
 constexpr double kAlpha = 1.1, kBeta = 0.7;  // sectors α, β, π − α, π − β of the degree-4 vertex
@@ -52,34 +56,6 @@ double distanceFromBalance(const Paper& slid, const AssignmentFoldRequest& frame
   for (size_t v = 0; v < slid.vertices.size(); ++v)
     distance = std::max(distance, (slid.vertices[v].folded - balance.vertices[v].folded).norm());
   return distance / slid.scale();
-}
-
-/// Golden-section minimum of a unimodal f on [a, b], to rounding.
-template <class F>
-double minimise(F f, double a, double b)
-{
-  const double ratio = (std::sqrt(5.0) - 1) / 2;
-  double c = b - ratio * (b - a), d = a + ratio * (b - a);
-  for (int k = 0; k < 200 && b - a > 1e-14; ++k)
-  {
-    if (f(c) < f(d))
-      b = d;
-    else
-      a = c;
-    c = b - ratio * (b - a);
-    d = a + ratio * (b - a);
-  }
-  return (a + b) / 2;
-}
-
-/// The hinge weight of each edge as the drivers weigh it (0 where there is no hinge).
-std::vector<double> hingeWeights(const Paper& paper)
-{
-  const DrivenFaces faces(paper, 1.0);
-  std::vector<double> w(paper.edges.size(), 0.0);
-  for (const Hinge& h : faces.hinges())
-    w[h.edge] = h.weight;
-  return w;
 }
 
 Paper degree4(int mode)

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "closed_form_search.h"
 #include "virtual_origami/core/assignment_fold.h"
 #include "virtual_origami/core/reference_patterns.h"
 #include "virtual_origami/core/tessellations.h"
@@ -18,35 +19,17 @@ namespace virtual_origami::core
 {
 namespace
 {
+using test::hingeWeights;
+using test::minimise;
+
 constexpr int kColumns = 6, kRows = 6;
 const double kGamma = 70.0 * M_PI / 180.0;
-
-/// Golden-section minimum of a unimodal f on [a, b], to rounding.
-template <class F>
-double minimise(F f, double a, double b)
-{
-  const double ratio = (std::sqrt(5.0) - 1) / 2;
-  double c = b - ratio * (b - a), d = a + ratio * (b - a);
-  for (int k = 0; k < 200 && b - a > 1e-14; ++k)
-  {
-    if (f(c) < f(d))
-      b = d;
-    else
-      a = c;
-    c = b - ratio * (b - a);
-    d = a + ratio * (b - a);
-  }
-  return (a + b) / 2;
-}
 
 /// The straight-crease angle ρ of the rigid Miura-ori (miuraFoldAngles) where the driver's
 /// crease springs, pulled to fraction · target, balance: the rigid state a commit should reach.
 double closedFormRho(const Tessellation& t, double fraction)
 {
-  const DrivenFaces faces(t.paper, 1.0);
-  std::vector<double> w(t.paper.edges.size(), 0.0);
-  for (const Hinge& h : faces.hinges())
-    w[h.edge] = h.weight;
+  const std::vector<double> w = hingeWeights(t.paper);
   const auto energy = [&](double rho) {
     const std::vector<double> angles = miuraFoldAngles(t.paper, kColumns, kRows, kGamma, rho);
     double sum = 0.0;
