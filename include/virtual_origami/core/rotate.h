@@ -38,14 +38,12 @@ struct RotateResult
 /// Each stage first drives the turned creases to their new angles with the face across the
 /// axis and the held vertices anchored and every other crease free, through soft faces
 /// (`face_stiffness`), then hands those positions (the turned faces as the turn places them) to
-/// the solver, which closes the faces exactly. Only from `min_vertices` up (0: every model; a
-/// first-order solver is slow from any start near a singular state).
+/// the solver, which closes the faces exactly. Only from `min_vertices` up: a small model's
+/// solve is fast from any start.
 struct TurnGuide
 {
   CreaseDriver* driver = nullptr;
-  // Every size: shape_matching closes a small Miura-ori's corner turn guided in 0–19 iterations,
-  // unguided in 5,000–16,000, more than spring_solver's 1,000.
-  size_t min_vertices = 0;
+  size_t min_vertices = 1000;
   double face_stiffness = 100.0;
 };
 
