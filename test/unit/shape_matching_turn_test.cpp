@@ -89,7 +89,9 @@ TEST(ShapeMatchingTurn, CornerTurnsOfAMiuraOriCloseRigidlyWithinTheServiceBudget
       // From a folded Miura-ori, a one-degree-of-freedom mechanism, the turn stays on its
       // closed form (the flat sheet is a bifurcation: other branches are rigid too).
       if (fraction > 0.0)
+      {
         EXPECT_LE(offFamily(paper), 1e-7) << fraction << " " << degrees;
+      }
     }
   EXPECT_EQ(turned, 11);
 }
