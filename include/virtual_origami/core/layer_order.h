@@ -21,8 +21,9 @@ struct LayerOrderOptions
   /// The search gives up after this many guesses (a stack with no order found in time is
   /// reported as such, not as impossible).
   long max_guesses = 200000;
-  /// Stacks of more faces than this are not ordered (the checks grow with its cube).
-  int max_faces = 600;
+  /// Stacks of more faces than this are not ordered (the checks grow with its cube: a flat
+  /// Miura-ori of 100 faces in one stack takes 0.08 s, of 400 faces 1.3 s).
+  int max_faces = 250;
   /// Papers of more faces than this are not searched for stacks at all (pairs grow with its square).
   int max_paper_faces = 4000;
 };
