@@ -96,10 +96,9 @@ double angleError(const Paper& paper, const std::vector<double>& goal)
   return count ? std::sqrt(sum / count) : 0.0;
 }
 
-double largestStrain(const Paper& paper)
+double largest(const std::vector<double>& values)
 {
-  const std::vector<double> strains = faceStrains(paper);
-  return strains.empty() ? 0.0 : *std::max_element(strains.begin(), strains.end());
+  return values.empty() ? 0.0 : *std::max_element(values.begin(), values.end());
 }
 
 double largestMove(const Paper& a, const Paper& b)
@@ -118,6 +117,74 @@ void addStage(SolveReport& total, const SolveReport& stage)
   total.iterations = iterations;
   total.seconds = seconds;
 }
+/// A balance stiffened twice a hundredfold: whether it converges to a rigid state (the second
+/// move a tenth of the first or less), and then that stiffest balance closed by `rigid`, where
+/// closing moves no vertex further than the last stiffening did.
+bool closeByStiffening(Paper& closed, const Paper& work, const std::vector<double>& goal,
+                       const std::vector<char>& fixed, const CreaseDriver& driver, ShapeSolver& rigid)
+{
+  // A balance near a rigid state stiffens in a few steps (3–4 for a 6 × 6 Miura-ori); one far
+  // from any may crawl, and is not worth a long wait to refuse.
+  const std::unique_ptr<CreaseDriver> stiff = driver.clone();
+  SolveLimits limits = driver.limits();
+  limits.max_iterations = std::min(limits.max_iterations, 100);
+  stiff->setLimits(limits);
+  Paper stiffer = work;
+  double moves[2] = { 0.0, 0.0 };
+  for (int k = 0; k < 2; ++k)
+  {
+    stiff->setFaceStiffness(driver.faceStiffness() * (k == 0 ? 1e2 : 1e4));
+    const Paper before = stiffer;
+    const SolveReport s = stiff->drive(stiffer, goal, fixed);
+    if (!s.converged || s.diverged)
+      return false;
+    moves[k] = largestMove(stiffer, before);
+  }
+  if (moves[1] > 0.1 * moves[0])
+    return false;
+  closed = stiffer;
+  const SolveReport again = rigid.solve(closed, fixed);
+  return again.converged && !again.diverged && largestMove(closed, stiffer) <= moves[1] + 1e-12;
+}
+
+/// Closes `work`'s faces exactly where a rigid shape lies within the strain's reach: one that no
+/// vertex leaves by more than ten times the strain, or one that folds as close to the targets
+/// (its angles' RMS error within ten times the strain of the balance's). The second admits the
+/// rigid solver's free drift along a mechanism: closing a 10,000-vertex Miura-ori at strain 8e-5
+/// moves vertices 9e-4 of the sheet, turns no crease by more than 0.45°, and leaves the RMS error
+/// at 0.3204 rad against the balance's 0.3203.
+///
+/// Near a singular state (a Miura-ori 99 % folded, its layers almost on each other) a strain lets
+/// vertices lie much further than itself from any rigid state (a 6 × 6 one: closing its balance
+/// moves them 26 times its strain, and the creases 4e-3 rad off the closed form). There a rigid
+/// state within reach is the one the balance converges to as the faces stiffen: a balance
+/// converging to a rigid state moves a hundredth as far the second time (its strain falls as
+/// 1/K), that Miura-ori a sixteenth; one that folds only through strained faces (a square twist
+/// at 50 %) a fifth to a quarter, creeping towards a distant rigid state.
+bool closeRigidly(Paper& work, double scale, const std::vector<double>& targets, const std::vector<double>& goal,
+                  const std::vector<char>& fixed, const CreaseDriver& driver, ShapeSolver& rigid)
+{
+  const double strain = largest(faceStrains(work));
+  Paper closed = work;
+  const SolveReport report = rigid.solve(closed, fixed);
+  bool taken = false;
+  if (report.converged && !report.diverged)
+  {
+    measureAngles(closed, targets);
+    const bool near = largestMove(closed, work) <= 10.0 * strain * scale + 1e-12;
+    const bool as_close = angleError(closed, goal) <= angleError(work, goal) + 10.0 * strain;
+    taken = near || as_close;
+  }
+  if (!taken && strain > 0.0 && closeByStiffening(closed, work, goal, fixed, driver, rigid))
+  {
+    measureAngles(closed, targets);
+    taken = true;
+  }
+  if (taken)
+    work = std::move(closed);
+  return taken;
+}
+
 /// Faces the commit left lying flat on each other get the order their creases allow, like every
 /// flat fold's; where none exists the result says why (the layers would pass through each other).
 void recordLayerOrder(Paper& work, AssignmentFoldResult& result)
@@ -224,77 +291,16 @@ Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFo
     return Failure::failure(result.solve.message.empty() ? "the crease driver diverged" : result.solve.message);
   measureAngles(work, targets);
 
-  // Where a rigid shape lies within the strain's reach, close the faces exactly: one that no
-  // vertex leaves by more than ten times the strain, or one that folds as close to the targets
-  // (its angles' RMS error within ten times the strain of the balance's). The second admits
-  // the rigid solver's free drift along a mechanism: closing a 10,000-vertex Miura-ori at strain
-  // 8e-5 moves vertices 9e-4 of the sheet, turns no crease by more than 0.45°, and leaves the
-  // RMS error at 0.3204 rad against the balance's 0.3203.
-  if (request.converge && rigid)
-  {
-    const double strain = largestStrain(work);
-    Paper closed = work;
-    const SolveReport report = rigid->solve(closed, fixed);
-    bool taken = false;
-    if (report.converged && !report.diverged)
-    {
-      measureAngles(closed, targets);
-      const bool near = largestMove(closed, work) <= 10.0 * strain * paper.scale() + 1e-12;
-      const bool as_close = angleError(closed, goal) <= angleError(work, goal) + 10.0 * strain;
-      taken = near || as_close;
-    }
-    // Near a singular state (a Miura-ori 99 % folded, its layers almost on each other) a strain
-    // lets vertices lie much further than itself from any rigid state (a 6 × 6 one: closing its
-    // balance moves them 26 times its strain, and the creases 4e-3 rad off the closed form).
-    // There a rigid state within reach is the one the balance converges to as the faces
-    // stiffen. Twice a hundredfold: a balance converging to a rigid state moves a hundredth as
-    // far the second time (its strain falls as 1/K), that Miura-ori a sixteenth; one that folds
-    // only through strained faces (a square twist at 50 %) a fifth to a quarter, creeping
-    // towards a distant rigid state. The state taken is the stiffest balance closed, where
-    // closing moves no vertex further than the last stiffening did.
-    if (!taken && strain > 0.0)
-    {
-      // A balance near a rigid state stiffens in a few steps (3–4 for that Miura-ori); one
-      // far from any may crawl, and is not worth a long wait to refuse.
-      const std::unique_ptr<CreaseDriver> stiff = driver.clone();
-      SolveLimits limits = driver.limits();
-      limits.max_iterations = std::min(limits.max_iterations, 100);
-      stiff->setLimits(limits);
-      Paper stiffer = work;
-      double moves[2] = { 0.0, 0.0 };
-      bool balanced = true;
-      for (int k = 0; k < 2 && balanced; ++k)
-      {
-        stiff->setFaceStiffness(driver.faceStiffness() * (k == 0 ? 1e2 : 1e4));
-        const Paper before = stiffer;
-        const SolveReport s = stiff->drive(stiffer, goal, fixed);
-        balanced = s.converged && !s.diverged;
-        moves[k] = largestMove(stiffer, before);
-      }
-      if (balanced && moves[1] <= 0.1 * moves[0])
-      {
-        closed = stiffer;
-        const SolveReport again = rigid->solve(closed, fixed);
-        if (again.converged && !again.diverged && largestMove(closed, stiffer) <= moves[1] + 1e-12)
-        {
-          measureAngles(closed, targets);
-          taken = true;
-        }
-      }
-    }
-    if (taken)
-    {
-      work = std::move(closed);
-      result.rigid = true;
-    }
-  }
+  if (request.converge && rigid && closeRigidly(work, paper.scale(), targets, goal, fixed, driver, *rigid))
+    result.rigid = true;
   result.face_strain = faceStrains(work);
-  result.max_strain = result.face_strain.empty() ? 0.0 : *std::max_element(result.face_strain.begin(), result.face_strain.end());
+  result.max_strain = largest(result.face_strain);
   result.angle_error = angleError(work, goal);
   if (request.converge)
+  {
     recordLayerOrder(work, result);
-  if (request.converge)
     paper = std::move(copy);
+  }
   return result;
 }
 

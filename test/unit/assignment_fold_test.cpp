@@ -283,16 +283,7 @@ TEST(AssignmentFold, MiuraOriMeetsItsClosedFormAtEveryInteriorVertex)
   const int columns = 4, rows = 4;
   const double gamma = 1.0471975511965976;
   const Tessellation t = miuraTessellation(columns, rows, 1.0, 1.0, gamma).value();
-  const std::vector<double> w = hingeWeights(t.paper);
-  const auto energy = [&](double rho) {
-    const std::vector<double> angles = miuraFoldAngles(t.paper, columns, rows, gamma, rho);
-    double sum = 0.0;
-    for (size_t e = 0; e < angles.size(); ++e)
-      if (t.paper.edges[e].isCrease())
-        sum += w[e] * std::pow(angles[e] - 0.4 * t.target_fold_angle[e], 2);
-    return sum;
-  };
-  const double expected = minimise(energy, 0.0, 3.0);
+  const double expected = test::miuraBalanceRho(t, columns, rows, gamma, 0.4, 3.0);
   const auto d = driver(DriverHessian::Lagged, 1e6);
   NewtonSolver rigid;
   Paper paper = t.paper;

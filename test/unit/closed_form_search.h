@@ -6,6 +6,8 @@
 #include <vector>
 
 #include "virtual_origami/core/paper.h"
+#include "virtual_origami/core/reference_patterns.h"
+#include "virtual_origami/core/tessellations.h"
 #include "virtual_origami/solvers/driven_faces.h"
 
 namespace virtual_origami::core::test
@@ -36,5 +38,23 @@ inline std::vector<double> hingeWeights(const Paper& paper)
   for (const Hinge& h : faces.hinges())
     w[h.edge] = h.weight;
   return w;
+}
+
+/// The straight-crease angle ρ in [0, rho_max] of the rigid Miura-ori (miuraFoldAngles) where
+/// the driver's crease springs, pulled to `fraction` of their targets, balance: the rigid state
+/// a commit should reach.
+inline double miuraBalanceRho(const Tessellation& t, int columns, int rows, double gamma, double fraction,
+                              double rho_max)
+{
+  const std::vector<double> w = hingeWeights(t.paper);
+  const auto energy = [&](double rho) {
+    const std::vector<double> angles = miuraFoldAngles(t.paper, columns, rows, gamma, rho);
+    double sum = 0.0;
+    for (size_t e = 0; e < angles.size(); ++e)
+      if (t.paper.edges[e].isCrease())
+        sum += w[e] * std::pow(angles[e] - fraction * t.target_fold_angle[e], 2);
+    return sum;
+  };
+  return minimise(energy, 0.0, rho_max);
 }
 }  // namespace virtual_origami::core::test

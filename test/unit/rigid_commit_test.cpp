@@ -19,26 +19,13 @@ namespace virtual_origami::core
 {
 namespace
 {
-using test::hingeWeights;
-using test::minimise;
-
 constexpr int kColumns = 6, kRows = 6;
 const double kGamma = 70.0 * M_PI / 180.0;
 
-/// The straight-crease angle ρ of the rigid Miura-ori (miuraFoldAngles) where the driver's
-/// crease springs, pulled to fraction · target, balance: the rigid state a commit should reach.
+/// Where the driver's springs balance on the rigid Miura-ori (closed_form_search.h).
 double closedFormRho(const Tessellation& t, double fraction)
 {
-  const std::vector<double> w = hingeWeights(t.paper);
-  const auto energy = [&](double rho) {
-    const std::vector<double> angles = miuraFoldAngles(t.paper, kColumns, kRows, kGamma, rho);
-    double sum = 0.0;
-    for (size_t e = 0; e < angles.size(); ++e)
-      if (t.paper.edges[e].isCrease())
-        sum += w[e] * std::pow(angles[e] - fraction * t.target_fold_angle[e], 2);
-    return sum;
-  };
-  return minimise(energy, 0.0, M_PI);
+  return test::miuraBalanceRho(t, kColumns, kRows, kGamma, fraction, M_PI);
 }
 
 /// The paper's straight-crease angle ρ: crease (0, 1)→(1, 1) folds (−1)^1·ρ.
