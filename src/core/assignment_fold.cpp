@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
+#include "virtual_origami/core/face_crossings.h"
 #include "virtual_origami/core/face_springs.h"
 #include "virtual_origami/core/fold_fraction.h"
 #include "virtual_origami/core/layer_order.h"
@@ -69,18 +71,37 @@ std::vector<double> faceStrains(const Paper& paper)
 
 namespace
 {
-/// Fold angles from the positions, each on the branch nearest its last value; creases that
-/// are driven keep the assignment they are driven by (a flat crease that bends a little on
-/// the way stays flat), free ones take the sign they fold to, as after any other operation.
-void measureAngles(Paper& paper, const std::vector<double>& targets)
+/// Fold angles from the positions, each on the branch nearest its last value. Every crease
+/// keeps its assignment: a driven one the one it is driven by (a flat crease that bends a little
+/// on the way stays flat), a free hinge stays unassigned, so the next fold leaves it free too
+/// (after any other operation a free crease takes the sign it folded to).
+void measureAngles(Paper& paper)
 {
   std::vector<Assignment> kept;
   for (const Edge& e : paper.edges)
     kept.push_back(e.assignment);
   updateFoldAngles(paper);
   for (size_t e = 0; e < paper.edges.size(); ++e)
-    if (std::isfinite(targets[e]))
-      paper.edges[e].assignment = kept[e];
+    paper.edges[e].assignment = kept[e];
+}
+
+int againstTarget(const Paper& paper, const std::vector<double>& goal)
+{
+  int count = 0;
+  for (size_t e = 0; e < goal.size(); ++e)
+    if (std::isfinite(goal[e]) && goal[e] != 0.0 &&
+        paper.edges[e].fold_angle * (goal[e] > 0 ? 1.0 : -1.0) < -kAgainstTargetAngle)
+      ++count;
+  return count;
+}
+
+double largestTurn(const Paper& before, const Paper& after, const std::vector<double>& goal)
+{
+  double turn = 0.0;
+  for (size_t e = 0; e < goal.size(); ++e)
+    if (std::isfinite(goal[e]))
+      turn = std::max(turn, std::abs(after.edges[e].fold_angle - before.edges[e].fold_angle));
+  return turn;
 }
 
 double angleError(const Paper& paper, const std::vector<double>& goal)
@@ -161,7 +182,7 @@ bool closeByStiffening(Paper& closed, const Paper& work, const std::vector<doubl
 /// converging to a rigid state moves a hundredth as far the second time (its strain falls as
 /// 1/K), that Miura-ori a sixteenth; one that folds only through strained faces (a square twist
 /// at 50 %) a fifth to a quarter, creeping towards a distant rigid state.
-bool closeRigidly(Paper& work, double scale, const std::vector<double>& targets, const std::vector<double>& goal,
+bool closeRigidly(Paper& work, double scale, const std::vector<double>& goal,
                   const std::vector<char>& fixed, const CreaseDriver& driver, ShapeSolver& rigid)
 {
   const double strain = largest(faceStrains(work));
@@ -170,14 +191,14 @@ bool closeRigidly(Paper& work, double scale, const std::vector<double>& targets,
   bool taken = false;
   if (report.converged && !report.diverged)
   {
-    measureAngles(closed, targets);
+    measureAngles(closed);
     const bool near = largestMove(closed, work) <= 10.0 * strain * scale + 1e-12;
     const bool as_close = angleError(closed, goal) <= angleError(work, goal) + 10.0 * strain;
     taken = near || as_close;
   }
   if (!taken && strain > 0.0 && closeByStiffening(closed, work, goal, fixed, driver, rigid))
   {
-    measureAngles(closed, targets);
+    measureAngles(closed);
     taken = true;
   }
   if (taken)
@@ -209,8 +230,8 @@ Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFo
                                                 const std::vector<int>& held)
 {
   using Failure = Expected<AssignmentFoldResult>;
-  if (!std::isfinite(request.fraction) || request.fraction < 0.0 || request.fraction > 1.0)
-    return Failure::failure("the fold fraction must be a number from 0 to 1 (0 to 100 %)");
+  if (!std::isfinite(request.fraction) || request.fraction < -1.0 || request.fraction > 1.0)
+    return Failure::failure("the fold fraction must be a number from -1 to 1 (-100 % to 100 %)");
   if (!(request.max_stage_angle > 0.0))
     return Failure::failure("the stage angle must be positive");
   const std::vector<double> targets = creaseTargets(paper);
@@ -250,6 +271,7 @@ Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFo
     // from each crease's own angle: a pattern that cannot meet its targets (a Miura-ori's
     // straight and zigzag creases differ) misses some by far at any fraction.
     const double from = foldFraction(work);
+    result.from_fraction = from;
     double largest_target = 0.0;
     for (double t : targets)
       if (std::isfinite(t))
@@ -276,32 +298,71 @@ Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFo
         if (std::isfinite(goal[e]))
           stage_goal[e] = fraction * targets[e];
       addStage(result.solve, path.drive(work, stage_goal, fixed));
-      measureAngles(work, targets);
+      measureAngles(work);
     }
     if (soft_path)
     {
       if (!result.solve.diverged)
       {
         addStage(result.solve, fresh->drive(work, goal, fixed));
-        measureAngles(work, targets);
+        measureAngles(work);
       }
     }
   }
   if (result.solve.diverged)
     return Failure::failure(result.solve.message.empty() ? "the crease driver diverged" : result.solve.message);
-  measureAngles(work, targets);
+  measureAngles(work);
 
-  if (request.converge && rigid && closeRigidly(work, paper.scale(), targets, goal, fixed, driver, *rigid))
+  if (request.converge && rigid && closeRigidly(work, paper.scale(), goal, fixed, driver, *rigid))
     result.rigid = true;
   result.face_strain = faceStrains(work);
   result.max_strain = largest(result.face_strain);
   result.angle_error = angleError(work, goal);
+  result.against_target = againstTarget(work, goal);
   if (request.converge)
   {
+    result.largest_turn = largestTurn(paper, work, goal);
+    result.crossings = static_cast<int>(findFaceCrossings(work).size());
     recordLayerOrder(work, result);
     paper = std::move(copy);
   }
   return result;
+}
+
+std::string assignmentFoldProblems(const AssignmentFoldResult& result, const AssignmentFoldAcceptance& acceptance)
+{
+  if (acceptance.keep)
+    return "";
+  std::vector<std::string> problems;
+  char text[200];
+  if (!(result.max_strain <= acceptance.max_strain))
+  {
+    std::snprintf(text, sizeof text, "the faces would stretch: strain %.3g, over the bound %.3g", result.max_strain,
+                  acceptance.max_strain);
+    problems.emplace_back(text);
+  }
+  if (result.against_target > 0)
+    problems.push_back(std::to_string(result.against_target) +
+                       (result.against_target == 1 ? " crease would fold" : " creases would fold") +
+                       " against its assignment (past flat the other way)");
+  if (result.crossings > 0)
+    problems.push_back(std::to_string(result.crossings) +
+                       (result.crossings == 1 ? " pair of faces would cross" : " pairs of faces would cross"));
+  if (!result.layer_problem.empty())
+    problems.push_back("the flat layers cannot be stacked: " + result.layer_problem);
+  // Something was asked to change (the driven creases are off their goal) and nothing turned:
+  // faces that cannot bend held the creases (never "folded" with the sheet where it was).
+  if (std::abs(result.fraction - result.from_fraction) > 1e-3 && result.angle_error > kAgainstTargetAngle &&
+      result.largest_turn < 1e-6)
+  {
+    std::snprintf(text, sizeof text, "the faces could not follow: no crease turned (angle error %.3g rad)",
+                  result.angle_error);
+    problems.emplace_back(text);
+  }
+  std::string message;
+  for (const std::string& p : problems)
+    message += (message.empty() ? "" : "; ") + p;
+  return message;
 }
 
 }  // namespace virtual_origami::core

@@ -17,7 +17,7 @@ double foldFraction(const Paper& paper)
       fit += paper.edges[e].fold_angle * targets[e];
       norm += targets[e] * targets[e];
     }
-  return norm > 0 ? std::clamp(fit / norm, 0.0, 1.0) : 0.0;
+  return norm > 0 ? std::clamp(fit / norm, -1.0, 1.0) : 0.0;
 }
 
 bool hasDrivenCreases(const Paper& paper)

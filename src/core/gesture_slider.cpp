@@ -12,7 +12,7 @@ namespace
 /// Fractions are committed to 0.1 %: what the percent shows is what is recorded.
 double tidy(double fraction)
 {
-  return std::round(std::clamp(fraction, 0.0, 1.0) * 1000.0) / 1000.0;
+  return std::round(std::clamp(fraction, -1.0, 1.0) * 1000.0) / 1000.0;
 }
 }  // namespace
 

@@ -147,14 +147,16 @@ Expected<Computed<PullResult>> computePull(Workspace workspace, const std::vecto
   return Computed<PullResult>{ std::move(*result), std::move(change) };
 }
 
-Expected<Computed<AssignmentFoldResult>> computeFoldByAssignment(Workspace workspace, double fraction, bool commit)
+Expected<Computed<AssignmentFoldResult>> computeFoldByAssignment(Workspace workspace, double fraction, bool commit,
+                                                                 const AssignmentFoldAcceptance& acceptance,
+                                                                 AssignmentFoldResult* figures)
 {
   using Answer = Expected<Computed<AssignmentFoldResult>>;
-  if (!(fraction >= 0.0 && fraction <= 1.0))  // NaN fails both
+  if (!(fraction >= -1.0 && fraction <= 1.0))  // NaN fails both
   {
     std::ostringstream given;
     given << fraction;
-    return Answer::failure("the fold fraction must be a number from 0 to 1 (0 to 100 %), not " + given.str());
+    return Answer::failure("the fold fraction must be a number from -1 to 1 (-100 % to 100 %), not " + given.str());
   }
   const std::shared_ptr<CreaseDriver>& driver =
       !commit && workspace.preview_driver ? workspace.preview_driver : workspace.driver;
@@ -175,10 +177,23 @@ Expected<Computed<AssignmentFoldResult>> computeFoldByAssignment(Workspace works
       core::foldByAssignment(paper, request, *driver, workspace.solver.get(), workspace.held);
   if (!result)
     return Answer::failure(result.message());
+  if (figures)
+    *figures = *result;
   for (const auto& [v, at] : held_at)
     if ((paper.vertices[v].folded - at).norm() > 1e-9 * paper.scale())
       return Answer::failure("vertex " + std::to_string(v) +
                              " is pinned and folding by assignment would move it; release it first");
+  if (commit)
+  {
+    const std::string problems = assignmentFoldProblems(*result, acceptance);
+    if (!problems.empty())
+    {
+      std::ostringstream said;
+      said << "not folded to " << 100.0 * fraction << " %: " << problems
+           << " (keep the state with the service's keep flag)";
+      return Answer::failure(said.str());
+    }
+  }
   Change change = makeChange(workspace.revision, Operation::Kind::AssignmentFold, std::move(paper));
   change.operation.fraction = fraction;
   return Computed<AssignmentFoldResult>{ std::move(*result), std::move(change) };
@@ -471,9 +486,10 @@ Expected<PullResult> Session::pull(const std::vector<PullTarget>& targets)
   return std::move(computed->result);
 }
 
-Expected<AssignmentFoldResult> Session::foldByAssignment(double fraction, bool commit_it)
+Expected<AssignmentFoldResult> Session::foldByAssignment(double fraction, bool commit_it,
+                                                         const AssignmentFoldAcceptance& acceptance)
 {
-  auto computed = computeFoldByAssignment(workspace(), fraction, commit_it);
+  auto computed = computeFoldByAssignment(workspace(), fraction, commit_it, acceptance);
   if (!computed)
     return Expected<AssignmentFoldResult>::failure(computed.message());
   if (commit_it)
@@ -541,7 +557,10 @@ Status Session::apply(const Operation& operation)
     }
     case Operation::Kind::AssignmentFold:
     {
-      const auto r = foldByAssignment(operation.fraction, true);
+      // A recorded fold was accepted when it was made (or kept on purpose): its replay keeps it.
+      AssignmentFoldAcceptance recorded;
+      recorded.keep = true;
+      const auto r = foldByAssignment(operation.fraction, true, recorded);
       return r ? success() : failure(r.message());
     }
     case Operation::Kind::FlatFold:

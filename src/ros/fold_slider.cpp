@@ -41,12 +41,12 @@ double sliderFraction(const SliderTrack& track, const core::Vec3& point)
   const double length2 = along.squaredNorm();
   if (!(length2 > 0) || !point.allFinite())
     return 0.0;
-  return std::clamp((point - track.start).dot(along) / length2, 0.0, 1.0);
+  return std::clamp(2.0 * (point - track.start).dot(along) / length2 - 1.0, -1.0, 1.0);
 }
 
 core::Vec3 sliderPoint(const SliderTrack& track, double fraction)
 {
-  return track.start + std::clamp(fraction, 0.0, 1.0) * (track.end - track.start);
+  return track.start + 0.5 * (std::clamp(fraction, -1.0, 1.0) + 1.0) * (track.end - track.start);
 }
 
 visualization_msgs::InteractiveMarker sliderHandle(const SliderTrack& track, double fraction, const SliderStyle& style)
@@ -87,7 +87,7 @@ visualization_msgs::MarkerArray sliderMarkers(const SliderTrack& track, double f
   Marker line = sliderPart(style, stamp, "fold_slider_track", Marker::LINE_LIST);
   line.points = { toPoint(track.start), toPoint(track.end) };
   const core::Vec3 across = core::Vec3::UnitZ().cross(track.end - track.start).normalized() * style.handle_size * 0.4;
-  for (int tick = 0; tick <= 4; ++tick)
+  for (int tick = -4; tick <= 4; ++tick)
   {
     const core::Vec3 at = sliderPoint(track, tick / 4.0);
     line.points.push_back(toPoint(at - across));
@@ -99,7 +99,7 @@ visualization_msgs::MarkerArray sliderMarkers(const SliderTrack& track, double f
   text.scale.z = style.text_size;
   text.color = rgba(0.1f, 0.1f, 0.3f);
   char buffer[48];
-  std::snprintf(buffer, sizeof buffer, "fold %.0f %%", 100.0 * std::clamp(fraction, 0.0, 1.0));
+  std::snprintf(buffer, sizeof buffer, "fold %.0f %%", 100.0 * std::clamp(fraction, -1.0, 1.0));
   text.text = buffer;
   text.pose.position = toPoint(sliderPoint(track, fraction) + core::Vec3(0, 0, 1.5 * style.text_size));
   array.markers.push_back(text);

@@ -42,6 +42,7 @@ std::vector<InteractionNode::MenuEntry> InteractionNode::menuEntries()
     { "Pin the nearest vertex", "", [this](const Feedback& f) { model_.pin(pointer(f), false); }, {} },
     { "Release the nearest pin", "", [this](const Feedback& f) { model_.pin(pointer(f), true); }, {} },
     { by_assignment, "", {}, {} },
+    { "-100 % (the opposite assignment)", by_assignment, foldTo(-1.0), {} },
     { "0 %", by_assignment, foldTo(0.0), {} },
     { "25 %", by_assignment, foldTo(0.25), {} },
     { "50 %", by_assignment, foldTo(0.5), {} },

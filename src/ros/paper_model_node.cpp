@@ -95,6 +95,7 @@ PaperModelNode::PaperModelNode(ros::NodeHandle nh, ros::NodeHandle private_nh) :
   face_frame_prefix_ = private_nh.param<std::string>("face_frame_prefix", "");
   face_frames_max_ = std::max(0, private_nh.param("face_frames_max", face_frames_max_));
   solve_attempts_ = std::max(1, private_nh.param("solve_attempts", solve_attempts_));
+  max_assignment_strain_ = private_nh.param("max_assignment_strain", max_assignment_strain_);
   const double pin_rate = private_nh.param("pin_rate", 30.0);
 
   std::string data_dir = private_nh.param<std::string>("data_dir", "");
@@ -723,13 +724,26 @@ bool PaperModelNode::foldByAssignment(FoldByAssignment::Request& req, FoldByAssi
   if (refuseWhileResuming(res))
     return true;
   const bool commit_it = !req.preview;
+  core::AssignmentFoldAcceptance acceptance;
+  acceptance.max_strain = max_assignment_strain_;
+  acceptance.keep = req.keep;
+  core::AssignmentFoldResult figures;
   const auto result = computeAndCommit<core::AssignmentFoldResult>(
       [&](core::Workspace workspace) {
         std::lock_guard<std::mutex> drivers(drivers_mutex_);
-        return core::computeFoldByAssignment(std::move(workspace), req.fraction, commit_it);
+        return core::computeFoldByAssignment(std::move(workspace), req.fraction, commit_it, acceptance, &figures);
       },
       commit_it, "folded by assignment", res.revision);
   res.success = result.ok();
+  // The figures of what was computed, refused or not: a refusal says how far from right it was.
+  const core::AssignmentFoldResult& folded = result ? result->result : figures;
+  res.max_strain = folded.max_strain;
+  res.angle_error = folded.angle_error;
+  res.rigid = folded.rigid;
+  res.creases_against_target = folded.against_target;
+  res.crossings = folded.crossings;
+  res.ordered_pairs = folded.ordered_pairs;
+  res.layer_problem = folded.layer_problem;
   if (!result)
   {
     res.message = result.message();
@@ -741,14 +755,18 @@ bool PaperModelNode::foldByAssignment(FoldByAssignment::Request& req, FoldByAssi
     }
     return true;
   }
-  const core::AssignmentFoldResult& folded = result->result;
-  res.max_strain = folded.max_strain;
-  res.angle_error = folded.angle_error;
-  res.rigid = folded.rigid;
   char text[160];
   std::snprintf(text, sizeof text, "%s %.1f %% by assignment (strain %.2g, %s)", commit_it ? "folded" : "preview at",
                 100.0 * req.fraction, folded.max_strain, folded.rigid ? "rigid" : "not rigid");
   res.message = text;
+  if (commit_it && req.keep)
+  {
+    core::AssignmentFoldAcceptance strict = acceptance;
+    strict.keep = false;
+    const std::string problems = core::assignmentFoldProblems(folded, strict);
+    if (!problems.empty())
+      res.message += "; kept as asked, although " + problems;
+  }
   return true;
 }
 

@@ -40,25 +40,31 @@ namespace
 {
 /// A 4 × 3 Miura-ori as a designer's FOLD file: assignments, no fold angles (so every crease is
 /// driven to ±180° by its assignment), written into the model's data folder.
-std::string writeMiura()
+/// A crease pattern as a designer's FOLD file in the data folder; its name there.
+std::string writePattern(const core::Paper& paper, const std::string& stem)
 {
-  const core::Expected<core::Tessellation> miura = core::miuraTessellation(4, 3);
-  EXPECT_TRUE(miura.ok()) << miura.message();
   nlohmann::json fold;
   fold["file_spec"] = 1.1;
   fold["frame_classes"] = { "creasePattern" };
-  for (const core::Vertex& v : miura->paper.vertices)
+  for (const core::Vertex& v : paper.vertices)
     fold["vertices_coords"].push_back({ v.crease_pattern.x(), v.crease_pattern.y() });
-  for (const core::Edge& e : miura->paper.edges)
+  for (const core::Edge& e : paper.edges)
   {
     fold["edges_vertices"].push_back({ e.vertices[0], e.vertices[1] });
     fold["edges_assignment"].push_back(std::string(1, core::assignmentLetter(e.assignment)));
   }
-  for (const core::Face& f : miura->paper.faces)
+  for (const core::Face& f : paper.faces)
     fold["faces_vertices"].push_back(f.vertices);
-  const std::string name = "miura_" + std::to_string(::getpid()) + ".fold";
+  const std::string name = stem + "_" + std::to_string(::getpid()) + ".fold";
   std::ofstream(core::defaultDataFolder() + "/" + name) << fold.dump();
   return name;
+}
+
+std::string writeMiura()
+{
+  const core::Expected<core::Tessellation> miura = core::miuraTessellation(4, 3);
+  EXPECT_TRUE(miura.ok()) << miura.message();
+  return writePattern(miura->paper, "miura");
 }
 
 /// Driven creases (M or V) of a state: angle and the sign its assignment folds to.
@@ -136,11 +142,12 @@ protected:
     operations_.clear();
   }
 
-  FoldByAssignment fold(double fraction, bool preview = false)
+  FoldByAssignment fold(double fraction, bool preview = false, bool keep = false)
   {
     FoldByAssignment::Request request;
     request.fraction = fraction;
     request.preview = preview;
+    request.keep = keep;
     return client_.call<FoldByAssignment>("fold_by_assignment", request);
   }
 
@@ -245,8 +252,10 @@ TEST_F(FoldByAssignmentTest, TheSliderFoldsToHalfWithOneHistoryEntry)
   const auto handle = *interactiveMarker("fold_slider");
   ASSERT_EQ(handle.controls.size(), 1u);
   EXPECT_EQ(handle.controls[0].interaction_mode, visualization_msgs::InteractiveMarkerControl::MOVE_AXIS);
-  const core::Vec3 start = toVec3(slider_["fold_slider_track"].points[0]);
+  // The track runs from −100 % (the opposite assignment) to 100 %; 0 % is its middle.
+  const core::Vec3 track_start = toVec3(slider_["fold_slider_track"].points[0]);
   const core::Vec3 end = toVec3(slider_["fold_slider_track"].points[1]);
+  const core::Vec3 start = 0.5 * (track_start + end);
   EXPECT_NEAR((toVec3(handle.pose.position) - start).norm(), 0.0, 1e-9) << "a flat pattern is at 0 %";
   // Beside the sheet, not over it.
   double lowest_y = INFINITY;
@@ -303,7 +312,7 @@ TEST_F(FoldByAssignmentTest, TheSliderFoldsToHalfWithOneHistoryEntry)
 
 TEST_F(FoldByAssignmentTest, TheServiceRefusesBadInputAndChangesNothing)
 {
-  for (double fraction : { std::numeric_limits<double>::quiet_NaN(), -0.5, 1.5 })
+  for (double fraction : { std::numeric_limits<double>::quiet_NaN(), -1.5, 1.5 })
     for (bool preview : { false, true })
     {
       const FoldByAssignment refused = fold(fraction, preview);
@@ -317,6 +326,45 @@ TEST_F(FoldByAssignmentTest, TheServiceRefusesBadInputAndChangesNothing)
   expectRefused(fold(0.5, true), square);
   ros::spinOnce();
   EXPECT_TRUE(foldsPublished().empty());
+}
+
+TEST_F(FoldByAssignmentTest, AStrainedFoldIsRefusedWithItsFiguresAndKeptOnRequest)
+{
+  // A square twist cannot fold half way with rigid faces (strain ≈ 2e-3, over the 1e-3 bound).
+  Load::Request load;
+  load.path = writePattern(core::squareTwistTessellation(2, 2).value().paper, "square_twist");
+  const Load loaded = client_.call<Load>("load", load);
+  ASSERT_TRUE(loaded.response.success) << loaded.response.message;
+  const PaperState flat = client_.stateAt(base_ + 1);
+  const FoldByAssignment refused = fold(0.5);
+  expectRefused(refused, flat);
+  EXPECT_GT(refused.response.max_strain, 1e-3);
+  EXPECT_FALSE(refused.response.rigid);
+  EXPECT_NE(refused.response.message.find("the faces would stretch"), std::string::npos) << refused.response.message;
+  const FoldByAssignment kept = fold(0.5, false, true);
+  ASSERT_TRUE(kept.response.success) << kept.response.message;
+  EXPECT_EQ(kept.response.revision, flat.revision + 1);
+  EXPECT_NEAR(kept.response.max_strain, refused.response.max_strain, 1e-6);
+  EXPECT_NE(kept.response.message.find("kept as asked"), std::string::npos) << kept.response.message;
+  EXPECT_EQ(kept.response.crossings, 0);
+}
+
+TEST_F(FoldByAssignmentTest, ANegativeFractionFoldsEveryCreaseTheOtherWay)
+{
+  const FoldByAssignment folded = fold(-0.4);
+  ASSERT_TRUE(folded.response.success) << folded.response.message;
+  EXPECT_EQ(folded.response.creases_against_target, 0);
+  const PaperState state = client_.stateAt(folded.response.revision);
+  int opposite = 0;
+  for (const Driven& d : drivenCreases(state))
+  {
+    EXPECT_LT(d.angle * d.sign, 0.0) << "every driven crease folds against its assignment's sign";
+    opposite += d.angle * d.sign < -0.1 ? 1 : 0;
+  }
+  EXPECT_GT(opposite, 10);
+  // The assignments are the file's still, and the fold reads as the opposite assignment's.
+  EXPECT_EQ(drivenCreases(state).size(), drivenCreases(flat_).size());
+  EXPECT_LT(fittedFraction(state), -0.1);
 }
 
 TEST_F(FoldByAssignmentTest, PreviewsStayOutOfHistoryAndReplayReproducesTheCommit)
@@ -438,7 +486,7 @@ TEST(StrainColours, BlueWithoutStrainRedAtTheScaleAndBeyond)
   }
 }
 
-TEST(FoldSlider, TheTrackLiesBesideTheCreasePatternAndMapsOntoZeroToOne)
+TEST(FoldSlider, TheTrackLiesBesideTheCreasePatternAndMapsOntoMinusOneToOne)
 {
   const core::Expected<core::Tessellation> miura = core::miuraTessellation(4, 3);
   ASSERT_TRUE(miura.ok()) << miura.message();
@@ -454,10 +502,12 @@ TEST(FoldSlider, TheTrackLiesBesideTheCreasePatternAndMapsOntoZeroToOne)
   EXPECT_NEAR(track.start.x(), lo_x, 1e-12);
   EXPECT_NEAR(track.end.x(), hi_x, 1e-12);
   EXPECT_NEAR(track.start.y(), lo_y - 0.15 * paper.scale(), 1e-12);
-  EXPECT_EQ(sliderFraction(track, track.start), 0.0);
+  EXPECT_EQ(sliderFraction(track, track.start), -1.0);  // the opposite assignment
+  EXPECT_EQ(sliderFraction(track, 0.5 * (track.start + track.end)), 0.0);
   EXPECT_EQ(sliderFraction(track, track.end), 1.0);
   EXPECT_NEAR(sliderFraction(track, sliderPoint(track, 0.37) + core::Vec3(0, 0.2, 0.3)), 0.37, 1e-12);
-  EXPECT_EQ(sliderFraction(track, track.start - (track.end - track.start)), 0.0);  // clamped
+  EXPECT_NEAR(sliderFraction(track, sliderPoint(track, -0.6) + core::Vec3(0, 0.2, 0.3)), -0.6, 1e-12);
+  EXPECT_EQ(sliderFraction(track, track.start - (track.end - track.start)), -1.0);  // clamped
   EXPECT_EQ(sliderFraction(track, track.end + (track.end - track.start)), 1.0);
   EXPECT_EQ(sliderFraction(track, core::Vec3(NAN, 0, 0)), 0.0);
 

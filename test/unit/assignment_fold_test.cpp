@@ -583,14 +583,14 @@ TEST(AssignmentFold, BadInputChangesNothing)
 {
   const auto d = makeCreaseDriver("quasi_newton");
   const Paper start = miuraTessellation(2, 2).value().paper;
-  for (double fraction : { std::numeric_limits<double>::quiet_NaN(), -0.1, 1.5, std::numeric_limits<double>::infinity() })
+  for (double fraction : { std::numeric_limits<double>::quiet_NaN(), -1.1, 1.5, std::numeric_limits<double>::infinity() })
   {
     Paper paper = start;
     AssignmentFoldRequest request;
     request.fraction = fraction;
     const Expected<AssignmentFoldResult> r = foldByAssignment(paper, request, *d, nullptr);
     ASSERT_FALSE(r);
-    EXPECT_THAT(r.message(), HasSubstr("0 to 1"));
+    EXPECT_THAT(r.message(), HasSubstr("-1 to 1"));
     EXPECT_TRUE(paper == start);
   }
   Paper square = Paper::square();

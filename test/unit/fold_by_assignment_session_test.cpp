@@ -64,8 +64,8 @@ TEST(FoldByAssignmentSession, ARefusedFoldLeavesThePaperAndTheRevision)
 {
   Session session = foldingSession(miuraWithTargets());
   const Paper before = session.paper();
-  for (double fraction : { std::numeric_limits<double>::quiet_NaN(), -0.01, 1.01,
-                           std::numeric_limits<double>::infinity() })
+  for (double fraction : { std::numeric_limits<double>::quiet_NaN(), -1.01, 1.01,
+                           std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity() })
   {
     const auto refused = session.foldByAssignment(fraction);
     ASSERT_FALSE(refused.ok()) << fraction;

@@ -32,7 +32,7 @@ TEST(FoldFraction, IsTheLeastSquaresFitOfTheDrivenAnglesToTheirTargets)
   EXPECT_NEAR(foldFraction(paper), expected, 1e-12);
 }
 
-TEST(FoldFraction, FileTargetsCountAndTheResultStaysWithinZeroToOne)
+TEST(FoldFraction, FileTargetsCountAndTheResultStaysWithinMinusOneToOne)
 {
   const Expected<Tessellation> miura = miuraTessellation(3, 3);
   ASSERT_TRUE(miura.ok()) << miura.message();
@@ -46,11 +46,14 @@ TEST(FoldFraction, FileTargetsCountAndTheResultStaysWithinZeroToOne)
     }
   EXPECT_NEAR(foldFraction(paper), 0.5, 1e-12);
   for (Edge& e : paper.edges)
-    e.fold_angle = -e.fold_angle;  // every crease the wrong way
-  EXPECT_EQ(foldFraction(paper), 0.0);
+    e.fold_angle = -e.fold_angle;  // every crease the other way: the opposite assignment half way
+  EXPECT_NEAR(foldFraction(paper), -0.5, 1e-12);
   for (Edge& e : paper.edges)
     e.fold_angle = e.target_angle ? 3 * *e.target_angle : 0.0;  // past the targets
   EXPECT_EQ(foldFraction(paper), 1.0);
+  for (Edge& e : paper.edges)
+    e.fold_angle = -e.fold_angle;  // past the opposite targets
+  EXPECT_EQ(foldFraction(paper), -1.0);
 }
 
 TEST(FoldFraction, AnUnfoldedSquareHasNoDrivenCrease)

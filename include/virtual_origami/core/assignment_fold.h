@@ -52,7 +52,8 @@ protected:
 
 struct AssignmentFoldRequest
 {
-  /// 0: every driven crease towards its flat state, 1: towards its full target.
+  /// 0: every driven crease towards its flat state, 1: towards its full target, −1: towards
+  /// the opposite of its target (every mountain a valley; Origami Simulator's −100 %).
   double fraction = 1.0;
   /// False for a preview frame: one call of the driver within its limits (a time budget), from
   /// the paper as given (the last frame). True to commit: staged in the fraction from the one
@@ -81,9 +82,36 @@ struct AssignmentFoldResult
   /// layers would cross), why.
   int ordered_pairs = 0;
   std::string layer_problem;
+  /// Driven creases left on the other side of flat from where they were driven (further than
+  /// kAgainstTargetAngle): a fold that went the wrong way.
+  int against_target = 0;
+  /// A commit's pairs of faces passing through each other (face_crossings.h); previews are
+  /// not checked (a frame's budget is for the solve).
+  int crossings = 0;
+  /// A commit's start (foldFraction of the paper it started from), and the largest change of a
+  /// driven crease's angle on the way: 0 when the faces could not follow at all.
+  double from_fraction = 0.0;
+  double largest_turn = 0.0;
 };
 
-/// Folds `paper` by assignment. Fails (paper untouched) on a fraction outside [0, 1] or not
+/// How far past flat a driven crease may lie before it counts as folded against its target.
+constexpr double kAgainstTargetAngle = 1e-3;
+
+/// When a commit's result is right for paper (SPEC §2): its strain within `max_strain`, no
+/// crease against its target, no faces crossing, its layers stackable, and something folded
+/// where the targets asked for a change.
+struct AssignmentFoldAcceptance
+{
+  double max_strain = 1e-3;
+  /// True: the state is kept whatever it is (the caller asked for it), its figures reported.
+  bool keep = false;
+};
+
+/// What makes `result` wrong by `acceptance` (figures included, for the answer), or "" when
+/// nothing does or the caller keeps it anyway.
+std::string assignmentFoldProblems(const AssignmentFoldResult& result, const AssignmentFoldAcceptance& acceptance);
+
+/// Folds `paper` by assignment. Fails (paper untouched) on a fraction outside [−1, 1] or not
 /// finite, a paper without a driven crease, or a driver that diverged.
 Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFoldRequest& request,
                                                 CreaseDriver& driver, ShapeSolver* rigid,

@@ -7,7 +7,7 @@
 namespace virtual_origami::core
 {
 /// The fraction f that best fits every driven crease's fold angle to f · its target
-/// (creaseTargets; least squares), clamped to 0 to 1; 0 without driven creases.
+/// (creaseTargets; least squares), clamped to −1 to 1 (−1: every crease at the opposite of its target); 0 without driven creases.
 double foldFraction(const Paper& paper);
 
 /// True when some crease has a target (creaseTargets) to fold towards.

@@ -42,7 +42,7 @@ struct Operation
   double size = 1.0;      // Reset: the sheet's side
   std::string path;       // Load: where the model came from
   std::vector<PullTarget> pull;  // Pull: where the vertices were pulled to (pins following frames)
-  double fraction = 0.0;  // AssignmentFold: how far towards the creases' targets, 0 to 1
+  double fraction = 0.0;  // AssignmentFold: how far towards the creases' targets, −1 to 1
   FlatFoldRequest flat_fold;  // FlatFold: the creases, their angles and the face that stays
   PullTarget drag;            // DragVertex: the vertex and where it was dragged to
   uint64_t revision = 0;  // the revision it produced
@@ -109,11 +109,16 @@ Expected<Computed<RotateResult>> computeRotate(Workspace workspace, const Rotate
 /// Refused when the paper is flat already (pressing it would change nothing).
 Expected<Computed<SquashResult>> computeSquash(Workspace workspace);
 Expected<Computed<PullResult>> computePull(Workspace workspace, const std::vector<PullTarget>& targets);
-/// Folds every driven crease to `fraction` of its target (assignment_fold.h). `commit` true:
-/// converged from the committed paper (what replay reproduces); false: a preview frame from the
-/// last preview, within the preview driver's budget. Pins are held.
+/// Folds every driven crease to `fraction` (−1 to 1) of its target (assignment_fold.h).
+/// `commit` true: converged from the committed paper (what replay reproduces), and refused when
+/// the result is wrong for paper by `acceptance` (assignmentFoldProblems: strain, creases
+/// against their target, crossings, layers) unless it keeps it; false: a preview frame from the
+/// last preview, within the preview driver's budget, never refused for its figures. Pins are
+/// held. `figures`, when given, receives the result's figures whether or not it is refused.
 Expected<Computed<AssignmentFoldResult>> computeFoldByAssignment(Workspace workspace, double fraction,
-                                                                 bool commit = true);
+                                                                 bool commit = true,
+                                                                 const AssignmentFoldAcceptance& acceptance = {},
+                                                                 AssignmentFoldResult* figures = nullptr);
 /// Folds on chosen creases (flat_fold.h). Refused when the fold moves nothing or would move a
 /// held vertex (a pin). The change's state is the folded paper.
 Expected<Computed<FlatFoldResult>> computeFlatFold(Workspace workspace, const FlatFoldRequest& request);
@@ -175,7 +180,8 @@ public:
   /// Pulls vertices to points (see pull.h), holding the held vertices.
   Expected<PullResult> pull(const std::vector<PullTarget>& targets);
   /// Folds by assignment to `fraction`; with commit false a preview, as for rotate.
-  Expected<AssignmentFoldResult> foldByAssignment(double fraction, bool commit = true);
+  Expected<AssignmentFoldResult> foldByAssignment(double fraction, bool commit = true,
+                                                  const AssignmentFoldAcceptance& acceptance = {});
   /// Folds on chosen creases; with commit false a preview (`preview()`) `fraction` of the way.
   Expected<FlatFoldResult> flatFold(const FlatFoldRequest& request, bool commit = true, double fraction = 1.0);
   /// Drags a vertex to a point; with commit false a preview, as for rotate.

@@ -34,18 +34,20 @@ struct SliderStyle
 /// is wide, in the table's plane z = 0. It stays put while the paper folds.
 SliderTrack sliderTrack(const core::Paper& paper, const SliderStyle& style);
 
-/// The fraction (0 to 1) of the point's projection along the track, clamped to its ends.
+/// The fraction of the point's projection along the track, clamped to its ends: −1 (−100 %, the
+/// opposite assignment, as Origami Simulator's slider offers) at the start, 0 (flat) at the
+/// middle, 1 (100 %) at the end.
 double sliderFraction(const SliderTrack& track, const core::Vec3& point);
 
-/// The point at `fraction` along the track.
+/// The point of `fraction` (−1 to 1) on the track.
 core::Vec3 sliderPoint(const SliderTrack& track, double fraction);
 
 /// The handle at `fraction` along the track, movable only along it (its x axis).
 visualization_msgs::InteractiveMarker sliderHandle(const SliderTrack& track, double fraction,
                                                    const SliderStyle& style);
 
-/// The track (namespace `fold_slider_track`, a LINE_LIST whose first two points are its 0 % and
-/// 100 % ends, then ticks every 25 %) and the percent over the handle (`fold_slider_percent`).
+/// The track (namespace `fold_slider_track`, a LINE_LIST whose first two points are its −100 %
+/// and 100 % ends, then ticks every 25 %) and the percent over the handle (`fold_slider_percent`).
 visualization_msgs::MarkerArray sliderMarkers(const SliderTrack& track, double fraction, const SliderStyle& style,
                                               const ros::Time& stamp);
 

@@ -124,6 +124,8 @@ private:
   core::Session session_;
   std::string notice_;  // said on `state` until the next change
   int solve_attempts_ = 3;
+  /// A fold-by-assignment commit straining the faces more than this is refused unless kept.
+  double max_assignment_strain_ = 1e-3;
   core::SessionJournal journal_;
   Pins pins_;
   uint64_t pins_changes_ = 0;  // counts every pin, release and clearing of the pins
