@@ -546,8 +546,8 @@ TEST_F(GestureModelTest, NextLayerDownWalksAStacksCreasesTopFirstFromEitherSideO
   ASSERT_GE(most, 4);  // four layers fold on it
   const double yaw = 4.2, pitch = 0.75;
   ViewCamera view;
-  view.eye = Vec3(0.5, 0.45, 0.1) + 1.7 * Vec3(std::cos(yaw) * std::cos(pitch), std::sin(yaw) * std::cos(pitch),
-                                               std::sin(pitch));
+  view.eye = Vec3(0.5, 0.45, 0.1) +
+             1.7 * Vec3(std::cos(yaw) * std::cos(pitch), std::sin(yaw) * std::cos(pitch), std::sin(pitch));
   const Vec3 forward = (Vec3(0.5, 0.45, 0.1) - view.eye).normalized();
   const Vec3 right = forward.cross(Vec3::UnitZ()).normalized();
   view.axes << right, forward.cross(right), forward;
