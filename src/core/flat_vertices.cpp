@@ -175,14 +175,14 @@ std::string remedy(const Paper& paper, const std::vector<Spoke>& folded, const V
 {
   for (int s : verdict.suspects)
     if (foldsFlipped(folded, { s }))
-      return ": fold crease " + std::to_string(folded[s].edge) + " " + (folded[s].sign > 0 ? "mountain" : "valley") +
+      return ": fold " + creaseText(paper, folded[s].edge) + " " + (folded[s].sign > 0 ? "mountain" : "valley") +
              " instead";
   for (int s : verdict.suspects)
   {
     std::vector<Spoke> fewer = folded;
     fewer.erase(fewer.begin() + s);
     if (!fewer.empty() && judge(fewer).rule == Rule::Holds)
-      return ": leave crease " + std::to_string(folded[s].edge) + " unfolded";
+      return ": leave " + creaseText(paper, folded[s].edge) + " unfolded";
   }
   const int n = static_cast<int>(folded.size());
   constexpr int kMostSpokesSearched = 24;  // C(24, 3) = 2024 verdicts at most
@@ -197,18 +197,26 @@ std::string remedy(const Paper& paper, const std::vector<Spoke>& folded, const V
         continue;
       std::string text = ": fold";
       for (int i = 0; i < k; ++i)
-        text += std::string(i == 0     ? "" :
-                            i + 1 == k ? " and" :
-                                         ",") +
-                " crease " + std::to_string(folded[chosen[i]].edge) + " " +
+      {
+        const char* joint = i == 0 ? " " : i + 1 == k ? " and " : ", ";
+        text += joint + creaseText(paper, folded[chosen[i]].edge) + " " +
                 (folded[chosen[i]].sign > 0 ? "mountain" : "valley");
+      }
       return text + " instead (no change of a single crease makes it fold flat)";
     } while (nextSubset(chosen, n));
   }
-  (void)paper;
   return "; no change of a single crease makes it fold flat";
 }
 }  // namespace
+
+std::string creaseText(const Paper& paper, int edge)
+{
+  if (edge < 0 || edge >= static_cast<int>(paper.edges.size()))
+    return "crease " + std::to_string(edge);
+  const Edge& e = paper.edges[edge];
+  return "crease " + std::to_string(edge) + " " + pointText(paper.vertices[e.vertices[0]].crease_pattern) + "–" +
+         pointText(paper.vertices[e.vertices[1]].crease_pattern);
+}
 
 Status checkFlatVertices(const Paper& paper, const std::vector<double>& angles, const std::vector<int>& around_edges)
 {

@@ -111,7 +111,7 @@ TEST(FlatVertices, AllValleysAtTheSquareBaseCentreNameTheCentreAndACreaseToChang
   EXPECT_NE(checked.message().find("no change of a single crease"), std::string::npos) << checked.message();
   std::vector<double> told = angles;
   int named_creases = 0;
-  const std::regex crease_named("crease ([0-9]+) (mountain|valley)");
+  const std::regex crease_named(R"(crease ([0-9]+) \([^)]*\)–\([^)]*\) (mountain|valley))");
   const std::string message = checked.message();
   for (auto it = std::sregex_iterator(message.begin(), message.end(), crease_named); it != std::sregex_iterator(); ++it)
   {
