@@ -72,9 +72,13 @@ TEST(CraneWalkthrough, TheTextNamesTheScriptsMarksStepByStep)
       EXPECT_TRUE(step >= row.first && step <= row.last) << "marks of step " << step << " in another row";
     // The menu entry that folds them (rviz's titles).
     if (flat)
+    {
       EXPECT_NE(row.how.find("Fold flat"), std::string::npos);
+    }
     if (right_angle)
+    {
       EXPECT_NE(row.how.find("Fold to a right angle"), std::string::npos);
+    }
   }
   EXPECT_EQ(next, steps + 1) << "every step in a row";
   EXPECT_EQ(gestures, walkthrough.total_gestures) << "the rows' gestures add up to the total said";
