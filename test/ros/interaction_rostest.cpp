@@ -543,26 +543,27 @@ TEST_F(Interaction, ReMarkingAFoldedCreaseAndFoldingFlatSwingsItsFlapToTheOtherS
   drag(p3(0.5, 0.5), p3(0.5, 0.5), 1);  // valley
   const int crease = status_.picked_edge;
   ASSERT_GE(crease, 0);
-  drag(p3(0.2, 0.5), p3(0.2, 0.5), 1);  // the left half stays
+  drag(p3(0.5, 0.5), p3(0.5, 0.5), 1);  // mountain
+  ASSERT_EQ(markOf(status_, crease), -M_PI);
+  drag(p3(0.2, 0.5), p3(0.2, 0.5), 1);  // the left half stays: the right one folds under it
   menu("Fold flat");
-  const PaperState valley = client_.stateAt(base_ + 1);
-  ASSERT_NEAR(valley.edges[crease].fold_angle, M_PI, 1e-9);
-  ASSERT_EQ(valley.face_orders.size(), 1u);
+  const PaperState mountain = client_.stateAt(base_ + 1);
+  ASSERT_NEAR(mountain.edges[crease].fold_angle, -M_PI, 1e-9);
+  ASSERT_EQ(mountain.face_orders.size(), 1u);
   ASSERT_TRUE(waitFor([&] { return status_.revision == base_ + 1 && status_.marked_edges.empty(); }, 10));
-  // Issue 42, finding 1: the folded crease re-marked mountain was refused ("moves nothing").
+  // Issue 42, finding 1: the folded crease re-marked valley was refused ("moves nothing").
   drag(p3(0.5, 0.5), p3(0.5, 0.5), 1);
   ASSERT_EQ(status_.picked_edge, crease);
-  drag(p3(0.5, 0.5), p3(0.5, 0.5), 1);
-  ASSERT_EQ(markOf(status_, crease), -M_PI);
+  ASSERT_EQ(markOf(status_, crease), M_PI);
   drag(p3(0.25, 0.5), p3(0.25, 0.5), 1);  // the top layer stays: the other swings round it
   ASSERT_GE(status_.picked_face, 0);
   menu("Fold flat");
-  const PaperState& mountain = client_.stateAt(base_ + 2);
-  EXPECT_NEAR(mountain.edges[crease].fold_angle, -M_PI, 1e-9);
-  for (size_t v = 0; v < mountain.vertices_folded.size(); ++v)  // the same place, the other side
-    EXPECT_LT((folded(mountain, static_cast<int>(v)) - folded(valley, static_cast<int>(v))).norm(), 1e-9);
-  ASSERT_EQ(mountain.face_orders.size(), 1u);
-  const FaceOrder &was = valley.face_orders[0], &now = mountain.face_orders[0];
+  const PaperState& valley = client_.stateAt(base_ + 2);
+  EXPECT_NEAR(valley.edges[crease].fold_angle, M_PI, 1e-9);
+  for (size_t v = 0; v < valley.vertices_folded.size(); ++v)  // the same place, the other side
+    EXPECT_LT((folded(valley, static_cast<int>(v)) - folded(mountain, static_cast<int>(v))).norm(), 1e-9);
+  ASSERT_EQ(valley.face_orders.size(), 1u);
+  const FaceOrder &was = mountain.face_orders[0], &now = valley.face_orders[0];
   EXPECT_EQ(now.face == was.face ? now.above : -now.above, -was.above) << "the layers did not swap";
 }
 
