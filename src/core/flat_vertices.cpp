@@ -144,28 +144,79 @@ std::string pointText(const Vec2& p)
   return out.str();
 }
 
-/// One crease whose change (mountain ↔ valley, or unfolding it) makes the vertex fold flat.
+/// Whether flipping the spokes `chosen` (mountain ↔ valley) makes the vertex fold flat.
+bool foldsFlipped(const std::vector<Spoke>& folded, const std::vector<int>& chosen)
+{
+  std::vector<Spoke> flipped = folded;
+  for (int s : chosen)
+    flipped[s].sign = -flipped[s].sign;
+  return judge(flipped).rule == Rule::Holds;
+}
+
+/// The next `k`-subset of 0..n−1 in lexicographic order; false after the last.
+bool nextSubset(std::vector<int>& subset, int n)
+{
+  const int k = static_cast<int>(subset.size());
+  for (int i = k - 1; i >= 0; --i)
+    if (subset[i] < n - k + i)
+    {
+      ++subset[i];
+      for (int j = i + 1; j < k; ++j)
+        subset[j] = subset[j - 1] + 1;
+      return true;
+    }
+  return false;
+}
+
+/// The crease whose change (mountain ↔ valley, or unfolding it) makes the vertex fold flat; where
+/// no single one does, the fewest creases (up to three) whose flips do, so that the user is told
+/// which creases to change, not only that some must.
 std::string remedy(const Paper& paper, const std::vector<Spoke>& folded, const Verdict& verdict)
 {
   for (int s : verdict.suspects)
-  {
-    std::vector<Spoke> flipped = folded;
-    flipped[s].sign = -flipped[s].sign;
-    if (judge(flipped).rule == Rule::Holds)
-      return ": fold crease " + std::to_string(folded[s].edge) + " " + (flipped[s].sign > 0 ? "valley" : "mountain") +
+    if (foldsFlipped(folded, { s }))
+      return ": fold " + creaseText(paper, folded[s].edge) + " " + (folded[s].sign > 0 ? "mountain" : "valley") +
              " instead";
-  }
   for (int s : verdict.suspects)
   {
     std::vector<Spoke> fewer = folded;
     fewer.erase(fewer.begin() + s);
     if (!fewer.empty() && judge(fewer).rule == Rule::Holds)
-      return ": leave crease " + std::to_string(folded[s].edge) + " unfolded";
+      return ": leave " + creaseText(paper, folded[s].edge) + " unfolded";
   }
-  (void)paper;
+  const int n = static_cast<int>(folded.size());
+  constexpr int kMostSpokesSearched = 24;  // C(24, 3) = 2024 verdicts at most
+  for (int k = 2; k <= 3 && k <= n && n <= kMostSpokesSearched && verdict.rule != Rule::Kawasaki; ++k)
+  {
+    std::vector<int> chosen(k);
+    for (int i = 0; i < k; ++i)
+      chosen[i] = i;
+    do
+    {
+      if (!foldsFlipped(folded, chosen))
+        continue;
+      std::string text = ": fold";
+      for (int i = 0; i < k; ++i)
+      {
+        const char* joint = i == 0 ? " " : i + 1 == k ? " and " : ", ";
+        text += joint + creaseText(paper, folded[chosen[i]].edge) + " " +
+                (folded[chosen[i]].sign > 0 ? "mountain" : "valley");
+      }
+      return text + " instead (no change of a single crease makes it fold flat)";
+    } while (nextSubset(chosen, n));
+  }
   return "; no change of a single crease makes it fold flat";
 }
 }  // namespace
+
+std::string creaseText(const Paper& paper, int edge)
+{
+  if (edge < 0 || edge >= static_cast<int>(paper.edges.size()))
+    return "crease " + std::to_string(edge);
+  const Edge& e = paper.edges[edge];
+  return "crease " + std::to_string(edge) + " " + pointText(paper.vertices[e.vertices[0]].crease_pattern) + "–" +
+         pointText(paper.vertices[e.vertices[1]].crease_pattern);
+}
 
 Status checkFlatVertices(const Paper& paper, const std::vector<double>& angles, const std::vector<int>& around_edges)
 {

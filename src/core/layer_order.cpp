@@ -135,6 +135,10 @@ public:
   {
     return plane_points_.at(v);
   }
+  const Paper& paper() const
+  {
+    return paper_;
+  }
   double tolerance() const
   {
     return tolerance_;
@@ -265,7 +269,7 @@ void tacoTortillaRules(const StackProblem& stack, const std::vector<int>& faces,
           !crossesInside(c, stack.polygon(h), stack.tolerance()))
         continue;
       const std::string why =
-          "face " + std::to_string(h) + " would pass through the fold at crease " + std::to_string(c.edge);
+          "face " + std::to_string(h) + " would pass through the fold at " + creaseText(stack.paper(), c.edge);
       clauses.push_back({ { -stack.higher(c.face, h), -stack.higher(h, c.other) }, why });
       clauses.push_back({ { -stack.higher(c.other, h), -stack.higher(h, c.face) }, why });
     }
@@ -325,7 +329,7 @@ void tacoTacoRules(const StackProblem& stack, const std::vector<FlatCrease>& cre
       if (std::find(literals.begin(), literals.end(), 0) != literals.end())
         continue;  // two of the faces do not overlap
       forbidInterleaving(literals,
-                         "creases " + std::to_string(p.edge) + " and " + std::to_string(q.edge) +
+                         creaseText(stack.paper(), p.edge) + " and " + creaseText(stack.paper(), q.edge) +
                              " fold on one line: their layers cannot interleave",
                          clauses);
     }

@@ -15,23 +15,41 @@ struct Candidate
   int index = -1;
   double depth = 0.0;     // along the sight line from the point
   int order = 0;          // lower: nearer the eye among coincident layers
+  int then = 0;           // lower: nearer the eye where `order` ties (a crease's farther layer)
   double distance = 0.0;  // from the sight line
 };
 
 /// Nearest the eye first: depths within `tolerance` of each other are one depth (a flat stack
 /// drawn apart only on screen), ordered by layer, then by distance from the sight line.
+/// Distances within `tolerance` are one distance, taken by index: coincident creases (or
+/// vertices) of a stack differ only by rounding there, and the rounding changed with the side
+/// of the line the click was on; so the list is the same from either side.
 std::vector<int> ordered(std::vector<Candidate> candidates, double tolerance)
 {
   std::sort(candidates.begin(), candidates.end(),
             [](const Candidate& a, const Candidate& b) { return a.depth < b.depth; });
+  const auto nearer = [](const Candidate& a, const Candidate& b) {
+    if (a.order != b.order)
+      return a.order < b.order;
+    return a.then != b.then ? a.then < b.then : a.distance < b.distance;
+  };
+  const auto byIndex = [](const Candidate& a, const Candidate& b) { return a.index < b.index; };
   for (size_t begin = 0; begin < candidates.size();)
   {
     size_t end = begin + 1;
     while (end < candidates.size() && candidates[end].depth <= candidates[begin].depth + tolerance)
       ++end;
-    std::stable_sort(candidates.begin() + begin, candidates.begin() + end, [](const Candidate& a, const Candidate& b) {
-      return a.order != b.order ? a.order < b.order : a.distance < b.distance;
-    });
+    std::sort(candidates.begin() + begin, candidates.begin() + end, nearer);
+    for (size_t tie = begin; tie < end;)
+    {
+      size_t last = tie + 1;
+      while (last < end && candidates[last].order == candidates[tie].order &&
+             candidates[last].then == candidates[tie].then &&
+             candidates[last].distance <= candidates[last - 1].distance + tolerance)
+        ++last;
+      std::sort(candidates.begin() + tie, candidates.begin() + last, byIndex);
+      tie = last;
+    }
     begin = end;
   }
   std::vector<int> out;
@@ -69,7 +87,7 @@ std::vector<int> facesUnder(const Paper& paper, const Vec3& point, const Vec3& v
     const double t = n.dot(paper.faceCentroid(face) - point) / n.dot(view);
     const FaceProjection hit = projectOntoFace(paper, face, point + t * view);
     if (hit.inside && hit.distance <= tolerance)
-      candidates.push_back({ face, t, viewOrder(levels[f], view), 0.0 });
+      candidates.push_back({ face, t, viewOrder(levels[f], view), 0, 0.0 });
   }
   return ordered(std::move(candidates), tolerance);
 }
@@ -96,7 +114,11 @@ std::vector<int> creasesUnder(const Paper& paper, const Vec3& point, const Vec3&
     alongSight(a + s * ab, point, view, c.distance, c.depth);
     if (c.distance > radius)
       continue;
-    c.order = std::min(viewOrder(levels[edge.faces[0]], view), viewOrder(levels[edge.faces[1]], view));
+    // A fold's crease lies at the layers it joins: the nearer first, then the farther (of
+    // nested folds the outer one is seen first, from either side of the stack).
+    const int near0 = viewOrder(levels[edge.faces[0]], view), near1 = viewOrder(levels[edge.faces[1]], view);
+    c.order = std::min(near0, near1);
+    c.then = std::max(near0, near1);
     candidates.push_back(c);
   }
   return ordered(std::move(candidates), 1e-6 * paper.scale());
@@ -106,10 +128,13 @@ std::vector<int> verticesUnder(const Paper& paper, const Vec3& point, const Vec3
 {
   const Vec3 view = view_direction.normalized();
   const std::vector<int> levels = stackLevels(paper);
-  std::vector<int> order(paper.vertices.size(), 1 << 30);
+  std::vector<int> order(paper.vertices.size(), 1 << 30), then(paper.vertices.size(), -(1 << 30));
   for (size_t f = 0; f < paper.faces.size(); ++f)
     for (int v : paper.faces[f].vertices)
+    {
       order[v] = std::min(order[v], viewOrder(levels[f], view));
+      then[v] = std::max(then[v], viewOrder(levels[f], view));
+    }
   std::vector<Candidate> candidates;
   for (size_t v = 0; v < paper.vertices.size(); ++v)
   {
@@ -117,6 +142,7 @@ std::vector<int> verticesUnder(const Paper& paper, const Vec3& point, const Vec3
     c.index = static_cast<int>(v);
     alongSight(paper.vertices[v].folded, point, view, c.distance, c.depth);
     c.order = order[v];
+    c.then = then[v];
     if (c.distance <= radius)
       candidates.push_back(c);
   }

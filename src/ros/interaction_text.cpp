@@ -1,6 +1,7 @@
 #include "virtual_origami/ros/interaction_text.h"
 
 #include <cctype>
+#include <optional>
 #include <regex>
 #include <sstream>
 #include <utility>
@@ -8,8 +9,36 @@
 
 namespace virtual_origami
 {
+namespace
+{
+/// A refusal of fold flat that says where the paper cannot fold (a vertex's rule and the creases
+/// to change, or the layers that cannot stack) in the user's words: the ids, which the user does
+/// not see, left out; the places on the sheet (crease-pattern points) kept. None for others.
+std::optional<std::string> whereItCannotFold(const std::string& message)
+{
+  const std::string prefix = "do not fold flat: ";
+  const size_t at = message.find(prefix);
+  if (at == std::string::npos || (message.find(" cannot fold flat: ") == std::string::npos &&
+                                  message.find("no order of the layers folds flat") == std::string::npos))
+    return std::nullopt;
+  std::string text = message.substr(at + prefix.size());
+  static const std::vector<std::pair<std::regex, std::string>> names = {
+    { std::regex(R"(\bvertex [0-9]+ at )"), "the vertex at " },
+    { std::regex(R"(\bcrease [0-9]+ \()"), "the crease (" },
+    { std::regex(R"(\bfaces [0-9]+, [0-9]+ and [0-9]+\b)"), "three layers" },
+    { std::regex(R"(\bfaces [0-9]+ and [0-9]+\b)"), "two layers" },
+    { std::regex(R"(\bface [0-9]+\b)"), "a layer" },
+  };
+  for (const auto& [id, name] : names)
+    text = std::regex_replace(text, id, name);
+  return "Not folded: " + text + ".";
+}
+}  // namespace
+
 std::string forTheUser(const std::string& message)
 {
+  if (const std::optional<std::string> where = whereItCannotFold(message))
+    return *where;
   // Phrases of paper_model's and the drag geometry's messages, and what they mean to someone
   // folding with the mouse.
   static const std::vector<std::pair<std::string, std::string>> known = {

@@ -16,6 +16,7 @@
 #include <virtual_origami/InteractionStatus.h>
 #include <visualization_msgs/InteractiveMarkerInit.h>
 
+#include "../unit/crane_walkthrough.h"
 #include "ros_test_client.h"
 #include "virtual_origami/core/chosen_creases.h"
 #include "virtual_origami/core/drag.h"
@@ -395,18 +396,23 @@ protected:
     return -1;
   }
 
-  /// Marks the flat fold's creases, picks the face that stays, and folds.
-  void flatFold(const core::FlatFoldRequest& request, const core::Paper& before, const core::Paper& after)
+  /// Marks the flat fold's creases as the walkthrough's text says (`marks`: +1 valley, −1
+  /// mountain, 0 unfold, in the order of the script's creases), picks the face that stays, and
+  /// folds.
+  void flatFold(const core::FlatFoldRequest& request, const std::vector<int>& marks, const core::Paper& before,
+                const core::Paper& after)
   {
     mode("fold");
+    ASSERT_EQ(marks.size(), request.creases.size()) << "the text names a mark for each crease of the fold";
     bool right_angle = false;
-    for (const core::CreaseLineAngle& line : request.creases)
+    for (size_t k = 0; k < request.creases.size(); ++k)
     {
+      const core::CreaseLineAngle& line = request.creases[k];
       const std::vector<int> edges = creasesOn(paper(), line.start, line.end);
       ASSERT_FALSE(edges.empty());
       right_angle = std::abs(std::abs(line.angle) - M_PI / 2) < 1e-9;
       for (int e : edges)
-        mark(e, line.angle);
+        mark(e, marks[k]);
     }
     const core::Paper now = paper();
     const int face = faceThatStays(now, request, before, after);
@@ -436,11 +442,23 @@ protected:
 };
 }  // namespace
 
-TEST_F(CraneByMouse, TheCraneFoldsByMouseAloneAsTheScriptFoldsIt)
+TEST_F(CraneByMouse, TheCraneFoldsByMouseAloneAsTheWalkthroughSaysAndTheScriptFoldsIt)
 {
-  std::string path, shipped_path;
+  std::string path, shipped_path, walkthrough_path;
   ASSERT_TRUE(ros::param::get("~reference", path));
   ASSERT_TRUE(ros::param::get("~shipped", shipped_path));
+  ASSERT_TRUE(ros::param::get("~walkthrough", walkthrough_path));
+  // docs/INTERACTION.md's walkthrough: the marks each fold step names are the ones made, and
+  // each row's gestures are counted against the number it gives.
+  const test::Walkthrough walkthrough = test::parseCraneWalkthrough(readFile(walkthrough_path));
+  ASSERT_TRUE(walkthrough.error.empty()) << walkthrough_path << ": " << walkthrough.error;
+  const auto rowOf = [&](int step) -> const test::WalkthroughRow* {
+    for (const test::WalkthroughRow& row : walkthrough.rows)
+      if (step >= row.first && step <= row.last)
+        return &row;
+    return nullptr;
+  };
+  int row_start = 0;
   const core::Expected<core::FoldSequence> sequence = core::parseFoldSequence(readFile(path));
   ASSERT_TRUE(sequence.ok()) << sequence.message();
   core::Session reference_session;
@@ -452,9 +470,17 @@ TEST_F(CraneByMouse, TheCraneFoldsByMouseAloneAsTheScriptFoldsIt)
   for (size_t i = 0; i < sequence->steps.size(); ++i)
   {
     const core::FoldStep& step = sequence->steps[i];
-    SCOPED_TRACE("step " + std::to_string(i + 1) + ": " + step.note);
+    const int number = static_cast<int>(i + 1);
+    SCOPED_TRACE("step " + std::to_string(number) + ": " + step.note);
+    const test::WalkthroughRow* row = rowOf(number);
+    ASSERT_NE(row, nullptr) << "the walkthrough has no row for step " << number;
+    if (number == row->first)
+      row_start = gestures_;
     if (step.operation.kind == core::Operation::Kind::FlatFold)
-      flatFold(step.operation.flat_fold, (*reference)[i], (*reference)[i + 1]);
+    {
+      ASSERT_TRUE(row->marks.count(number)) << "the walkthrough names no marks for step " << number;
+      flatFold(step.operation.flat_fold, row->marks.at(number), (*reference)[i], (*reference)[i + 1]);
+    }
     else if (step.operation.kind == core::Operation::Kind::Crease)
       crease(step.operation.crease.start, step.operation.crease.end);
     else if (step.operation.kind == core::Operation::Kind::Rotate)
@@ -470,7 +496,16 @@ TEST_F(CraneByMouse, TheCraneFoldsByMouseAloneAsTheScriptFoldsIt)
     ASSERT_LE(off, 1e-6) << "the mouse's paper left the script's";
     std::printf("step %zu: %d gestures so far, %.1e from the script's paper (%s)\n", i + 1, gestures_, off,
                 step.note.c_str());
+    if (number == row->last)
+    {
+      std::printf("walkthrough steps %d-%d: %d gestures (the text says %d)\n", row->first, row->last,
+                  gestures_ - row_start, row->gestures);
+      EXPECT_EQ(gestures_ - row_start, row->gestures)
+          << "docs/INTERACTION.md's row for steps " << row->first << "–" << row->last << " gives another count";
+    }
   }
+  EXPECT_EQ(gestures_, walkthrough.total_gestures) << "docs/INTERACTION.md's total";
+  EXPECT_EQ(walkthrough.steps, static_cast<int>(sequence->steps.size()));
   std::printf("crane by mouse: %zu steps, %d gestures (clicks, drags, menu selections)\n", sequence->steps.size(),
               gestures_);
   // The shipped crane (sequences/crane.json) is written in the operations the mouse issued.

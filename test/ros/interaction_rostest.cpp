@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <regex>
@@ -401,6 +402,171 @@ TEST_F(Interaction, CreasesThatDoNotFoldFlatAreRefusedAndNothingChanges)
   EXPECT_NE(status_.message.find("No crease marked"), std::string::npos) << status_.message;
 }
 
+namespace
+{
+/// Whether the folded point `p` lies inside face `f` of a flat state (seen from above), by more
+/// than `margin`.
+bool insideFolded(const PaperState& s, int f, const core::Vec3& p, double margin = 1e-6)
+{
+  const auto& vs = s.faces[f].vertices;
+  double area = 0.0;
+  for (size_t i = 0; i < vs.size(); ++i)
+  {
+    const core::Vec3 a = folded(s, vs[i]), b = folded(s, vs[(i + 1) % vs.size()]);
+    area += a.x() * b.y() - b.x() * a.y();
+  }
+  for (size_t i = 0; i < vs.size(); ++i)
+  {
+    const core::Vec3 a = folded(s, vs[i]), b = folded(s, vs[(i + 1) % vs.size()]);
+    const double side = ((b - a).x() * (p - a).y() - (b - a).y() * (p - a).x()) / (b - a).norm();
+    if ((area > 0 ? side : -side) <= margin)
+      return false;
+  }
+  return true;
+}
+
+core::Vec3 foldedCentroid(const PaperState& s, int f)
+{
+  core::Vec3 c = core::Vec3::Zero();
+  for (int v : s.faces[f].vertices)
+    c += folded(s, v) / static_cast<double>(s.faces[f].vertices.size());
+  return c;
+}
+
+/// Every two faces of a flat state that lie on each other have their order recorded; how many
+/// such pairs there are.
+int expectEveryStackedPairOrdered(const PaperState& s)
+{
+  std::set<std::pair<int, int>> ordered;
+  for (const FaceOrder& o : s.face_orders)
+    ordered.insert({ std::min(o.face, o.other), std::max(o.face, o.other) });
+  int stacked = 0;
+  for (size_t f = 0; f < s.faces.size(); ++f)
+    for (size_t g = 0; g < s.faces.size(); ++g)
+      if (f != g && insideFolded(s, static_cast<int>(g), foldedCentroid(s, static_cast<int>(f))))
+      {
+        ++stacked;
+        EXPECT_TRUE(ordered.count({ std::min(f, g), std::max(f, g) })) << "faces " << f << " and " << g;
+      }
+  return stacked;
+}
+}  // namespace
+
+TEST_F(Interaction, FoldFlatRefusesMarksNoPaperFoldsNamingTheVertexAndTheCreasesToChangeAndFollowedTheyFold)
+{
+  // Issue 42, finding 1: the creased square's midline halves and one diagonal marked valley
+  // (six valleys, no mountain at the centre: Maekawa broken) folded "like" a square base.
+  for (const auto& [x0, y0, x1, y1] :
+       std::vector<std::array<double, 4>>{ { 0, 0, 1, 1 }, { 1, 0, 0, 1 }, { 0.5, 0, 0.5, 1 }, { 0, 0.5, 1, 0.5 } })
+    ASSERT_TRUE(client_.crease(x0, y0, x1, y1).response.success);
+  base_ += 4;
+  const PaperState creased = client_.stateAt(base_);
+  ASSERT_TRUE(waitFor([&] { return status_.revision == base_; }, 10));
+  const int centre = vertexAt(creased, 0.5, 0.5);
+  ASSERT_GE(centre, 0);
+  menu("Fold mode");
+  menu("Clear the marks");  // marks are kept by their place in the crease pattern, across resets
+  const auto midpoint = [&](int e) -> core::Vec3 {
+    return 0.5 * (creasePattern(creased, creased.edges[e].v0) + creasePattern(creased, creased.edges[e].v1));
+  };
+  std::set<int> marked;
+  for (const core::Vec3& on :
+       { p3(0.5, 0.25), p3(0.5, 0.75), p3(0.25, 0.5), p3(0.75, 0.5), p3(0.25, 0.25), p3(0.75, 0.75) })
+  {
+    drag(on, on, 1);  // one click: valley
+    ASSERT_GE(status_.picked_edge, 0);
+    EXPECT_EQ(markOf(status_, status_.picked_edge), M_PI);
+    marked.insert(status_.picked_edge);
+  }
+  ASSERT_EQ(marked.size(), 6u);
+  drag(p3(0.9, 0.6), p3(0.9, 0.6), 1);  // the face that stays
+  ASSERT_GE(status_.picked_face, 0);
+  said_ = {};
+  menu("Fold flat");
+  expectUnchanged();
+  ASSERT_TRUE(waitFor([&] { return !said_.text.empty(); }, 5));
+  // The refusal names the vertex and the creases to change by their places on the sheet (the
+  // user sees no ids).
+  const std::string refusal = status_.message;
+  EXPECT_NE(refusal.find("the vertex at (0.5, 0.5)"), std::string::npos) << refusal;
+  EXPECT_NE(refusal.find("Maekawa"), std::string::npos) << refusal;
+  EXPECT_FALSE(std::regex_search(refusal, std::regex("(face|edge|vertex|crease) [0-9]"))) << refusal;
+  EXPECT_EQ(status_.marked_edges.size(), 6u);  // the marks stay, to be put right
+  // The creases it names, marked as it says, fold.
+  const std::string number = "(-?[0-9.e-]+)";
+  const std::regex named("the crease \\(" + number + ", " + number + "\\)–\\(" + number + ", " + number +
+                         "\\) (mountain|valley)");
+  const auto edgeBetween = [&](const core::Vec3& a, const core::Vec3& b) {
+    for (int e : marked)
+    {
+      const core::Vec3 p = creasePattern(creased, creased.edges[e].v0), q = creasePattern(creased, creased.edges[e].v1);
+      if (((p - a).norm() < 1e-3 && (q - b).norm() < 1e-3) || ((p - b).norm() < 1e-3 && (q - a).norm() < 1e-3))
+        return e;
+    }
+    return -1;
+  };
+  std::map<int, double> told;
+  for (auto it = std::sregex_iterator(refusal.begin(), refusal.end(), named); it != std::sregex_iterator(); ++it)
+  {
+    const int edge =
+        edgeBetween(p3(std::stod((*it)[1]), std::stod((*it)[2])), p3(std::stod((*it)[3]), std::stod((*it)[4])));
+    ASSERT_GE(edge, 0) << "the crease " << (*it)[0] << " is not one of the marked";
+    told[edge] = (*it)[5] == "mountain" ? -M_PI : M_PI;
+  }
+  ASSERT_FALSE(told.empty()) << "no crease named to change: " << refusal;
+  for (const auto& [edge, angle] : told)
+  {
+    for (int click = 0; click < 4 && markOf(status_, edge) != angle; ++click)
+      drag(midpoint(edge), midpoint(edge), 1);
+    ASSERT_EQ(markOf(status_, edge), angle);
+  }
+  drag(p3(0.9, 0.6), p3(0.9, 0.6), 1);
+  menu("Fold flat");
+  // Finding 2: the fold records the order of the layers it stacks.
+  const PaperState& after = client_.stateAt(base_ + 1);
+  for (int e : marked)
+    EXPECT_NEAR(after.edges[e].fold_angle, told.count(e) ? told[e] : M_PI, 1e-9) << "crease " << e;
+  for (const auto& v : after.vertices_folded)
+    EXPECT_NEAR(v.z, 0.0, 1e-9);
+  EXPECT_FALSE(after.face_orders.empty());
+  EXPECT_GT(expectEveryStackedPairOrdered(after), 0);
+}
+
+TEST_F(Interaction, ReMarkingAFoldedCreaseAndFoldingFlatSwingsItsFlapToTheOtherSide)
+{
+  ASSERT_TRUE(client_.crease(0.5, 0, 0.5, 1).response.success);
+  ++base_;
+  client_.stateAt(base_);
+  ASSERT_TRUE(waitFor([&] { return status_.revision == base_; }, 10));
+  menu("Fold mode");
+  menu("Clear the marks");
+  drag(p3(0.5, 0.5), p3(0.5, 0.5), 1);  // valley
+  const int crease = status_.picked_edge;
+  ASSERT_GE(crease, 0);
+  drag(p3(0.5, 0.5), p3(0.5, 0.5), 1);  // mountain
+  ASSERT_EQ(markOf(status_, crease), -M_PI);
+  drag(p3(0.2, 0.5), p3(0.2, 0.5), 1);  // the left half stays: the right one folds under it
+  menu("Fold flat");
+  const PaperState mountain = client_.stateAt(base_ + 1);
+  ASSERT_NEAR(mountain.edges[crease].fold_angle, -M_PI, 1e-9);
+  ASSERT_EQ(mountain.face_orders.size(), 1u);
+  ASSERT_TRUE(waitFor([&] { return status_.revision == base_ + 1 && status_.marked_edges.empty(); }, 10));
+  // Issue 42, finding 1: the folded crease re-marked valley was refused ("moves nothing").
+  drag(p3(0.5, 0.5), p3(0.5, 0.5), 1);
+  ASSERT_EQ(status_.picked_edge, crease);
+  ASSERT_EQ(markOf(status_, crease), M_PI);
+  drag(p3(0.25, 0.5), p3(0.25, 0.5), 1);  // the top layer stays: the other swings round it
+  ASSERT_GE(status_.picked_face, 0);
+  menu("Fold flat");
+  const PaperState& valley = client_.stateAt(base_ + 2);
+  EXPECT_NEAR(valley.edges[crease].fold_angle, M_PI, 1e-9);
+  for (size_t v = 0; v < valley.vertices_folded.size(); ++v)  // the same place, the other side
+    EXPECT_LT((folded(valley, static_cast<int>(v)) - folded(mountain, static_cast<int>(v))).norm(), 1e-9);
+  ASSERT_EQ(valley.face_orders.size(), 1u);
+  const FaceOrder &was = mountain.face_orders[0], &now = valley.face_orders[0];
+  EXPECT_EQ(now.face == was.face ? now.above : -now.above, -was.above) << "the layers did not swap";
+}
+
 TEST_F(Interaction, NextLayerDownPicksTheLayersOfAStackInTurnAndSaysWhenThereIsNoneBelow)
 {
   menu("Rotate mode");
@@ -484,6 +650,45 @@ TEST_F(Interaction, DragModeDragsAVertexThePinHoldsAndADragNoShapeFollowsIsRefus
   drag(p3(0.5, 0.5), p3(0.6, 0.6), 4);
   expectUnchanged();
   EXPECT_NE(status_.message.find("No vertex here"), std::string::npos) << status_.message;
+}
+
+TEST_F(Interaction, AHalfTurnDraggedToOneDegreeShortIsExactlyAHalfTurnAndTheNextFoldsFlat)
+{
+  creaseDiagonal();
+  menu("Rotate mode");
+  // Issue 42, finding 4: dragged exactly to the mirror image it stopped at 179°. From above the
+  // angle follows the pointer's distance from the axis: at 179°, 1/90 of the press's distance
+  // short of the mirror image.
+  const core::Vec3 press = p3(0.8, 0.3), foot = p3(0.55, 0.55);
+  drag(press, foot + (1.0 - 2.0 * 179.0 / 180.0) * (press - foot), 12);
+  const PaperState& turned = client_.stateAt(base_ + 1);
+  const int diagonal = creaseBetween(turned, vertexAt(turned, 0, 0), vertexAt(turned, 1, 1));
+  ASSERT_GE(diagonal, 0);
+  EXPECT_NEAR(std::abs(turned.edges[diagonal].fold_angle), M_PI, 1e-9);
+  for (const auto& v : turned.vertices_folded)
+    EXPECT_NEAR(v.z, 0.0, 1e-9);
+  ++base_;
+  ASSERT_TRUE(waitFor([&] { return status_.revision == base_; }, 10));
+  // The next half turn, of the triangle's two layers about the other diagonal, folds flat (at
+  // 179° it crumpled the model).
+  ASSERT_TRUE(client_.crease(1, 0, 0, 1).response.success);
+  ++base_;
+  const PaperState creased = client_.stateAt(base_);
+  ASSERT_TRUE(waitFor([&] { return status_.revision == base_; }, 10));
+  drag(p3(0.25, 0.75), p3(0.25, 0.75), 1);  // a click on the new crease names it the axis
+  ASSERT_NE(status_.message.find("axis"), std::string::npos) << status_.message;
+  const core::Vec3 second = p3(0.15, 0.6), over = p3(0.275, 0.725);  // its foot on x + y = 1
+  drag(second, over + 1.2 * (over - second), 12);
+  ASSERT_TRUE(waitFor([&] { return client_.state().revision == base_ + 1; }, 10)) << status_.message;
+  const PaperState& quarter = client_.stateAt(base_ + 1);
+  for (const auto& v : quarter.vertices_folded)
+    EXPECT_NEAR(v.z, 0.0, 1e-9);
+  for (const Edge& e : quarter.edges)  // the sheet keeps its shape
+    EXPECT_NEAR((folded(quarter, e.v0) - folded(quarter, e.v1)).norm(),
+                (creasePattern(quarter, e.v0) - creasePattern(quarter, e.v1)).norm(), 1e-9);
+  EXPECT_FALSE(quarter.face_orders.empty());
+  EXPECT_GT(expectEveryStackedPairOrdered(quarter), 0);
+  EXPECT_NE(quarter.vertices_folded, creased.vertices_folded);
 }
 
 TEST_F(Interaction, AFloodOfPosesIsCoalescedAndTheLatestApplied)
@@ -626,6 +831,46 @@ TEST_F(InteractionSeen, SeenEdgeOnTheViewTurnsForTheDragAndBack)
   });
   ASSERT_TRUE(waitFor([&] { return turns_.size() >= 2; }, 5));
   EXPECT_EQ(turns_.back().header.frame_id, "");  // back to the view before the turn on release
+}
+
+TEST_F(InteractionSeen, SeenEdgeOnFromALowObliqueViewTheViewTurnsToo)
+{
+  ASSERT_TRUE(client_.crease(0.5, 0, 0.5, 1).response.success);
+  ++base_;
+  ASSERT_TRUE(waitFor([&] { return status_.revision == base_; }, 10));
+  menu("Rotate mode");
+  // Issue 42, finding 4: low and oblique, the face's centre straight behind the press along the
+  // sight line, the edge-on ring got no view turn (a drag meant for 90° turned 114°).
+  const core::Vec3 press = p3(0.4, 0.5), across = core::Vec3::UnitY();
+  const core::Vec3 eye(-3.0, 0.5, 0.6);
+  const core::Vec3 forward = (press - eye).normalized();
+  const core::Vec3 right = forward.cross(core::Vec3::UnitZ()).normalized();
+  view_.eye = eye;
+  view_.axes.col(0) = right;
+  view_.axes.col(1) = forward.cross(right);
+  view_.axes.col(2) = forward;
+  gesture_.eye = eye;
+  ASSERT_LT(std::abs(view_.rayTo(press).dot(across)), 0.6);  // edge-on from here
+  ros::WallDuration(0.5).sleep();                            // the node knows the new view
+  ros::spinOnce();
+  turns_.clear();
+  drag(press, p3(0.38, 0.5), 4, [&] {
+    ASSERT_TRUE(waitFor([&] { return !turns_.empty(); }, 5)) << "no view turn";
+    const geometry_msgs::PoseStamped& goal = turns_.front();
+    EXPECT_EQ(goal.header.frame_id, "paper");
+    ViewCamera turned;
+    turned.eye = toVec3(goal.pose.position);
+    turned.axes = Eigen::Quaterniond(goal.pose.orientation.w, goal.pose.orientation.x, goal.pose.orientation.y,
+                                     goal.pose.orientation.z)
+                      .toRotationMatrix();
+    EXPECT_GE(std::abs(turned.rayTo(press).dot(across)), 0.6);  // the axis seen from the side
+    EXPECT_NEAR(turned.axes.col(0).z(), 0.0, 1e-6);             // level
+    EXPECT_GT(turned.eye.z(), 0.0);
+    EXPECT_TRUE(
+        (turned.axes.transpose() * (press - turned.eye)).isApprox(view_.axes.transpose() * (press - view_.eye), 1e-4));
+  });
+  ASSERT_TRUE(waitFor([&] { return turns_.size() >= 2; }, 5));
+  EXPECT_EQ(turns_.back().header.frame_id, "");  // back to the view before the turn
 }
 
 int main(int argc, char** argv)

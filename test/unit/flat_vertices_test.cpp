@@ -2,6 +2,8 @@
 // first vertex that does not, naming it, the rule and a crease to change.
 #include <gtest/gtest.h>
 
+#include <regex>
+
 #include <cmath>
 
 #include "single_vertex.h"
@@ -104,8 +106,23 @@ TEST(FlatVertices, AllValleysAtTheSquareBaseCentreNameTheCentreAndACreaseToChang
   EXPECT_NE(checked.message().find("vertex " + std::to_string(centre) + " at (0.5, 0.5)"), std::string::npos)
       << checked.message();
   EXPECT_NE(checked.message().find("8 valley and 0 mountain"), std::string::npos) << checked.message();
-  // Eight valleys are two flips from 5:3 or 3:5: no single crease makes it fold.
+  // Eight valleys are three flips from 5:3: no single crease makes it fold, and the refusal
+  // names three whose flips do (issue 42: the crease to change, not only that one must).
   EXPECT_NE(checked.message().find("no change of a single crease"), std::string::npos) << checked.message();
+  std::vector<double> told = angles;
+  int named_creases = 0;
+  const std::regex crease_named(R"(crease ([0-9]+) \([^)]*\)–\([^)]*\) (mountain|valley))");
+  const std::string message = checked.message();
+  for (auto it = std::sregex_iterator(message.begin(), message.end(), crease_named); it != std::sregex_iterator(); ++it)
+  {
+    const int e = std::stoi((*it)[1]);
+    ASSERT_LT(e, static_cast<int>(told.size()));
+    EXPECT_EQ((*it)[2], "mountain") << "a valley to make a mountain";
+    told[e] = -M_PI;
+    ++named_creases;
+  }
+  EXPECT_EQ(named_creases, 3) << message;
+  EXPECT_TRUE(checkFlatVertices(paper, told).ok()) << checkFlatVertices(paper, told).message();
 
   // Six valleys and two mountains: one more mountain folds it, and the message names one.
   int flipped = 0;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "crane_reference.h"
 #include "test_models.h"
 #include "virtual_origami/core/gesture_model.h"
 
@@ -511,4 +512,72 @@ TEST_F(GestureModelTest, WithoutTheViewTurnSettingTheViewStays)
   fixed.press(Pointer{ p3(0.8, 0.3, 0.004), Vec3::Zero(), cameraAbove(p3(0.5, 0.5), 2.0) });
   EXPECT_EQ(fixed.state(), GestureState::TurningFace);
   EXPECT_TRUE(out.drawn<ViewTurn>().empty());
+}
+
+TEST_F(GestureModelTest, NextLayerDownWalksAStacksCreasesTopFirstFromEitherSideOfTheLine)
+{
+  // Issue 42: beside a stacked crease of the square base, a click on one side of the line and a
+  // click on the other listed its creases in different orders. Clicked 15 mm (8 px) to each side
+  // in rviz's default view, then Next layer down to the last layer: the same creases in turn.
+  const Expected<std::vector<Paper>> states = craneStates();
+  ASSERT_TRUE(states.ok()) << states.message();
+  const Paper& square_base = (*states)[8];
+  // The line with the most creases on it.
+  const auto onLine = [&](int line, int e) {
+    const Vec3& a = square_base.vertices[square_base.edges[line].vertices[0]].folded;
+    const Vec3 d = (square_base.vertices[square_base.edges[line].vertices[1]].folded - a).normalized();
+    for (int v : square_base.edges[e].vertices)
+    {
+      const Vec3 r = square_base.vertices[v].folded - a;
+      if ((r - r.dot(d) * d).norm() > 1e-9)
+        return false;
+    }
+    return square_base.edges[e].isCrease();
+  };
+  int line = -1, most = 0;
+  for (size_t e = 0; e < square_base.edges.size(); ++e)
+  {
+    int count = 0;
+    for (size_t other = 0; other < square_base.edges.size(); ++other)
+      count += square_base.edges[e].isCrease() && onLine(static_cast<int>(e), static_cast<int>(other));
+    if (count > most)
+      std::tie(line, most) = std::make_pair(static_cast<int>(e), count);
+  }
+  ASSERT_GE(most, 4);  // four layers fold on it
+  const double yaw = 4.2, pitch = 0.75;
+  ViewCamera view;
+  view.eye = Vec3(0.5, 0.45, 0.1) +
+             1.7 * Vec3(std::cos(yaw) * std::cos(pitch), std::sin(yaw) * std::cos(pitch), std::sin(pitch));
+  const Vec3 forward = (Vec3(0.5, 0.45, 0.1) - view.eye).normalized();
+  const Vec3 right = forward.cross(Vec3::UnitZ()).normalized();
+  view.axes << right, forward.cross(right), forward;
+  load(square_base);
+  model.chooseMode(GestureMode::Fold, at(p3(0.5, 0.5)));
+  const Vec3 a = square_base.vertices[square_base.edges[line].vertices[0]].folded;
+  const Vec3 b = square_base.vertices[square_base.edges[line].vertices[1]].folded;
+  const Vec3 across = Vec3::UnitZ().cross(b - a).normalized();
+  std::vector<int> walked[2];
+  for (int side = 0; side < 2; ++side)
+  {
+    const Vec3 beside = 0.5 * (a + b) + (side == 0 ? -0.015 : 0.015) * across + Vec3(0, 0, model.shownLift());
+    const Pointer pointer{ beside, Vec3::Zero(), view };
+    model.press(pointer);
+    model.release(Pointer{ std::nullopt, Vec3::Zero(), view });
+    ASSERT_GE(model.status().picked_edge, 0) << out.lastSaid();
+    EXPECT_EQ(model.status().picked_layer, 1u);
+    EXPECT_TRUE(model.status().marked_edges.empty()) << "a click on a stack only picks";
+    for (uint32_t layer = 1; layer <= model.status().layers; ++layer)
+    {
+      if (layer > 1)
+        model.nextLayer(pointer);
+      ASSERT_EQ(model.status().picked_layer, layer);
+      if (onLine(line, model.status().picked_edge))
+        walked[side].push_back(model.status().picked_edge);
+    }
+    model.nextLayer(pointer);
+    EXPECT_EQ(out.lastSaid(), "No layer below this one.");
+    model.clearMarks(pointer);  // lets go of the pick
+  }
+  EXPECT_EQ(walked[0].size(), static_cast<size_t>(most));
+  EXPECT_EQ(walked[0], walked[1]);
 }

@@ -4,6 +4,7 @@
 // flaps beside it would have to pass through each other).
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "virtual_origami/core/paper.h"
@@ -22,5 +23,9 @@ constexpr double kFlatAngleTolerance = 1e-6;
 /// only the ends of those edges are checked (the vertices a fold changes).
 Status checkFlatVertices(const Paper& paper, const std::vector<double>& angles,
                          const std::vector<int>& around_edges = {});
+
+/// A crease as fold flat's refusals name it: its id and its ends in the crease pattern,
+/// "crease 7 (0.5, 0.5)–(1, 0.5)", so that a user who sees no ids finds it on the paper.
+std::string creaseText(const Paper& paper, int edge);
 
 }  // namespace virtual_origami::core

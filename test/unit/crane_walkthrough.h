@@ -1,0 +1,96 @@
+// The crane walkthrough of docs/INTERACTION.md ("## Fold a crane") read as a person reads it:
+// per row of its table the steps, the gestures they take, and for each fold step the marks it
+// names (`**7**: ... *unfold*, ... *valley* ×2`), in the order of the reference's creases. The
+// rostest crane_by_mouse marks what the text says and counts the gestures against it;
+// crane_walkthrough_test checks the text against the reference script.
+#pragma once
+
+#include <map>
+#include <regex>
+#include <string>
+#include <vector>
+
+namespace virtual_origami::test
+{
+/// One row of the table: steps `first`–`last`.
+struct WalkthroughRow
+{
+  int first = 0, last = 0;
+  int gestures = 0;
+  std::string how;                        // the row's instructions, as written
+  std::map<int, std::vector<int>> marks;  // per fold step: +1 valley, −1 mountain, 0 unfold
+};
+
+struct Walkthrough
+{
+  std::vector<WalkthroughRow> rows;
+  int steps = 0;           // "21 steps" in the text before the table
+  int total_gestures = 0;  // "**233 gestures**" there
+  std::string error;       // what could not be read; empty when all was
+};
+
+/// The marks named after `**N**:` up to the next step number: *valley*, *mountain*, *unfold*,
+/// each once or `×k` times.
+inline std::vector<int> marksNamed(const std::string& text)
+{
+  static const std::regex mark(R"(\*(valley|mountain|unfold)\*(?:\s*×\s*([0-9]+))?)");
+  std::vector<int> marks;
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), mark); it != std::sregex_iterator(); ++it)
+  {
+    const std::string kind = (*it)[1];
+    const int times = (*it)[2].matched ? std::stoi((*it)[2]) : 1;
+    marks.insert(marks.end(), times, kind == "valley" ? 1 : kind == "mountain" ? -1 : 0);
+  }
+  return marks;
+}
+
+inline Walkthrough parseCraneWalkthrough(const std::string& markdown)
+{
+  Walkthrough w;
+  const size_t section = markdown.find("\n## Fold a crane");
+  if (section == std::string::npos)
+  {
+    w.error = "no section \"## Fold a crane\"";
+    return w;
+  }
+  const size_t end = markdown.find("\n## ", section + 1);
+  const std::string text = markdown.substr(section, end == std::string::npos ? std::string::npos : end - section);
+  std::smatch m;
+  if (std::regex_search(text, m, std::regex(R"(([0-9]+) steps,\s*\*\*([0-9]+) gestures\*\*)")))
+  {
+    w.steps = std::stoi(m[1]);
+    w.total_gestures = std::stoi(m[2]);
+  }
+  else
+    w.error = "no \"N steps, **M gestures**\" before the table";
+  static const std::regex row(R"(\n\|\s*([0-9]+)(?:–([0-9]+))?\s*\|[^|]*\|\s*([0-9]+)\s*\|([^\n]*)\|)");
+  static const std::regex step_number(R"(\*\*([0-9]+)\*\*)");
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), row); it != std::sregex_iterator(); ++it)
+  {
+    WalkthroughRow r;
+    r.first = std::stoi((*it)[1]);
+    r.last = (*it)[2].matched ? std::stoi((*it)[2]) : r.first;
+    r.gestures = std::stoi((*it)[3]);
+    r.how = (*it)[4];
+    struct StepNumber
+    {
+      int step;
+      size_t at, after;  // where `**N**` begins, and where its marks begin
+    };
+    std::vector<StepNumber> numbers;
+    for (auto s = std::sregex_iterator(r.how.begin(), r.how.end(), step_number); s != std::sregex_iterator(); ++s)
+      numbers.push_back(
+          { std::stoi((*s)[1]), static_cast<size_t>(s->position()), static_cast<size_t>(s->position() + s->length()) });
+    for (size_t i = 0; i < numbers.size(); ++i)
+    {
+      const size_t until = i + 1 < numbers.size() ? numbers[i + 1].at : r.how.size();
+      r.marks[numbers[i].step] = marksNamed(r.how.substr(numbers[i].after, until - numbers[i].after));
+    }
+    w.rows.push_back(std::move(r));
+  }
+  if (w.rows.empty() && w.error.empty())
+    w.error = "no rows in the table";
+  return w;
+}
+
+}  // namespace virtual_origami::test
