@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -25,6 +26,7 @@
 #include "virtual_origami/core/kinematics.h"
 #include "virtual_origami/core/planar_geometry.h"
 #include "virtual_origami/core/planar_graph.h"
+#include "virtual_origami/core/traced_paper.h"
 
 namespace virtual_origami::core
 {
@@ -86,15 +88,6 @@ std::optional<std::vector<Vec2>> planarCoordinates(const std::vector<Vec3>& coor
   for (const Vec3& p : coords)
     flat.emplace_back((p - centroid).dot(u), (p - centroid).dot(w));
   return flat;
-}
-
-/// The bounded faces of the planar graph the edges draw, counter-clockwise.
-std::vector<std::vector<int>> traceFaces(const std::vector<Vec2>& points, const std::vector<std::array<int, 2>>& edges)
-{
-  std::vector<std::vector<int>> faces;
-  for (TracedFace& face : boundedFaces(points, edges, 1e-12 * std::pow(boundingDiagonal(points), 2)))
-    faces.push_back(std::move(face.vertices));
-  return faces;
 }
 
 std::vector<std::array<int, 2>> edgesOfFaces(const std::vector<std::vector<int>>& faces)
@@ -473,27 +466,70 @@ std::optional<std::vector<Vec2>> givenCreasePattern(const FrameData& data, bool 
   return std::nullopt;
 }
 
-/// The frame's faces, traced from its edges in the crease pattern when the file has none.
-std::vector<std::vector<int>> facesOf(const FrameData& data, const std::optional<std::vector<Vec2>>& crease_pattern)
+/// A frame given by its edges alone, its paper traced from them in the crease pattern
+/// (tracePaper: holes, cuts opened, pieces): its fields carried over to the vertices and edges
+/// the tracing made, and the faces.
+struct TracedFrame
 {
-  if (data.faces)
-    return *data.faces;
-  if (!crease_pattern)
-    fail("faces_vertices is missing: a folded form needs faces_vertices to be unfolded");
+  FrameData data;
+  std::vector<Vec2> crease_pattern;
+  std::vector<std::vector<int>> faces;
+};
+
+TracedFrame traceFrame(const FrameData& data, const std::vector<Vec2>& crease_pattern)
+{
   // readFrame made sure there are edges.
-  std::vector<std::vector<int>> faces = traceFaces(*crease_pattern, *data.edges);
-  // A dangling edge or two faces touching at a single vertex traces a face through one vertex
-  // twice: no polygon the model can hold, and the FOLD written from it would not read back.
-  for (size_t f = 0; f < faces.size(); ++f)
+  const std::vector<std::array<int, 2>>& edges = *data.edges;
+  std::vector<Assignment> assignments =
+      data.assignments ? *data.assignments : std::vector<Assignment>(edges.size(), Assignment::Unassigned);
+  const Expected<TracedPaper> traced =
+      tracePaper(crease_pattern, edges, assignments, 1e-12 * std::pow(boundingDiagonal(crease_pattern), 2));
+  if (!traced)
   {
-    std::vector<int> sorted = faces[f];
-    std::sort(sorted.begin(), sorted.end());
-    const auto twice = std::adjacent_find(sorted.begin(), sorted.end());
-    if (twice != sorted.end())
-      fail("edges_vertices: the face traced as " + indexed("faces", f) + " passes vertex " + std::to_string(*twice) +
-           " twice (an edge ending inside a face, or faces touching at one vertex)");
+    // The tracing names drawn points and edges: here, the file's vertices and edges.
+    std::string message = traced.message();
+    for (const char* word : { "point ", "edge " })
+      for (size_t at = message.find(word); at != std::string::npos; at = message.find(word, at + 1))
+      {
+        const size_t number = at + std::strlen(word);
+        size_t end = number;
+        while (end < message.size() && std::isdigit(static_cast<unsigned char>(message[end])))
+          ++end;
+        if (end == number)
+          continue;
+        const std::string field = word[0] == 'p' ? "vertices_coords" : "edges_vertices";
+        const std::string named = field + "[" + message.substr(number, end - number) + "]";
+        message.replace(at, end - at, named);
+        at += named.size() - 1;
+      }
+    fail("edges_vertices: tracing the faces: " + message);
   }
-  return faces;
+  TracedFrame frame;
+  frame.data = data;
+  frame.crease_pattern = traced->points;
+  frame.faces = traced->faces;
+  FrameData& out = frame.data;
+  out.coords.clear();
+  for (const VertexSource& source : traced->sources)
+    out.coords.push_back((1 - source.t) * data.coords[source.a] + source.t * data.coords[source.b]);
+  out.edges = traced->edges;
+  out.assignments.emplace();
+  if (data.fold_angles)
+    out.fold_angles.emplace();
+  if (data.target_angles)
+    out.target_angles.emplace();
+  for (const int source : traced->edge_sources)
+  {
+    // A joint (no source) lies flat and has no target.
+    out.assignments->push_back(source >= 0 ? assignments[source] : Assignment::Flat);
+    if (out.fold_angles)
+      out.fold_angles->push_back(source >= 0 ? (*data.fold_angles)[source] : std::optional<double>(0.0));
+    if (out.target_angles)
+      out.target_angles->push_back(source >= 0 ? (*data.target_angles)[source] : std::nullopt);
+  }
+  out.faces = traced->faces;
+  out.crease_pattern.reset();
+  return frame;
 }
 
 /// Vertices (crease pattern when known, folded = the file's coordinates), edges and faces,
@@ -520,12 +556,20 @@ Paper linkedPaper(const FrameData& data, const std::vector<std::vector<int>>& fa
 
 BuiltFrame buildFrame(const json& frame, const BuiltFrame* parent)
 {
-  const FrameData data = readFrame(frame);
+  FrameData data = readFrame(frame);
   const std::optional<std::vector<Vec2>> flat = planarCoordinates(data.coords);
   BuiltFrame built;
   built.crease_pattern = flat && !hasClass(data, "foldedForm");
-  const std::optional<std::vector<Vec2>> crease_pattern = givenCreasePattern(data, !built.crease_pattern, flat, parent);
-  const std::vector<std::vector<int>> faces = facesOf(data, crease_pattern);
+  std::optional<std::vector<Vec2>> crease_pattern = givenCreasePattern(data, !built.crease_pattern, flat, parent);
+  if (!data.faces)
+  {
+    if (!crease_pattern)
+      fail("faces_vertices is missing: a folded form needs faces_vertices to be unfolded");
+    TracedFrame traced = traceFrame(data, *crease_pattern);
+    data = std::move(traced.data);
+    crease_pattern = std::move(traced.crease_pattern);
+  }
+  const std::vector<std::vector<int>>& faces = *data.faces;
   checkEveryVertexUsed(faces, data.coords.size());
 
   Paper& paper = built.paper;
