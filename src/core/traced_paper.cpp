@@ -267,38 +267,48 @@ Regions findRegions(const Drawing& drawing, double min_area)
   return regions;
 }
 
-/// A horizontal joint from vertex v in direction `sign` (±1) to the first thing it meets: a
-/// vertex, or an edge, split there. False when it meets nothing.
-bool addJoint(Drawing& drawing, int v, double sign, double tolerance, const std::vector<Vec2>& drawn_points,
+/// A joint from vertex v along the unit direction d to the first thing it meets: a vertex, or an
+/// edge, split there. False when it meets nothing.
+bool addJoint(Drawing& drawing, int v, const Vec2& d, double tolerance, const std::vector<Vec2>& drawn_points,
               const std::vector<std::array<int, 2>>& drawn_edges)
 {
   const Vec2 s = drawing.points[v];
   double nearest = std::numeric_limits<double>::infinity();
   int hit_edge = -1, hit_vertex = -1;
+  const auto meetVertex = [&](int end) {
+    const double along = (drawing.points[end] - s).dot(d);
+    if (along > tolerance && along < nearest)
+    {
+      nearest = along;
+      hit_vertex = end;
+      hit_edge = -1;
+    }
+  };
   for (size_t e = 0; e < drawing.edges.size(); ++e)
   {
     const auto [a, b] = drawing.edges[e];
     if (a == v || b == v)
       continue;
-    const Vec2 &p = drawing.points[a], &q = drawing.points[b];
-    const double dp = p.y() - s.y(), dq = q.y() - s.y();
-    if ((dp > tolerance && dq > tolerance) || (dp < -tolerance && dq < -tolerance))
-      continue;
-    for (const auto& [end, d] : { std::pair{ a, dp }, std::pair{ b, dq } })
+    const Vec2 &p = drawing.points[a], r = drawing.points[b] - p;
+    const double length = r.norm();
+    const double denominator = cross2(d, r);
+    if (std::abs(denominator) <= 1e-12 * length)
     {
-      const double along = sign * (drawing.points[end].x() - s.x());
-      if (std::abs(d) <= tolerance && along > tolerance && along < nearest)
+      if (std::abs(cross2(p - s, d)) <= tolerance)  // along the ray: met at its nearer end
       {
-        nearest = along;
-        hit_vertex = end;
-        hit_edge = -1;
+        meetVertex(a);
+        meetVertex(b);
       }
+      continue;
     }
-    if (std::abs(dp) <= tolerance || std::abs(dq) <= tolerance)
-      continue;  // met at an end, above
-    const double x = p.x() + (s.y() - p.y()) / (q.y() - p.y()) * (q.x() - p.x());
-    const double along = sign * (x - s.x());
-    if (along > tolerance && along < nearest)
+    const double along = cross2(p - s, r) / denominator, at = cross2(p - s, d) / denominator;
+    if (!(along > tolerance && along < nearest) || at * length < -tolerance || (1 - at) * length < -tolerance)
+      continue;
+    if (at * length <= tolerance)
+      meetVertex(a);
+    else if ((1 - at) * length <= tolerance)
+      meetVertex(b);
+    else
     {
       nearest = along;
       hit_edge = static_cast<int>(e);
@@ -306,13 +316,34 @@ bool addJoint(Drawing& drawing, int v, double sign, double tolerance, const std:
     }
   }
   if (hit_edge >= 0)
-    hit_vertex = splitEdge(drawing, hit_edge, Vec2(s.x() + sign * nearest, s.y()), drawn_points, drawn_edges);
+    hit_vertex = splitEdge(drawing, hit_edge, s + nearest * d, drawn_points, drawn_edges);
   if (hit_vertex < 0)
     return false;
   drawing.edges.push_back({ v, hit_vertex });
   drawing.edge_sources.push_back(-1);
   drawing.kinds.push_back(Assignment::Flat);
   return true;
+}
+
+/// A cut that ends inside the paper (a slit's tip) would leave the face around it turning back
+/// on itself there: the cut's line runs on from the tip, flat, to the first line it meets, so
+/// the faces beside the tip are straight there. A tip outside the paper meets nothing, or its
+/// joint borders no paper and goes.
+void extendSlitTips(Drawing& drawing, double tolerance, const std::vector<Vec2>& drawn_points,
+                    const std::vector<std::array<int, 2>>& drawn_edges)
+{
+  std::vector<std::vector<int>> at(drawing.points.size());
+  for (size_t e = 0; e < drawing.edges.size(); ++e)
+    for (int v : drawing.edges[e])
+      at[v].push_back(static_cast<int>(e));
+  for (size_t v = 0; v < at.size(); ++v)
+    if (at[v].size() == 1 && drawing.kinds[at[v][0]] == Assignment::Cut)
+    {
+      const auto& edge = drawing.edges[at[v][0]];
+      const Vec2 d =
+          (drawing.points[v] - drawing.points[edge[0] == static_cast<int>(v) ? edge[1] : edge[0]]).normalized();
+      addJoint(drawing, static_cast<int>(v), d, tolerance, drawn_points, drawn_edges);
+    }
 }
 
 /// Joins every island to its surroundings from its rightmost point rightwards and its leftmost
@@ -330,7 +361,7 @@ void joinIslands(Drawing& drawing, const std::vector<std::vector<int>>& islands,
     {
       const int v = sign > 0 ? *std::max_element(island.begin(), island.end(), by_x) :
                                *std::min_element(island.begin(), island.end(), by_x);
-      if (!addJoint(drawing, v, sign, tolerance, drawn_points, drawn_edges))
+      if (!addJoint(drawing, v, Vec2(sign, 0.0), tolerance, drawn_points, drawn_edges))
         fail("the lines at point " + std::to_string(drawing.sources[v].a) +
              " lie inside a face but nothing surrounds them to join them to");
     }
@@ -453,10 +484,12 @@ TracedPaper trace(const std::vector<Vec2>& points, const std::vector<std::array<
   drawing.kinds = assignments;
   dropLooseCreases(drawing);
   splitLoneCutEdges(drawing, points, edges);
+  const double tolerance = 1e-9 * boundingDiagonal(points);
+  extendSlitTips(drawing, tolerance, points, edges);
   Regions regions = findRegions(drawing, min_area);
   if (!regions.islands.empty())
   {
-    joinIslands(drawing, regions.islands, 1e-9 * boundingDiagonal(points), points, edges);
+    joinIslands(drawing, regions.islands, tolerance, points, edges);
     regions = findRegions(drawing, min_area);
     if (!regions.islands.empty())
       fail("lines inside a face could not be joined to the paper around them");
