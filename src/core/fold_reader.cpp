@@ -468,12 +468,11 @@ std::optional<std::vector<Vec2>> givenCreasePattern(const FrameData& data, bool 
 
 /// A frame given by its edges alone, its paper traced from them in the crease pattern
 /// (tracePaper: holes, cuts opened, pieces): its fields carried over to the vertices and edges
-/// the tracing made, and the faces.
+/// the tracing made, its faces among them.
 struct TracedFrame
 {
   FrameData data;
   std::vector<Vec2> crease_pattern;
-  std::vector<std::vector<int>> faces;
 };
 
 TracedFrame traceFrame(const FrameData& data, const std::vector<Vec2>& crease_pattern)
@@ -507,7 +506,6 @@ TracedFrame traceFrame(const FrameData& data, const std::vector<Vec2>& crease_pa
   TracedFrame frame;
   frame.data = data;
   frame.crease_pattern = traced->points;
-  frame.faces = traced->faces;
   FrameData& out = frame.data;
   out.coords.clear();
   for (const VertexSource& source : traced->sources)

@@ -429,7 +429,8 @@ std::vector<Polyline> pointsPolyline(const XmlElement& element, bool closed)
 {
   const std::string* points = element.attribute("points");
   Polyline line;
-  NumberReader reader(points ? *points : "");
+  const std::string empty;
+  NumberReader reader(points ? *points : empty);  // a view: never of a temporary
   while (!reader.atEnd())
   {
     const std::optional<double> x = reader.number();
@@ -730,21 +731,24 @@ std::vector<SvgStroke> readStrokes(const std::string& text)
 // ---------------------------------------------------------------------------------------------
 // The paper
 
-/// The stronger kind when strokes are drawn over each other.
+/// Which kind a stretch keeps when strokes of several kinds land on it (drawn over each other, or
+/// brought together by the merge tolerance): Origami Simulator's, border first, then mountain,
+/// valley, cut, facet, hinge.
 int strength(Assignment kind)
 {
   switch (kind)
   {
     case Assignment::Boundary:
-      return 5;
-    case Assignment::Cut:
-      return 4;
+      return 6;
     case Assignment::Mountain:
+      return 5;
     case Assignment::Valley:
+      return 4;
+    case Assignment::Cut:
       return 3;
-    case Assignment::Unassigned:
-      return 2;
     case Assignment::Flat:
+      return 2;
+    case Assignment::Unassigned:
       return 1;
   }
   return 0;
@@ -820,11 +824,8 @@ Paper buildPaper(const std::vector<SvgStroke>& strokes, double size)
       const auto [it, added] = piece_stroke.emplace(std::make_pair(key.first, key.second), stroke);
       if (added)
         continue;
-      const SvgStroke &old = strokes[it->second], &now = strokes[stroke];
-      if (strength(now.assignment) > strength(old.assignment))
+      if (strength(strokes[stroke].assignment) > strength(strokes[it->second].assignment))
         it->second = stroke;
-      else if (strength(now.assignment) == strength(old.assignment) && now.assignment != old.assignment)
-        fail("the " + old.element + " and the " + now.element + " draw a mountain and a valley along the same line");
     }
 
   nlohmann::json fold;

@@ -487,6 +487,22 @@ TracedPaper trace(const std::vector<Vec2>& points, const std::vector<std::array<
   const double tolerance = 1e-9 * boundingDiagonal(points);
   extendSlitTips(drawing, tolerance, points, edges);
   Regions regions = findRegions(drawing, min_area);
+  // A crease with the same paper on both sides (the stick of a ring of creases hung inside a
+  // face) folds nothing either: it goes, and what it held becomes an island.
+  std::vector<char> sticks(drawing.edges.size(), 0);
+  bool any_stick = false;
+  for (size_t e = 0; e < drawing.edges.size(); ++e)
+  {
+    const int left = regions.cycle_of[2 * e], right = regions.cycle_of[2 * e + 1];
+    sticks[e] = left == right && regions.paper[left] && drawing.kinds[e] != Assignment::Cut;
+    any_stick = any_stick || sticks[e];
+  }
+  if (any_stick)
+  {
+    removeEdges(drawing, sticks);
+    dropLooseCreases(drawing);
+    regions = findRegions(drawing, min_area);
+  }
   if (!regions.islands.empty())
   {
     joinIslands(drawing, regions.islands, tolerance, points, edges);

@@ -222,5 +222,22 @@ TEST(SharedPatterns, ALooseCreaseEndIsLeftOut)
   EXPECT_TRUE(checkValidity(paper).ok()) << checkValidity(paper).summary();
 }
 
+TEST(SharedPatterns, ACreaseWithOneFaceOnBothSidesIsLeftOut)
+{
+  const Paper paper = loadPattern("ring-on-a-stick.fold");
+  // The valley has the face round the ring on both sides: it goes, and the ring, now touching
+  // nothing, is joined to the outline by two flat edges like a hole would be.
+  EXPECT_EQ(0, countAssigned(paper, Assignment::Valley));
+  EXPECT_EQ(4, countAssigned(paper, Assignment::Mountain));
+  int joints = 0;  // flat edges of the file (not those splitting a concave face into convex ones)
+  for (const Edge& edge : paper.edges)
+    joints += edge.assignment == Assignment::Flat && !edge.split;
+  EXPECT_EQ(2, joints);
+  EXPECT_DOUBLE_EQ(16.0, totalFaceArea(paper));
+  EXPECT_TRUE(covered(paper, Vec2(2, 2)));  // the ring's inside is paper: it was never a hole
+  EXPECT_EQ(1, euler(paper));
+  EXPECT_TRUE(checkValidity(paper).ok()) << checkValidity(paper).summary();
+}
+
 }  // namespace
 }  // namespace virtual_origami::core

@@ -40,9 +40,9 @@ Expected<std::vector<SvgStroke>> parseSvgStrokes(const std::string& text);
 /// so the pattern looks as it does drawn; points closer than Origami Simulator's merge tolerance
 /// (3 user units, or 1% of the box where that is smaller) are one; strokes split where they cross
 /// or meet; the faces traced as for a FOLD file without faces (tracePaper: holes, cuts opened,
-/// several pieces), concave faces split into convex pieces. Strokes drawn over each other keep the
-/// stronger kind (border, then cut, then mountain or valley, then hinge, then facet); a mountain
-/// and a valley on the same stretch are refused naming both elements.
+/// several pieces), concave faces split into convex pieces. Where strokes of several kinds land
+/// on one stretch (drawn over each other, or brought together by the merge tolerance), it keeps
+/// the first of border, mountain, valley, cut, facet, hinge, as Origami Simulator does.
 Expected<Paper> parseSvgPattern(const std::string& text, double size = 1.0);
 
 }  // namespace virtual_origami::core

@@ -38,12 +38,12 @@ struct TracedPaper
 /// regions ringed by B edges inside paper and never get a face. Cut (C) edges keep paper on both
 /// sides and are opened: every vertex along a cut gets a copy for each side, so a slit's sides,
 /// and the two edges a cut edge becomes, are different vertices and edges. A chain of other edges
-/// that ends inside a region (a crease with a loose end) folds nothing rigid paper can fold and is
-/// left out, as are edges with no paper on either side and the points only they used. A cut that
-/// ends inside the paper runs on from its tip as a flat joint to the first line it meets (faces
-/// stay convex beside the tip). A hole or island of creases that lies inside a face, touching
-/// nothing, is joined to what surrounds it by two horizontal flat joints (from its leftmost and
-/// rightmost points). Separate pieces stay separate. Regions of no more than `min_area` are slivers and make no face.
+/// that ends inside a region (a crease with a loose end), or a crease with the same region on both
+/// sides, folds nothing rigid paper can fold and is left out, as are edges with no paper on either side and the points
+/// only they used. A cut that ends inside the paper runs on from its tip as a flat joint to the first line it meets
+/// (faces stay convex beside the tip). A hole or island of creases that lies inside a face, touching nothing, is joined
+/// to what surrounds it by two horizontal flat joints (from its leftmost and rightmost points). Separate pieces stay
+/// separate. Regions of no more than `min_area` are slivers and make no face.
 Expected<TracedPaper> tracePaper(const std::vector<Vec2>& points, const std::vector<std::array<int, 2>>& edges,
                                  const std::vector<Assignment>& assignments, double min_area);
 
