@@ -530,6 +530,112 @@ TracedFrame traceFrame(const FrameData& data, const std::vector<Vec2>& crease_pa
   return frame;
 }
 
+/// A file's faces on both sides of a cut (C) edge: the cut opens as tracePaper opens one. Each
+/// vertex gets a copy for every group of its faces that meet across edges other than cuts; the
+/// faces take their group's copy, and a cut edge one edge for each side.
+void openCutsBetweenFaces(FrameData& data, std::optional<std::vector<Vec2>>& crease_pattern)
+{
+  if (!data.edges || !data.assignments ||
+      std::find(data.assignments->begin(), data.assignments->end(), Assignment::Cut) == data.assignments->end())
+    return;
+  std::vector<std::vector<int>>& faces = *data.faces;
+  std::map<std::pair<int, int>, int> edge_of;
+  for (size_t e = 0; e < data.edges->size(); ++e)
+    edge_of[std::minmax((*data.edges)[e][0], (*data.edges)[e][1])] = static_cast<int>(e);
+  const auto isCut = [&](int a, int b) {
+    const auto it = edge_of.find(std::minmax(a, b));
+    return it != edge_of.end() && (*data.assignments)[it->second] == Assignment::Cut;
+  };
+  // At each vertex, its faces joined across the sides round it that are not cuts.
+  std::vector<std::vector<std::pair<int, size_t>>> corners(data.coords.size());  // (face, index)
+  for (size_t f = 0; f < faces.size(); ++f)
+    for (size_t i = 0; i < faces[f].size(); ++i)
+      corners[faces[f][i]].emplace_back(static_cast<int>(f), i);
+  const std::vector<std::vector<int>> original = faces;
+  std::vector<int> origin(data.coords.size());  // the file's vertex each vertex copies
+  for (size_t v = 0; v < origin.size(); ++v)
+    origin[v] = static_cast<int>(v);
+  for (size_t v = 0; v < corners.size(); ++v)
+  {
+    const auto& around = corners[v];
+    std::vector<int> group(around.size());
+    for (size_t k = 0; k < around.size(); ++k)
+      group[k] = static_cast<int>(k);
+    const auto root = [&](int k) {
+      while (group[k] != k)
+        k = group[k];
+      return k;
+    };
+    const auto neighbours = [&](size_t k) {
+      const std::vector<int>& face = original[around[k].first];
+      const size_t n = face.size(), i = around[k].second;
+      return std::array<int, 2>{ face[(i + n - 1) % n], face[(i + 1) % n] };
+    };
+    for (size_t k = 0; k < around.size(); ++k)
+      for (size_t j = k + 1; j < around.size(); ++j)
+        for (int w : neighbours(k))
+          for (int x : neighbours(j))
+            if (w == x && !isCut(static_cast<int>(v), w))
+              group[root(static_cast<int>(k))] = root(static_cast<int>(j));
+    std::map<int, int> copy;
+    for (size_t k = 0; k < around.size(); ++k)
+    {
+      const auto [it, added] = copy.emplace(root(static_cast<int>(k)),
+                                            copy.empty() ? static_cast<int>(v) : static_cast<int>(data.coords.size()));
+      if (added && it->second != static_cast<int>(v))
+      {
+        origin.push_back(static_cast<int>(v));
+        data.coords.push_back(data.coords[v]);
+        if (crease_pattern)
+          crease_pattern->push_back((*crease_pattern)[v]);
+        if (data.crease_pattern)
+          data.crease_pattern->push_back((*data.crease_pattern)[v]);
+      }
+      faces[around[k].first][around[k].second] = it->second;
+    }
+  }
+  if (origin.size() == corners.size())
+    return;  // no cut between two faces
+  // Each edge as the faces now meet it: a cut between two faces becomes two edges.
+  std::map<std::pair<int, int>, std::vector<std::pair<int, int>>> sides;  // file edge ends → ends now
+  for (size_t f = 0; f < faces.size(); ++f)
+    for (size_t i = 0; i < faces[f].size(); ++i)
+    {
+      const size_t n = faces[f].size();
+      const std::pair<int, int> key = std::minmax(original[f][i], original[f][(i + 1) % n]);
+      const std::pair<int, int> now = std::minmax(faces[f][i], faces[f][(i + 1) % n]);
+      std::vector<std::pair<int, int>>& seen = sides[key];
+      if (std::find(seen.begin(), seen.end(), now) == seen.end())
+        seen.push_back(now);
+    }
+  const size_t file_edges = data.edges->size();
+  for (size_t e = 0; e < file_edges; ++e)
+  {
+    const auto it = sides.find(std::minmax((*data.edges)[e][0], (*data.edges)[e][1]));
+    if (it == sides.end())
+      continue;
+    const int first = (*data.edges)[e][0];
+    for (size_t k = 0; k < it->second.size(); ++k)
+    {
+      // As the file has it: from the copy of its first vertex.
+      std::array<int, 2> ends{ it->second[k].first, it->second[k].second };
+      if (origin[ends[0]] != first)
+        std::swap(ends[0], ends[1]);
+      if (k == 0)
+      {
+        (*data.edges)[e] = ends;
+        continue;
+      }
+      data.edges->push_back(ends);
+      data.assignments->push_back((*data.assignments)[e]);
+      if (data.fold_angles)
+        data.fold_angles->push_back((*data.fold_angles)[e]);
+      if (data.target_angles)
+        data.target_angles->push_back((*data.target_angles)[e]);
+    }
+  }
+}
+
 /// Vertices (crease pattern when known, folded = the file's coordinates), edges and faces,
 /// linked. Assignments default to unassigned; markBoundaries settles the boundary.
 Paper linkedPaper(const FrameData& data, const std::vector<std::vector<int>>& faces,
@@ -567,6 +673,8 @@ BuiltFrame buildFrame(const json& frame, const BuiltFrame* parent)
     data = std::move(traced.data);
     crease_pattern = std::move(traced.crease_pattern);
   }
+  else
+    openCutsBetweenFaces(data, crease_pattern);
   const std::vector<std::vector<int>>& faces = *data.faces;
   checkEveryVertexUsed(faces, data.coords.size());
 

@@ -213,6 +213,22 @@ TEST(SharedPatterns, KirigamiCutsOpenAcrossTheFold)
   EXPECT_TRUE(checkValidity(paper).ok()) << checkValidity(paper).summary();
 }
 
+TEST(SharedPatterns, ACutBetweenGivenFacesOpens)
+{
+  const Paper paper = loadPattern("cut-between-faces.fold");
+  ASSERT_EQ(4u, paper.faces.size());
+  EXPECT_EQ(2u, verticesAt(paper, Vec2(1, 0)).size());  // where the cut leaves the border
+  EXPECT_EQ(1u, verticesAt(paper, Vec2(1, 1)).size());  // its end, inside
+  EXPECT_EQ(0, countAssigned(paper, Assignment::Cut));  // its sides, boundaries
+  EXPECT_EQ(13u, paper.edges.size());                   // the file's 12, the cut one each side
+  EXPECT_EQ(1, euler(paper));
+  // The creases keep their ends as the file wrote them.
+  EXPECT_GE(paper.findEdge(8, 3), 0);
+  EXPECT_EQ(Assignment::Valley, paper.edges[9].assignment);
+  EXPECT_EQ(Vec2(1, 1), paper.vertices[paper.edges[9].vertices[0]].crease_pattern);
+  EXPECT_TRUE(checkValidity(paper).ok()) << checkValidity(paper).summary();
+}
+
 TEST(SharedPatterns, ALooseCreaseEndIsLeftOut)
 {
   const Paper paper = loadPattern("loose-crease.fold");
