@@ -255,5 +255,23 @@ TEST(SharedPatterns, ACreaseWithOneFaceOnBothSidesIsLeftOut)
   EXPECT_TRUE(checkValidity(paper).ok()) << checkValidity(paper).summary();
 }
 
+TEST(SharedPatterns, EveryPatternWritesAndReadsBack)
+{
+  for (const char* name :
+       { "null-values.fold", "two-pieces.fold", "hole.fold", "hole-in-face.fold", "slit.fold", "interior-slit.fold",
+         "kirigami.fold", "loose-crease.fold", "ring-on-a-stick.fold", "cut-between-faces.fold" })
+  {
+    const Paper paper = loadPattern(name);
+    const Expected<FoldDocument> back = parseFold(formatFold(paper));
+    ASSERT_TRUE(back.ok()) << name << ": " << back.message();
+    const Paper& read = back->frames.front();
+    EXPECT_EQ(paper.vertices.size(), read.vertices.size()) << name;
+    EXPECT_EQ(paper.edges.size(), read.edges.size()) << name;
+    EXPECT_EQ(paper.faces.size(), read.faces.size()) << name;
+    EXPECT_DOUBLE_EQ(paper.sheet_area, read.sheet_area) << name;
+    EXPECT_TRUE(checkValidity(read).ok()) << name << ": " << checkValidity(read).summary();
+  }
+}
+
 }  // namespace
 }  // namespace virtual_origami::core
