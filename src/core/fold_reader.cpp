@@ -384,7 +384,8 @@ void markBoundaries(Paper& paper)
   }
 }
 
-/// A crease pattern lies flat at z = 0, or folded by the file's fold angles when they close.
+/// A crease pattern lies flat at z = 0, or folded by the file's fold angles when they close
+/// (each piece from its first face, which stays where the crease pattern has it).
 void foldCreasePattern(Paper& paper, const std::optional<std::vector<std::optional<double>>>& fold_angles)
 {
   for (Vertex& v : paper.vertices)
@@ -401,14 +402,55 @@ void foldCreasePattern(Paper& paper, const std::optional<std::vector<std::option
     }
   if (!folded)
     return;
-  const Expected<std::vector<Vec3>> positions =
-      foldedPositionsFromAngles(paper, angles, 0, Eigen::Isometry3d::Identity(), 1e-6 * paper.scale());
-  // Angles that do not close (a non-rigid target, or rounded in the file) cannot place the
-  // faces; the crease pattern itself is still good, so it loads flat instead of failing.
-  if (!positions)
-    return;
+  // Each piece folded on its own, its first face where the crease pattern has it.
+  std::vector<Vec3> placed(paper.vertices.size());
+  std::vector<char> reached(paper.faces.size(), 0), vertex_placed(paper.vertices.size(), 0);
+  for (size_t start = 0; start < paper.faces.size(); ++start)
+  {
+    if (reached[start])
+      continue;
+    const std::vector<char> piece = walkFaces(paper, static_cast<int>(start));
+    Paper alone = paper;
+    alone.faces.clear();
+    alone.edges.clear();
+    std::vector<int> faces_of_piece;
+    for (size_t f = 0; f < paper.faces.size(); ++f)
+      if (piece[f])
+      {
+        reached[f] = 1;
+        faces_of_piece.push_back(static_cast<int>(f));
+        alone.faces.push_back(paper.faces[f]);
+      }
+    std::vector<double> angles_alone;
+    for (size_t e = 0; e < paper.edges.size(); ++e)
+    {
+      const auto [left, right] = paper.edges[e].faces;
+      if ((left >= 0 && piece[left]) || (right >= 0 && piece[right]))
+      {
+        alone.edges.push_back(paper.edges[e]);
+        angles_alone.push_back(angles[e]);
+      }
+    }
+    const Expected<std::vector<Vec3>> positions =
+        linkTopology(alone) ?
+            foldedPositionsFromAngles(alone, angles_alone, 0, Eigen::Isometry3d::Identity(), 1e-6 * paper.scale()) :
+            Expected<std::vector<Vec3>>::failure("");
+    // Angles that do not close (a non-rigid target, or rounded in the file) cannot place the
+    // faces; the crease pattern itself is still good, so it loads flat instead of failing.
+    if (!positions)
+      return;
+    for (int f : faces_of_piece)
+      for (int v : paper.faces[f].vertices)
+      {
+        // Pieces touching at a vertex must agree on it.
+        if (vertex_placed[v] && !((placed[v] - (*positions)[v]).norm() <= 1e-6 * paper.scale()))
+          return;
+        placed[v] = (*positions)[v];
+        vertex_placed[v] = 1;
+      }
+  }
   for (size_t v = 0; v < paper.vertices.size(); ++v)
-    paper.vertices[v].folded = (*positions)[v];
+    paper.vertices[v].folded = placed[v];
   for (size_t e = 0; e < paper.edges.size(); ++e)
     paper.edges[e].fold_angle = angles[e];
 }

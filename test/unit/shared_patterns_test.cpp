@@ -108,6 +108,22 @@ TEST(SharedPatterns, SeparatePiecesStaySeparate)
   EXPECT_TRUE(checkValidity(paper).ok()) << checkValidity(paper).summary();
 }
 
+TEST(SharedPatterns, FoldAnglesFoldEveryPiece)
+{
+  // The creased square is the second piece: it folds from its own first face.
+  const Expected<FoldDocument> document = parseFold(R"({
+    "vertices_coords": [[2,0],[3,0],[3,1],[2,1],[0,0],[1,0],[1,1],[0,1]],
+    "edges_vertices": [[0,1],[1,2],[2,3],[3,0],[4,5],[5,6],[6,7],[7,4],[4,6]],
+    "edges_assignment": ["B","B","B","B","B","B","B","B","V"],
+    "edges_foldAngle": [0,0,0,0,0,0,0,0,90]})");
+  ASSERT_TRUE(document.ok()) << document.message();
+  const Paper& paper = document->frames[0];
+  EXPECT_NEAR(M_PI / 2, paper.edges[paper.findEdge(4, 6)].fold_angle, 1e-12);
+  EXPECT_TRUE(paper.vertices[7].folded.isApprox(Vec3(0.5, 0.5, std::sqrt(0.5)), 1e-12));
+  EXPECT_EQ(Vec3(3, 1, 0), paper.vertices[2].folded);
+  EXPECT_TRUE(checkValidity(paper).ok()) << checkValidity(paper).summary();
+}
+
 TEST(SharedPatterns, AHoleGetsNoFace)
 {
   const Paper paper = loadPattern("hole.fold");
