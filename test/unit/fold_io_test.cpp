@@ -563,6 +563,8 @@ TEST(FoldIo, RejectsBrokenFilesNamingTheField)
       "faces_vertices[1] is clockwise but faces_vertices[0] is counter-clockwise" },
     { R"({"vertices_coords": [[0,0],[1,0]]})",
       "edges_vertices and faces_vertices are both missing" },
+    { R"({"vertices_coords": [[0,0],[1,0],[2,1]], "edges_vertices": [[0,1],[1,2]]})",
+      "edges_vertices: tracing the faces: the lines enclose no paper" },
     { "{" + square_coords + "," + square_edges + "," + square_faces + R"(, "edges_foldAngle": [0,0,0,0]})",
       "edges_foldAngle has 4 entries but edges_vertices has 5" },
     { "{" + square_coords + "," + square_faces + R"(, "faceOrders": [[0,7,1]]})",
