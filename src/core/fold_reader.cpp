@@ -11,6 +11,7 @@
 #include <cstring>
 #include <deque>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -157,34 +158,55 @@ size_t cornerOf(const Face& face, int vertex)
 }
 
 /// Each face laid in the plane: face 0 as seen from its front, then breadth first across
-/// shared edges, each face turned to meet its neighbour along their edge.
+/// shared edges, each face turned to meet its neighbour along their edge. A folded form in
+/// several pieces (nothing says where one lies from another once unfolded) has each further
+/// piece laid the same way from its first face, beside the pieces before it in +x.
 std::vector<std::vector<Vec2>> layOutFaces(const Paper& paper)
 {
   const size_t face_count = paper.faces.size();
   std::vector<std::vector<Vec2>> placed(face_count);
-  placed[0] = faceInOwnPlane(paper, 0);
-  std::deque<int> queue{ 0 };
-  while (!queue.empty())
+  double right = -std::numeric_limits<double>::infinity(), gap = 0.0;
+  for (size_t root = 0; root < face_count; ++root)
   {
-    const int f = queue.front();
-    queue.pop_front();
-    const Face& face = paper.faces[f];
-    for (size_t i = 0; i < face.edges.size(); ++i)
+    if (!placed[root].empty())
+      continue;
+    placed[root] = faceInOwnPlane(paper, static_cast<int>(root));
+    std::vector<int> piece{ static_cast<int>(root) };
+    std::deque<int> queue{ static_cast<int>(root) };
+    while (!queue.empty())
     {
-      const Edge& edge = paper.edges[face.edges[i]];
-      if (!edge.isCrease() || !placed[edge.otherFace(f)].empty())
-        continue;
-      const int g = edge.otherFace(f);
-      const int a = face.vertices[i], b = face.vertices[(i + 1) % face.vertices.size()];
-      const Face& other = paper.faces[g];
-      placed[g] = matchEdge(faceInOwnPlane(paper, g), cornerOf(other, a), cornerOf(other, b), placed[f][i],
-                            placed[f][(i + 1) % face.vertices.size()]);
-      queue.push_back(g);
+      const int f = queue.front();
+      queue.pop_front();
+      const Face& face = paper.faces[f];
+      for (size_t i = 0; i < face.edges.size(); ++i)
+      {
+        const Edge& edge = paper.edges[face.edges[i]];
+        if (!edge.isCrease() || !placed[edge.otherFace(f)].empty())
+          continue;
+        const int g = edge.otherFace(f);
+        const int a = face.vertices[i], b = face.vertices[(i + 1) % face.vertices.size()];
+        const Face& other = paper.faces[g];
+        placed[g] = matchEdge(faceInOwnPlane(paper, g), cornerOf(other, a), cornerOf(other, b), placed[f][i],
+                              placed[f][(i + 1) % face.vertices.size()]);
+        queue.push_back(g);
+        piece.push_back(g);
+      }
     }
+    Vec2 low = Vec2::Constant(std::numeric_limits<double>::infinity()), high = -low;
+    for (int f : piece)
+      for (const Vec2& p : placed[f])
+      {
+        low = low.cwiseMin(p);
+        high = high.cwiseMax(p);
+      }
+    if (root > 0)  // beside the pieces before, a tenth of the first one's size apart
+      for (int f : piece)
+        for (Vec2& p : placed[f])
+          p.x() += right + gap - low.x();
+    if (root == 0)
+      gap = 0.1 * (high - low).maxCoeff();
+    right = root == 0 ? high.x() : right + gap + (high.x() - low.x());
   }
-  for (size_t f = 0; f < face_count; ++f)
-    if (placed[f].empty())
-      fail("folded form cannot be unfolded: face " + std::to_string(f) + " is not joined to face 0 by edges");
   return placed;
 }
 

@@ -1,5 +1,6 @@
 // Patterns as people share them: FOLD nulls, several pieces, holes, slits and kirigami cuts,
 // loose crease ends (test/data/patterns), each loaded and its topology checked.
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -105,6 +106,28 @@ TEST(SharedPatterns, SeparatePiecesStaySeparate)
   EXPECT_DOUBLE_EQ(2.0, paper.sheet_area);
   EXPECT_EQ(2, euler(paper));  // two pieces, no hole
   EXPECT_EQ(1, countAssigned(paper, Assignment::Valley));
+  EXPECT_TRUE(checkValidity(paper).ok()) << checkValidity(paper).summary();
+}
+
+TEST(SharedPatterns, AFoldedFormInSeveralPiecesUnfoldsEachBesideTheOther)
+{
+  const Paper paper = loadPattern("two-pieces-folded.fold");
+  ASSERT_EQ(3u, paper.faces.size());
+  EXPECT_NEAR(2.0, paper.sheet_area, 1e-12);
+  EXPECT_EQ(2, euler(paper));
+  const int diagonal = paper.findEdge(0, 2);
+  ASSERT_GE(diagonal, 0);
+  EXPECT_NEAR(M_PI / 2, std::abs(paper.edges[diagonal].fold_angle), 1e-9);
+  // Unfolded, the first piece is a unit square, the second one lies wholly beside it.
+  EXPECT_NEAR(std::sqrt(2.0), (paper.vertices[1].crease_pattern - paper.vertices[3].crease_pattern).norm(), 1e-9);
+  double first_right = -1e9, second_left = 1e9;
+  for (int v = 0; v < 4; ++v)
+    first_right = std::max(first_right, paper.vertices[v].crease_pattern.x());
+  for (int v = 4; v < 8; ++v)
+    second_left = std::min(second_left, paper.vertices[v].crease_pattern.x());
+  EXPECT_GT(second_left, first_right);
+  // The folded form is as the file has it.
+  EXPECT_EQ(Vec3(4, 0, 1), paper.vertices[6].folded);
   EXPECT_TRUE(checkValidity(paper).ok()) << checkValidity(paper).summary();
 }
 
@@ -273,9 +296,9 @@ TEST(SharedPatterns, ACreaseWithOneFaceOnBothSidesIsLeftOut)
 
 TEST(SharedPatterns, EveryPatternWritesAndReadsBack)
 {
-  for (const char* name :
-       { "null-values.fold", "two-pieces.fold", "hole.fold", "hole-in-face.fold", "slit.fold", "interior-slit.fold",
-         "kirigami.fold", "loose-crease.fold", "ring-on-a-stick.fold", "cut-between-faces.fold" })
+  for (const char* name : { "null-values.fold", "two-pieces.fold", "hole.fold", "hole-in-face.fold", "slit.fold",
+                            "interior-slit.fold", "kirigami.fold", "loose-crease.fold", "ring-on-a-stick.fold",
+                            "cut-between-faces.fold", "two-pieces-folded.fold" })
   {
     const Paper paper = loadPattern(name);
     const Expected<FoldDocument> back = parseFold(formatFold(paper));
