@@ -383,17 +383,16 @@ std::optional<Assignment> kindOfColour(const std::string& stroke)
   if (it != named.end())
     return it->second;
   std::array<int, 3> rgb{ -1, -1, -1 };
-  const auto hex = [&](char c) {
-    return std::isxdigit(static_cast<unsigned char>(c)) ? std::stoi(std::string(1, c), nullptr, 16) : -1;
-  };
-  if (colour.size() == 4 && colour[0] == '#')
+  if (colour.size() == 4 && colour[0] == '#')  // #rgb is #rrggbb
+    colour = { '#', colour[1], colour[1], colour[2], colour[2], colour[3], colour[3] };
+  if (colour.size() == 7 && colour[0] == '#')
     for (int k = 0; k < 3; ++k)
-      rgb[k] = hex(colour[1 + k]) < 0 ? -1 : 17 * hex(colour[1 + k]);
-  else if (colour.size() == 7 && colour[0] == '#')
-    for (int k = 0; k < 3; ++k)
-      rgb[k] = hex(colour[1 + 2 * k]) < 0 || hex(colour[2 + 2 * k]) < 0 ?
-                   -1 :
-                   16 * hex(colour[1 + 2 * k]) + hex(colour[2 + 2 * k]);
+    {
+      const char* first = colour.data() + 1 + 2 * k;
+      int value = -1;
+      const auto [end, error] = std::from_chars(first, first + 2, value, 16);
+      rgb[k] = error == std::errc() && end == first + 2 ? value : -1;
+    }
   else if (colour.rfind("rgb(", 0) == 0 && colour.back() == ')')
   {
     NumberReader reader(std::string_view(colour).substr(4, colour.size() - 5));

@@ -134,6 +134,27 @@ TEST(SvgPattern, GroupsTransformsAndStyleSheetsApply)
   EXPECT_DOUBLE_EQ(-0.75 * M_PI, *diagonal[0]->target_angle);  // the group's stroke-opacity
 }
 
+TEST(SvgPattern, OpacityTimesStrokeOpacityIsTheFractionOf180Degrees)
+{
+  const Expected<std::vector<SvgStroke>> strokes = parseSvgStrokes(svg(R"svg(
+    <line x2="1" stroke="blue"/>
+    <line x2="1" stroke="red" opacity="50%"/>
+    <line x2="1" stroke="#00f" opacity="0.5" stroke-opacity="0.5"/>
+    <g stroke-opacity="0.2"><line x2="1" stroke="red" style="opacity: 0"/><line x2="1" stroke="red"/></g>
+    <line x2="1" stroke="black" opacity="0.5"/>
+    <line x2="1" stroke="#ff0" opacity="0.5"/>)svg"));
+  ASSERT_TRUE(strokes.ok()) << strokes.message();
+  ASSERT_EQ(7u, strokes->size());
+  const std::vector<double> expected = { M_PI, -M_PI / 2, M_PI / 4, -0.0, -0.2 * M_PI };
+  for (size_t i = 0; i < expected.size(); ++i)
+  {
+    ASSERT_TRUE((*strokes)[i].target_angle) << i;
+    EXPECT_DOUBLE_EQ(expected[i], *(*strokes)[i].target_angle) << i;
+  }
+  EXPECT_FALSE((*strokes)[5].target_angle);  // a border folds nowhere
+  EXPECT_FALSE((*strokes)[6].target_angle);  // a facet is held flat by its kind
+}
+
 TEST(SvgPattern, TransformsCompose)
 {
   const Expected<std::vector<SvgStroke>> strokes = parseSvgStrokes(svg(R"svg(
