@@ -56,6 +56,7 @@ TEST(SeveralPieces, FoldByAssignmentFoldsTheCreasedPiece)
   request.fraction = 0.5;
   const Expected<AssignmentFoldResult> result = foldByAssignment(paper, request, *driver, &rigid);
   ASSERT_TRUE(result) << result.message();
+  EXPECT_TRUE(result->rigid);
   EXPECT_LE(result->max_strain, 1e-9);
   EXPECT_NEAR(M_PI / 2, paper.edges[diagonal].fold_angle, 1e-6);
   EXPECT_TRUE(checkValidity(paper).ok()) << checkValidity(paper).summary();
