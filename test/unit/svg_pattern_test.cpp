@@ -155,6 +155,23 @@ TEST(SvgPattern, OpacityTimesStrokeOpacityIsTheFractionOf180Degrees)
   EXPECT_FALSE((*strokes)[6].target_angle);  // a facet is held flat by its kind
 }
 
+TEST(SvgPattern, ReadsStyleSheetsInCdataAndEntitiesInAttributes)
+{
+  const Expected<std::vector<SvgStroke>> strokes = parseSvgStrokes(R"svg(<?xml version="1.0"?>
+<!-- a comment with <line stroke="red"/> in it draws nothing -->
+<svg:svg xmlns:svg="http://www.w3.org/2000/svg">
+  <svg:style><![CDATA[ svg|x, .m > .n { stroke: blue } line.v { stroke: #0000FF !important } ]]></svg:style>
+  <svg:line class="v other" x2="1"/>
+  <svg:line stroke="&#35;f00" x2="2"/>
+  <svg:line stroke="&#x23;ff0000" style="display:none" x2="3"/>
+</svg:svg>)svg");
+  ASSERT_TRUE(strokes.ok()) << strokes.message();
+  ASSERT_EQ(2u, strokes->size());
+  EXPECT_EQ(Assignment::Valley, (*strokes)[0].assignment);  // by the sheet's line.v rule
+  EXPECT_EQ(Assignment::Mountain, (*strokes)[1].assignment);
+  EXPECT_EQ(Vec2(2, 0), (*strokes)[1].b);
+}
+
 TEST(SvgPattern, TransformsCompose)
 {
   const Expected<std::vector<SvgStroke>> strokes = parseSvgStrokes(svg(R"svg(
