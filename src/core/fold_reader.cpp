@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -545,28 +544,13 @@ TracedFrame traceFrame(const FrameData& data, const std::vector<Vec2>& crease_pa
   const std::vector<std::array<int, 2>>& edges = *data.edges;
   std::vector<Assignment> assignments =
       data.assignments ? *data.assignments : std::vector<Assignment>(edges.size(), Assignment::Unassigned);
+  DrawingNames names;
+  names.point = [](int v) { return indexed("vertices_coords", v); };
+  names.edge = [](int e) { return indexed("edges_vertices", e); };
   const Expected<TracedPaper> traced =
-      tracePaper(crease_pattern, edges, assignments, 1e-12 * std::pow(boundingDiagonal(crease_pattern), 2));
+      tracePaper(crease_pattern, edges, assignments, 1e-12 * std::pow(boundingDiagonal(crease_pattern), 2), names);
   if (!traced)
-  {
-    // The tracing names drawn points and edges: here, the file's vertices and edges.
-    std::string message = traced.message();
-    for (const char* word : { "point ", "edge " })
-      for (size_t at = message.find(word); at != std::string::npos; at = message.find(word, at + 1))
-      {
-        const size_t number = at + std::strlen(word);
-        size_t end = number;
-        while (end < message.size() && std::isdigit(static_cast<unsigned char>(message[end])))
-          ++end;
-        if (end == number)
-          continue;
-        const std::string field = word[0] == 'p' ? "vertices_coords" : "edges_vertices";
-        const std::string named = field + "[" + message.substr(number, end - number) + "]";
-        message.replace(at, end - at, named);
-        at += named.size() - 1;
-      }
-    fail("edges_vertices: tracing the faces: " + message);
-  }
+    fail("edges_vertices: tracing the faces: " + traced.message());
   TracedFrame frame;
   frame.data = data;
   frame.crease_pattern = traced->points;

@@ -46,11 +46,6 @@ struct UnionFind
   }
 };
 
-std::string drawnEdgeName(int drawn)
-{
-  return "edge " + std::to_string(drawn);
-}
-
 /// Where a point on drawn edge `drawn` comes from, as a fraction along it.
 VertexSource sourceOnDrawnEdge(const std::vector<Vec2>& drawn_points, const std::array<int, 2>& drawn_edge,
                                const Vec2& p)
@@ -350,7 +345,8 @@ void extendSlitTips(Drawing& drawing, double tolerance, const std::vector<Vec2>&
 /// leftwards: what each meets reaches further out, so every face ends up with one boundary, and
 /// the two joints together leave none of them a bridge walked on both sides.
 void joinIslands(Drawing& drawing, const std::vector<std::vector<int>>& islands, double tolerance,
-                 const std::vector<Vec2>& drawn_points, const std::vector<std::array<int, 2>>& drawn_edges)
+                 const std::vector<Vec2>& drawn_points, const std::vector<std::array<int, 2>>& drawn_edges,
+                 const DrawingNames& names)
 {
   const auto by_x = [&](int a, int b) {
     const Vec2 &p = drawing.points[a], &q = drawing.points[b];
@@ -362,14 +358,14 @@ void joinIslands(Drawing& drawing, const std::vector<std::vector<int>>& islands,
       const int v = sign > 0 ? *std::max_element(island.begin(), island.end(), by_x) :
                                *std::min_element(island.begin(), island.end(), by_x);
       if (!addJoint(drawing, v, Vec2(sign, 0.0), tolerance, drawn_points, drawn_edges))
-        fail("the lines at point " + std::to_string(drawing.sources[v].a) +
+        fail("the lines at " + names.point(drawing.sources[v].a) +
              " lie inside a face but nothing surrounds them to join them to");
     }
 }
 
 /// Each vertex as one copy per fan of paper around it (fans parted by cut edges and by what is
 /// not paper), the faces and edges over those copies.
-TracedPaper openedPaper(const Drawing& drawing, const Regions& regions, double min_area)
+TracedPaper openedPaper(const Drawing& drawing, const Regions& regions, double min_area, const DrawingNames& names)
 {
   const auto& outgoing = regions.rotation.outgoing;
   const auto& next = regions.rotation.next;
@@ -415,9 +411,9 @@ TracedPaper openedPaper(const Drawing& drawing, const Regions& regions, double m
     if (sides.size() == 2 && sides[0] == sides[1])
       sides.pop_back();
     if (sides.size() == 2 && drawing.kinds[e] != Assignment::Cut)
-      fail(drawnEdgeName(drawing.edge_sources[e]) + " has paper on both sides that do not meet along it");
+      fail(names.edge(drawing.edge_sources[e]) + " has paper on both sides that do not meet along it");
     if (sides.size() == 1 && paperLeftOf(h0) && paperLeftOf(h1) && drawing.kinds[e] == Assignment::Cut)
-      fail(drawnEdgeName(drawing.edge_sources[e]) + " is a cut that could not be opened");
+      fail(names.edge(drawing.edge_sources[e]) + " is a cut that could not be opened");
     for (const auto& side : sides)
     {
       traced.edges.push_back(side);
@@ -435,7 +431,7 @@ TracedPaper openedPaper(const Drawing& drawing, const Regions& regions, double m
     std::sort(sorted.begin(), sorted.end());
     const auto twice = std::adjacent_find(sorted.begin(), sorted.end());
     if (twice != sorted.end())
-      fail("a face passes point " + std::to_string(traced.sources[*twice].a) + " twice");
+      fail("a face passes " + names.point(traced.sources[*twice].a) + " twice");
     traced.faces.push_back(std::move(face));
   }
   // A sliver's edges may reach copies no face uses: keep only what faces use.
@@ -472,7 +468,7 @@ TracedPaper openedPaper(const Drawing& drawing, const Regions& regions, double m
 }
 
 TracedPaper trace(const std::vector<Vec2>& points, const std::vector<std::array<int, 2>>& edges,
-                  const std::vector<Assignment>& assignments, double min_area)
+                  const std::vector<Assignment>& assignments, double min_area, const DrawingNames& names)
 {
   Drawing drawing;
   drawing.points = points;
@@ -505,12 +501,12 @@ TracedPaper trace(const std::vector<Vec2>& points, const std::vector<std::array<
   }
   if (!regions.islands.empty())
   {
-    joinIslands(drawing, regions.islands, tolerance, points, edges);
+    joinIslands(drawing, regions.islands, tolerance, points, edges, names);
     regions = findRegions(drawing, min_area);
     if (!regions.islands.empty())
       fail("lines inside a face could not be joined to the paper around them");
   }
-  TracedPaper traced = openedPaper(drawing, regions, min_area);
+  TracedPaper traced = openedPaper(drawing, regions, min_area, names);
   if (traced.faces.empty())
     fail("the lines enclose no paper");
   return traced;
@@ -519,9 +515,9 @@ TracedPaper trace(const std::vector<Vec2>& points, const std::vector<std::array<
 }  // namespace
 
 Expected<TracedPaper> tracePaper(const std::vector<Vec2>& points, const std::vector<std::array<int, 2>>& edges,
-                                 const std::vector<Assignment>& assignments, double min_area)
+                                 const std::vector<Assignment>& assignments, double min_area, const DrawingNames& names)
 {
-  return guarded<TracedPaper>([&] { return trace(points, edges, assignments, min_area); });
+  return guarded<TracedPaper>([&] { return trace(points, edges, assignments, min_area, names); });
 }
 
 }  // namespace virtual_origami::core

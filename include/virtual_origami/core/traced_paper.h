@@ -4,6 +4,8 @@
 #pragma once
 
 #include <array>
+#include <functional>
+#include <string>
 #include <vector>
 
 #include "virtual_origami/core/paper.h"
@@ -32,6 +34,13 @@ struct TracedPaper
   std::vector<std::vector<int>> faces;
 };
 
+/// How messages name a drawn point and edge (as the file calls them).
+struct DrawingNames
+{
+  std::function<std::string(int)> point = [](int p) { return "point " + std::to_string(p); };
+  std::function<std::string(int)> edge = [](int e) { return "edge " + std::to_string(e); };
+};
+
 /// The paper a planar straight-line graph draws (its edges meet only at their ends). A region is
 /// paper when the shortest way in from outside crosses an odd number of boundary (B) edges,
 /// counting the first edge crossed from outside as boundary whatever it is marked: holes are
@@ -45,6 +54,7 @@ struct TracedPaper
 /// to what surrounds it by two horizontal flat joints (from its leftmost and rightmost points). Separate pieces stay
 /// separate. Regions of no more than `min_area` are slivers and make no face.
 Expected<TracedPaper> tracePaper(const std::vector<Vec2>& points, const std::vector<std::array<int, 2>>& edges,
-                                 const std::vector<Assignment>& assignments, double min_area);
+                                 const std::vector<Assignment>& assignments, double min_area,
+                                 const DrawingNames& names = {});
 
 }  // namespace virtual_origami::core
