@@ -43,8 +43,9 @@ std::string kindOf(const json& value)
 
 const json* findField(const json& object, const std::string& key)
 {
+  // FOLD's null is "no value": a field that holds it is absent.
   const auto it = object.find(key);
-  return it == object.end() ? nullptr : &*it;
+  return it == object.end() || it->is_null() ? nullptr : &*it;
 }
 
 void requireArray(const json& value, const std::string& name)

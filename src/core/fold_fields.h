@@ -37,7 +37,7 @@ std::string indexed(const std::string& name, size_t i);
 /// What a JSON value is, for a message: never the value itself, so that no message quotes
 /// the file (loading any file, a private one too, must not echo what is in it).
 std::string kindOf(const json& value);
-/// The field, or nullptr when the object has none.
+/// The field, or nullptr when the object has none or it is null (FOLD: no value).
 const json* findField(const json& object, const std::string& key);
 /// Refuses (FormatError) a value that is not an array.
 void requireArray(const json& value, const std::string& name);

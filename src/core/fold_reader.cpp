@@ -10,6 +10,7 @@
 #include <cstring>
 #include <deque>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -25,6 +26,7 @@
 #include "virtual_origami/core/kinematics.h"
 #include "virtual_origami/core/planar_geometry.h"
 #include "virtual_origami/core/planar_graph.h"
+#include "virtual_origami/core/traced_paper.h"
 
 namespace virtual_origami::core
 {
@@ -86,15 +88,6 @@ std::optional<std::vector<Vec2>> planarCoordinates(const std::vector<Vec3>& coor
   for (const Vec3& p : coords)
     flat.emplace_back((p - centroid).dot(u), (p - centroid).dot(w));
   return flat;
-}
-
-/// The bounded faces of the planar graph the edges draw, counter-clockwise.
-std::vector<std::vector<int>> traceFaces(const std::vector<Vec2>& points, const std::vector<std::array<int, 2>>& edges)
-{
-  std::vector<std::vector<int>> faces;
-  for (TracedFace& face : boundedFaces(points, edges, 1e-12 * std::pow(boundingDiagonal(points), 2)))
-    faces.push_back(std::move(face.vertices));
-  return faces;
 }
 
 std::vector<std::array<int, 2>> edgesOfFaces(const std::vector<std::vector<int>>& faces)
@@ -164,34 +157,55 @@ size_t cornerOf(const Face& face, int vertex)
 }
 
 /// Each face laid in the plane: face 0 as seen from its front, then breadth first across
-/// shared edges, each face turned to meet its neighbour along their edge.
+/// shared edges, each face turned to meet its neighbour along their edge. A folded form in
+/// several pieces (nothing says where one lies from another once unfolded) has each further
+/// piece laid the same way from its first face, beside the pieces before it in +x.
 std::vector<std::vector<Vec2>> layOutFaces(const Paper& paper)
 {
   const size_t face_count = paper.faces.size();
   std::vector<std::vector<Vec2>> placed(face_count);
-  placed[0] = faceInOwnPlane(paper, 0);
-  std::deque<int> queue{ 0 };
-  while (!queue.empty())
+  double right = -std::numeric_limits<double>::infinity(), gap = 0.0;
+  for (size_t root = 0; root < face_count; ++root)
   {
-    const int f = queue.front();
-    queue.pop_front();
-    const Face& face = paper.faces[f];
-    for (size_t i = 0; i < face.edges.size(); ++i)
+    if (!placed[root].empty())
+      continue;
+    placed[root] = faceInOwnPlane(paper, static_cast<int>(root));
+    std::vector<int> piece{ static_cast<int>(root) };
+    std::deque<int> queue{ static_cast<int>(root) };
+    while (!queue.empty())
     {
-      const Edge& edge = paper.edges[face.edges[i]];
-      if (!edge.isCrease() || !placed[edge.otherFace(f)].empty())
-        continue;
-      const int g = edge.otherFace(f);
-      const int a = face.vertices[i], b = face.vertices[(i + 1) % face.vertices.size()];
-      const Face& other = paper.faces[g];
-      placed[g] = matchEdge(faceInOwnPlane(paper, g), cornerOf(other, a), cornerOf(other, b), placed[f][i],
-                            placed[f][(i + 1) % face.vertices.size()]);
-      queue.push_back(g);
+      const int f = queue.front();
+      queue.pop_front();
+      const Face& face = paper.faces[f];
+      for (size_t i = 0; i < face.edges.size(); ++i)
+      {
+        const Edge& edge = paper.edges[face.edges[i]];
+        if (!edge.isCrease() || !placed[edge.otherFace(f)].empty())
+          continue;
+        const int g = edge.otherFace(f);
+        const int a = face.vertices[i], b = face.vertices[(i + 1) % face.vertices.size()];
+        const Face& other = paper.faces[g];
+        placed[g] = matchEdge(faceInOwnPlane(paper, g), cornerOf(other, a), cornerOf(other, b), placed[f][i],
+                              placed[f][(i + 1) % face.vertices.size()]);
+        queue.push_back(g);
+        piece.push_back(g);
+      }
     }
+    Vec2 low = Vec2::Constant(std::numeric_limits<double>::infinity()), high = -low;
+    for (int f : piece)
+      for (const Vec2& p : placed[f])
+      {
+        low = low.cwiseMin(p);
+        high = high.cwiseMax(p);
+      }
+    if (root > 0)  // beside the pieces before, a tenth of the first one's size apart
+      for (int f : piece)
+        for (Vec2& p : placed[f])
+          p.x() += right + gap - low.x();
+    if (root == 0)
+      gap = 0.1 * (high - low).maxCoeff();
+    right = root == 0 ? high.x() : right + gap + (high.x() - low.x());
   }
-  for (size_t f = 0; f < face_count; ++f)
-    if (placed[f].empty())
-      fail("folded form cannot be unfolded: face " + std::to_string(f) + " is not joined to face 0 by edges");
   return placed;
 }
 
@@ -391,7 +405,8 @@ void markBoundaries(Paper& paper)
   }
 }
 
-/// A crease pattern lies flat at z = 0, or folded by the file's fold angles when they close.
+/// A crease pattern lies flat at z = 0, or folded by the file's fold angles when they close
+/// (each piece from its first face, which stays where the crease pattern has it).
 void foldCreasePattern(Paper& paper, const std::optional<std::vector<std::optional<double>>>& fold_angles)
 {
   for (Vertex& v : paper.vertices)
@@ -408,14 +423,55 @@ void foldCreasePattern(Paper& paper, const std::optional<std::vector<std::option
     }
   if (!folded)
     return;
-  const Expected<std::vector<Vec3>> positions =
-      foldedPositionsFromAngles(paper, angles, 0, Eigen::Isometry3d::Identity(), 1e-6 * paper.scale());
-  // Angles that do not close (a non-rigid target, or rounded in the file) cannot place the
-  // faces; the crease pattern itself is still good, so it loads flat instead of failing.
-  if (!positions)
-    return;
+  // Each piece folded on its own, its first face where the crease pattern has it.
+  std::vector<Vec3> placed(paper.vertices.size());
+  std::vector<char> reached(paper.faces.size(), 0), vertex_placed(paper.vertices.size(), 0);
+  for (size_t start = 0; start < paper.faces.size(); ++start)
+  {
+    if (reached[start])
+      continue;
+    const std::vector<char> piece = walkFaces(paper, static_cast<int>(start));
+    Paper alone = paper;
+    alone.faces.clear();
+    alone.edges.clear();
+    std::vector<int> faces_of_piece;
+    for (size_t f = 0; f < paper.faces.size(); ++f)
+      if (piece[f])
+      {
+        reached[f] = 1;
+        faces_of_piece.push_back(static_cast<int>(f));
+        alone.faces.push_back(paper.faces[f]);
+      }
+    std::vector<double> angles_alone;
+    for (size_t e = 0; e < paper.edges.size(); ++e)
+    {
+      const auto [left, right] = paper.edges[e].faces;
+      if ((left >= 0 && piece[left]) || (right >= 0 && piece[right]))
+      {
+        alone.edges.push_back(paper.edges[e]);
+        angles_alone.push_back(angles[e]);
+      }
+    }
+    const Expected<std::vector<Vec3>> positions =
+        linkTopology(alone) ?
+            foldedPositionsFromAngles(alone, angles_alone, 0, Eigen::Isometry3d::Identity(), 1e-6 * paper.scale()) :
+            Expected<std::vector<Vec3>>::failure("");
+    // Angles that do not close (a non-rigid target, or rounded in the file) cannot place the
+    // faces; the crease pattern itself is still good, so it loads flat instead of failing.
+    if (!positions)
+      return;
+    for (int f : faces_of_piece)
+      for (int v : paper.faces[f].vertices)
+      {
+        // Pieces touching at a vertex must agree on it.
+        if (vertex_placed[v] && !((placed[v] - (*positions)[v]).norm() <= 1e-6 * paper.scale()))
+          return;
+        placed[v] = (*positions)[v];
+        vertex_placed[v] = 1;
+      }
+  }
   for (size_t v = 0; v < paper.vertices.size(); ++v)
-    paper.vertices[v].folded = (*positions)[v];
+    paper.vertices[v].folded = placed[v];
   for (size_t e = 0; e < paper.edges.size(); ++e)
     paper.edges[e].fold_angle = angles[e];
 }
@@ -473,27 +529,159 @@ std::optional<std::vector<Vec2>> givenCreasePattern(const FrameData& data, bool 
   return std::nullopt;
 }
 
-/// The frame's faces, traced from its edges in the crease pattern when the file has none.
-std::vector<std::vector<int>> facesOf(const FrameData& data, const std::optional<std::vector<Vec2>>& crease_pattern)
+/// A frame given by its edges alone, its paper traced from them in the crease pattern
+/// (tracePaper: holes, cuts opened, pieces): its fields carried over to the vertices and edges
+/// the tracing made, its faces among them.
+struct TracedFrame
 {
-  if (data.faces)
-    return *data.faces;
-  if (!crease_pattern)
-    fail("faces_vertices is missing: a folded form needs faces_vertices to be unfolded");
+  FrameData data;
+  std::vector<Vec2> crease_pattern;
+};
+
+TracedFrame traceFrame(const FrameData& data, const std::vector<Vec2>& crease_pattern)
+{
   // readFrame made sure there are edges.
-  std::vector<std::vector<int>> faces = traceFaces(*crease_pattern, *data.edges);
-  // A dangling edge or two faces touching at a single vertex traces a face through one vertex
-  // twice: no polygon the model can hold, and the FOLD written from it would not read back.
-  for (size_t f = 0; f < faces.size(); ++f)
+  const std::vector<std::array<int, 2>>& edges = *data.edges;
+  std::vector<Assignment> assignments =
+      data.assignments ? *data.assignments : std::vector<Assignment>(edges.size(), Assignment::Unassigned);
+  DrawingNames names;
+  names.point = [](int v) { return indexed("vertices_coords", v); };
+  names.edge = [](int e) { return indexed("edges_vertices", e); };
+  const Expected<TracedPaper> traced =
+      tracePaper(crease_pattern, edges, assignments, 1e-12 * std::pow(boundingDiagonal(crease_pattern), 2), names);
+  if (!traced)
+    fail("edges_vertices: tracing the faces: " + traced.message());
+  TracedFrame frame;
+  frame.data = data;
+  frame.crease_pattern = traced->points;
+  FrameData& out = frame.data;
+  out.coords.clear();
+  for (const VertexSource& source : traced->sources)
+    out.coords.push_back((1 - source.t) * data.coords[source.a] + source.t * data.coords[source.b]);
+  out.edges = traced->edges;
+  out.assignments.emplace();
+  if (data.fold_angles)
+    out.fold_angles.emplace();
+  if (data.target_angles)
+    out.target_angles.emplace();
+  for (const int source : traced->edge_sources)
   {
-    std::vector<int> sorted = faces[f];
-    std::sort(sorted.begin(), sorted.end());
-    const auto twice = std::adjacent_find(sorted.begin(), sorted.end());
-    if (twice != sorted.end())
-      fail("edges_vertices: the face traced as " + indexed("faces", f) + " passes vertex " + std::to_string(*twice) +
-           " twice (an edge ending inside a face, or faces touching at one vertex)");
+    // A joint (no source) lies flat and has no target.
+    out.assignments->push_back(source >= 0 ? assignments[source] : Assignment::Flat);
+    if (out.fold_angles)
+      out.fold_angles->push_back(source >= 0 ? (*data.fold_angles)[source] : std::optional<double>(0.0));
+    if (out.target_angles)
+      out.target_angles->push_back(source >= 0 ? (*data.target_angles)[source] : std::nullopt);
   }
-  return faces;
+  out.faces = traced->faces;
+  out.crease_pattern.reset();
+  return frame;
+}
+
+/// A file's faces on both sides of a cut (C) edge: the cut opens as tracePaper opens one. Each
+/// vertex gets a copy for every group of its faces that meet across edges other than cuts; the
+/// faces take their group's copy, and a cut edge one edge for each side.
+void openCutsBetweenFaces(FrameData& data, std::optional<std::vector<Vec2>>& crease_pattern)
+{
+  if (!data.edges || !data.assignments ||
+      std::find(data.assignments->begin(), data.assignments->end(), Assignment::Cut) == data.assignments->end())
+    return;
+  std::vector<std::vector<int>>& faces = *data.faces;
+  std::map<std::pair<int, int>, int> edge_of;
+  for (size_t e = 0; e < data.edges->size(); ++e)
+    edge_of[std::minmax((*data.edges)[e][0], (*data.edges)[e][1])] = static_cast<int>(e);
+  const auto isCut = [&](int a, int b) {
+    const auto it = edge_of.find(std::minmax(a, b));
+    return it != edge_of.end() && (*data.assignments)[it->second] == Assignment::Cut;
+  };
+  // At each vertex, its faces joined across the sides round it that are not cuts.
+  std::vector<std::vector<std::pair<int, size_t>>> corners(data.coords.size());  // (face, index)
+  for (size_t f = 0; f < faces.size(); ++f)
+    for (size_t i = 0; i < faces[f].size(); ++i)
+      corners[faces[f][i]].emplace_back(static_cast<int>(f), i);
+  const std::vector<std::vector<int>> original = faces;
+  std::vector<int> origin(data.coords.size());  // the file's vertex each vertex copies
+  for (size_t v = 0; v < origin.size(); ++v)
+    origin[v] = static_cast<int>(v);
+  for (size_t v = 0; v < corners.size(); ++v)
+  {
+    const auto& around = corners[v];
+    std::vector<int> group(around.size());
+    for (size_t k = 0; k < around.size(); ++k)
+      group[k] = static_cast<int>(k);
+    const auto root = [&](int k) {
+      while (group[k] != k)
+        k = group[k];
+      return k;
+    };
+    const auto neighbours = [&](size_t k) {
+      const std::vector<int>& face = original[around[k].first];
+      const size_t n = face.size(), i = around[k].second;
+      return std::array<int, 2>{ face[(i + n - 1) % n], face[(i + 1) % n] };
+    };
+    for (size_t k = 0; k < around.size(); ++k)
+      for (size_t j = k + 1; j < around.size(); ++j)
+        for (int w : neighbours(k))
+          for (int x : neighbours(j))
+            if (w == x && !isCut(static_cast<int>(v), w))
+              group[root(static_cast<int>(k))] = root(static_cast<int>(j));
+    std::map<int, int> copy;
+    for (size_t k = 0; k < around.size(); ++k)
+    {
+      const auto [it, added] = copy.emplace(root(static_cast<int>(k)),
+                                            copy.empty() ? static_cast<int>(v) : static_cast<int>(data.coords.size()));
+      if (added && it->second != static_cast<int>(v))
+      {
+        origin.push_back(static_cast<int>(v));
+        data.coords.push_back(data.coords[v]);
+        if (crease_pattern)
+          crease_pattern->push_back((*crease_pattern)[v]);
+        if (data.crease_pattern)
+          data.crease_pattern->push_back((*data.crease_pattern)[v]);
+      }
+      faces[around[k].first][around[k].second] = it->second;
+    }
+  }
+  if (origin.size() == corners.size())
+    return;  // no cut between two faces
+  // Each edge as the faces now meet it: a cut between two faces becomes two edges.
+  std::map<std::pair<int, int>, std::vector<std::pair<int, int>>> sides;  // file edge ends → ends now
+  for (size_t f = 0; f < faces.size(); ++f)
+    for (size_t i = 0; i < faces[f].size(); ++i)
+    {
+      const size_t n = faces[f].size();
+      const std::pair<int, int> key = std::minmax(original[f][i], original[f][(i + 1) % n]);
+      const std::pair<int, int> now = std::minmax(faces[f][i], faces[f][(i + 1) % n]);
+      std::vector<std::pair<int, int>>& seen = sides[key];
+      if (std::find(seen.begin(), seen.end(), now) == seen.end())
+        seen.push_back(now);
+    }
+  const size_t file_edges = data.edges->size();
+  for (size_t e = 0; e < file_edges; ++e)
+  {
+    const auto it = sides.find(std::minmax((*data.edges)[e][0], (*data.edges)[e][1]));
+    if (it == sides.end())
+      continue;
+    const int first = (*data.edges)[e][0];
+    for (size_t k = 0; k < it->second.size(); ++k)
+    {
+      // As the file has it: from the copy of its first vertex.
+      std::array<int, 2> ends{ it->second[k].first, it->second[k].second };
+      if (origin[ends[0]] != first)
+        std::swap(ends[0], ends[1]);
+      if (k == 0)
+      {
+        (*data.edges)[e] = ends;
+        continue;
+      }
+      data.edges->push_back(ends);
+      data.assignments->push_back((*data.assignments)[e]);
+      if (data.fold_angles)
+        data.fold_angles->push_back((*data.fold_angles)[e]);
+      if (data.target_angles)
+        data.target_angles->push_back((*data.target_angles)[e]);
+    }
+  }
 }
 
 /// Vertices (crease pattern when known, folded = the file's coordinates), edges and faces,
@@ -520,12 +708,22 @@ Paper linkedPaper(const FrameData& data, const std::vector<std::vector<int>>& fa
 
 BuiltFrame buildFrame(const json& frame, const BuiltFrame* parent)
 {
-  const FrameData data = readFrame(frame);
+  FrameData data = readFrame(frame);
   const std::optional<std::vector<Vec2>> flat = planarCoordinates(data.coords);
   BuiltFrame built;
   built.crease_pattern = flat && !hasClass(data, "foldedForm");
-  const std::optional<std::vector<Vec2>> crease_pattern = givenCreasePattern(data, !built.crease_pattern, flat, parent);
-  const std::vector<std::vector<int>> faces = facesOf(data, crease_pattern);
+  std::optional<std::vector<Vec2>> crease_pattern = givenCreasePattern(data, !built.crease_pattern, flat, parent);
+  if (!data.faces)
+  {
+    if (!crease_pattern)
+      fail("faces_vertices is missing: a folded form needs faces_vertices to be unfolded");
+    TracedFrame traced = traceFrame(data, *crease_pattern);
+    data = std::move(traced.data);
+    crease_pattern = std::move(traced.crease_pattern);
+  }
+  else
+    openCutsBetweenFaces(data, crease_pattern);
+  const std::vector<std::vector<int>>& faces = *data.faces;
   checkEveryVertexUsed(faces, data.coords.size());
 
   Paper& paper = built.paper;

@@ -9,6 +9,7 @@
 
 #include "virtual_origami/core/fold_io.h"
 #include "virtual_origami/core/oripa_io.h"
+#include "virtual_origami/core/svg_pattern.h"
 
 namespace virtual_origami::core
 {
@@ -60,6 +61,15 @@ size_t countOf(const std::string& text, const char* word)
     ++count;
   return count;
 }
+/// Runs of digits: an upper bound on the numbers an SVG writes.
+size_t numbersIn(const std::string& text)
+{
+  size_t count = 0;
+  for (size_t i = 0; i < text.size(); ++i)
+    count += std::isdigit(static_cast<unsigned char>(text[i])) &&
+             (i == 0 || (!std::isdigit(static_cast<unsigned char>(text[i - 1])) && text[i - 1] != '.'));
+  return count;
+}
 }  // namespace
 
 std::optional<ModelFormat> modelFormat(const std::string& path)
@@ -72,6 +82,8 @@ std::optional<ModelFormat> modelFormat(const std::string& path)
     return ModelFormat::OripaCp;
   if (endsWith(lower, ".opx"))
     return ModelFormat::OripaOpx;
+  if (endsWith(lower, ".svg"))
+    return ModelFormat::Svg;
   return ModelFormat::Fold;
 }
 
@@ -108,6 +120,10 @@ Status checkModelSize(const std::string& text, ModelFormat format, const ModelLi
       vertices = 2 * countOf(text, "oripa.OriLineProxy");
       what = "vertices (two per line)";
       break;
+    case ModelFormat::Svg:
+      vertices = numbersIn(text) / 2;
+      what = "vertices (one per pair of numbers)";
+      break;
   }
   if (limits.max_vertices > 0 && vertices > limits.max_vertices)
     return failure("the model has " + std::to_string(vertices) + " " + what + ", more than max_load_vertices (" +
@@ -131,6 +147,8 @@ Expected<Paper> parseModel(const std::string& text, ModelFormat format, double s
       return parseOripaCp(text, size);
     case ModelFormat::OripaOpx:
       return parseOripaOpx(text, size);
+    case ModelFormat::Svg:
+      return parseSvgPattern(text, size);
     case ModelFormat::Fold:
       break;
   }

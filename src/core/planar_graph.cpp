@@ -116,33 +116,43 @@ std::vector<std::vector<int>> pointsAlongSegments(const std::vector<SnappedSegme
   return along_segments;
 }
 
-std::vector<std::vector<int>> traceHalfEdgeCycles(const std::vector<Vec2>& points,
-                                                  const std::vector<std::array<int, 2>>& edges)
+Rotation rotationSystem(const std::vector<Vec2>& points, const std::vector<std::array<int, 2>>& edges)
 {
   const auto from = [&](int h) { return edges[h / 2][h % 2]; };
   const auto to = [&](int h) { return edges[h / 2][1 - h % 2]; };
   const int half_count = 2 * static_cast<int>(edges.size());
   std::vector<double> direction(half_count);
-  std::vector<std::vector<int>> outgoing(points.size());
+  Rotation rotation;
+  rotation.outgoing.resize(points.size());
   for (int h = 0; h < half_count; ++h)
   {
     const Vec2 d = points[to(h)] - points[from(h)];
     direction[h] = std::atan2(d.y(), d.x());
-    outgoing[from(h)].push_back(h);
+    rotation.outgoing[from(h)].push_back(h);
   }
   std::vector<int> slot(half_count);
-  for (std::vector<int>& around : outgoing)
+  for (std::vector<int>& around : rotation.outgoing)
   {
     std::sort(around.begin(), around.end(), [&](int a, int b) { return direction[a] < direction[b]; });
     for (size_t i = 0; i < around.size(); ++i)
       slot[around[i]] = static_cast<int>(i);
   }
   // Arriving along h, the face on the left leaves along the first edge clockwise from the twin.
-  const auto next = [&](int h) {
-    const std::vector<int>& around = outgoing[to(h)];
+  rotation.next.resize(half_count);
+  for (int h = 0; h < half_count; ++h)
+  {
+    const std::vector<int>& around = rotation.outgoing[to(h)];
     const int n = static_cast<int>(around.size());
-    return around[(slot[h ^ 1] + n - 1) % n];
-  };
+    rotation.next[h] = around[(slot[h ^ 1] + n - 1) % n];
+  }
+  return rotation;
+}
+
+std::vector<std::vector<int>> traceHalfEdgeCycles(const std::vector<Vec2>& points,
+                                                  const std::vector<std::array<int, 2>>& edges)
+{
+  const int half_count = 2 * static_cast<int>(edges.size());
+  const std::vector<int> next = rotationSystem(points, edges).next;
   std::vector<char> visited(half_count, 0);
   std::vector<std::vector<int>> cycles;
   for (int start = 0; start < half_count; ++start)
@@ -150,7 +160,7 @@ std::vector<std::vector<int>> traceHalfEdgeCycles(const std::vector<Vec2>& point
     if (visited[start])
       continue;
     std::vector<int> cycle;
-    for (int h = start; !visited[h]; h = next(h))
+    for (int h = start; !visited[h]; h = next[h])
     {
       visited[h] = 1;
       cycle.push_back(h);

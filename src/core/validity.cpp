@@ -1,6 +1,8 @@
 #include "virtual_origami/core/validity.h"
 
 #include <cmath>
+#include <numeric>
+#include <utility>
 #include <sstream>
 
 #include "virtual_origami/core/planar_geometry.h"
@@ -17,6 +19,42 @@ std::string ValidityReport::summary() const
 
 namespace
 {
+int findRoot(std::vector<int>& parent, int i)
+{
+  while (parent[i] != i)
+    i = parent[i] = parent[parent[i]];
+  return i;
+}
+
+/// Pieces: faces joined through shared vertices. Each piece has one outer boundary loop, and a
+/// loop more for each hole (a slit opened inside the paper is one too): holes = loops - pieces.
+std::pair<long, long> piecesAndHoles(const Paper& paper)
+{
+  const auto count = [&](const std::vector<std::vector<int>>& groups) {
+    std::vector<int> parent(paper.vertices.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    std::vector<char> used(paper.vertices.size(), 0);
+    for (const std::vector<int>& group : groups)
+      for (int v : group)
+      {
+        used[v] = 1;
+        parent[findRoot(parent, v)] = findRoot(parent, group.front());
+      }
+    long roots = 0;
+    for (size_t v = 0; v < parent.size(); ++v)
+      roots += used[v] && findRoot(parent, static_cast<int>(v)) == static_cast<int>(v);
+    return roots;
+  };
+  std::vector<std::vector<int>> faces, boundary;
+  for (const Face& face : paper.faces)
+    faces.push_back(face.vertices);
+  for (const Edge& edge : paper.edges)
+    if (!edge.isCrease())
+      boundary.push_back({ edge.vertices[0], edge.vertices[1] });
+  const long pieces = count(faces);
+  return { pieces, count(boundary) - pieces };
+}
+
 void checkTopology(const Paper& paper, ValidityReport& report)
 {
   Paper linked = paper;
@@ -44,8 +82,10 @@ void checkTopology(const Paper& paper, ValidityReport& report)
       report.problems.push_back("face " + std::to_string(f) + " has stale edge links");
   const long euler = static_cast<long>(paper.vertices.size()) - static_cast<long>(paper.edges.size()) +
                      static_cast<long>(paper.faces.size());
-  if (euler != 1)
-    report.problems.push_back("V - E + F = " + std::to_string(euler) + ", not 1");
+  const auto [pieces, holes] = piecesAndHoles(linked);
+  if (euler != pieces - holes)
+    report.problems.push_back("V - E + F = " + std::to_string(euler) + ", not " + std::to_string(pieces - holes) +
+                              " (pieces - holes: " + std::to_string(pieces) + " - " + std::to_string(holes) + ")");
 }
 
 void checkFaceShapes(const Paper& paper, const ValidityTolerance& tolerance, ValidityReport& report)
@@ -79,8 +119,8 @@ void checkFaceShapes(const Paper& paper, const ValidityTolerance& tolerance, Val
         if (!(std::abs(flat - folded) <= length_tol))
         {
           std::ostringstream msg;
-          msg << "face " << f << ": vertices " << vs[i] << " and " << vs[j] << " are " << folded
-              << " apart folded but " << flat << " in the crease pattern";
+          msg << "face " << f << ": vertices " << vs[i] << " and " << vs[j] << " are " << folded << " apart folded but "
+              << flat << " in the crease pattern";
           report.problems.push_back(msg.str());
         }
       }

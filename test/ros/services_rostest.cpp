@@ -302,6 +302,37 @@ TEST_F(Services, LoadsOripaCreasePatterns)
   EXPECT_EQ(client_.state().revision, base_ + 1);
 }
 
+TEST_F(Services, LoadsSvgPatternsInOrigamiSimulatorsConvention)
+{
+  const std::string data = core::defaultDataFolder();
+  // A 30 × 30 square with a 10 × 10 hole, red mountains from its corners to the hole's.
+  std::ofstream(data + "/hole.svg") << R"(<svg xmlns="http://www.w3.org/2000/svg">
+    <rect x="0" y="0" width="30" height="30" stroke="#000" fill="none"/>
+    <rect x="10" y="10" width="10" height="10" stroke="#000" fill="none"/>
+    <path stroke="#f00" d="M0 0L10 10M30 0L20 10M30 30L20 20M0 30L10 20"/></svg>)";
+  Load::Request load;
+  load.path = "hole.svg";
+  const Load loaded = client_.call<Load>("load", load);
+  ASSERT_TRUE(loaded.response.success) << loaded.response.message;
+  const PaperState& state = client_.stateAt(base_ + 1);
+  EXPECT_EQ(state.faces.size(), 4u);  // round the hole, none over it
+  int mountains = 0, boundaries = 0;
+  for (const Edge& e : state.edges)
+  {
+    mountains += e.assignment == "M";
+    boundaries += e.assignment == "B";
+  }
+  EXPECT_EQ(mountains, 4);
+  EXPECT_EQ(boundaries, 8);
+  // A stroke of another colour is refused naming its element, and nothing changes.
+  std::ofstream(data + "/grey.svg") << "<svg>\n<line x2='1' stroke='#888'/></svg>";
+  load.path = "grey.svg";
+  const Load grey = client_.call<Load>("load", load);
+  EXPECT_FALSE(grey.response.success);
+  EXPECT_NE(grey.response.message.find("<line> on line 2"), std::string::npos) << grey.response.message;
+  EXPECT_EQ(client_.state().revision, base_ + 1);
+}
+
 TEST_F(Services, FilesStayInTheDataFolder)
 {
   namespace fs = std::filesystem;

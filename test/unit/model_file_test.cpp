@@ -33,6 +33,7 @@ TEST(ModelFile, FormatsByName)
   EXPECT_EQ(modelFormat("a.fold"), ModelFormat::Fold);
   EXPECT_EQ(modelFormat("a.CP"), ModelFormat::OripaCp);
   EXPECT_EQ(modelFormat("dir/a.opx"), ModelFormat::OripaOpx);
+  EXPECT_EQ(modelFormat("dir/pattern.Svg"), ModelFormat::Svg);
   EXPECT_FALSE(modelFormat("session_origami.jsonl"));
   EXPECT_FALSE(modelFormat("folding.bag"));
   EXPECT_FALSE(modelFormat("folding.bag.active"));
@@ -64,6 +65,10 @@ TEST(ModelFile, ALargeModelIsRefusedBeforeItIsParsed)
   const std::string cp = "1 0 0 1 0\n\n1 1 0 1 1\n1 1 1 0 1\n1 0 1 0 0\n2 0 0 1 1\n";
   EXPECT_TRUE(checkModelSize(cp, ModelFormat::OripaCp, { 10, 0 }));
   EXPECT_FALSE(checkModelSize(cp, ModelFormat::OripaCp, { 9, 0 }));
+  // SVG: one vertex a pair of runs of digits (1.5 is one, 1e-3 two, #000 one: an upper bound).
+  const std::string svg = R"(<svg><polygon stroke="black" points="0,0 1.5,0 1.5,1 0,1e-3"/></svg>)";
+  EXPECT_TRUE(checkModelSize(svg, ModelFormat::Svg, { 4, 0 }));
+  EXPECT_FALSE(checkModelSize(svg, ModelFormat::Svg, { 3, 0 }));
   // Broken text is the parser's to refuse, with its own message.
   EXPECT_TRUE(checkModelSize("not json", ModelFormat::Fold, { 1, 1 }));
   EXPECT_FALSE(parseModel("not json", ModelFormat::Fold, 1.0));

@@ -17,9 +17,10 @@ enum class ModelFormat
   Fold,
   OripaCp,
   OripaOpx,
+  Svg,  // Origami Simulator's convention (svg_pattern.h)
 };
 
-/// By the name's extension (case-insensitive): `.cp`, `.opx`, else FOLD. None for names that are
+/// By the name's extension (case-insensitive): `.cp`, `.opx`, `.svg`, else FOLD. None for names that are
 /// never a model: a recording (`.bag`, `.bag.active`) or a journal (`.jsonl`).
 std::optional<ModelFormat> modelFormat(const std::string& path);
 
@@ -34,7 +35,8 @@ struct ModelLimits
 
 /// The vertices and the largest face the text declares, counted without building the model:
 /// FOLD, the longest vertices_coords and faces_vertices entry of any frame; ORIPA, two vertices
-/// per line (every line may add two vertices, and crossings more). Refused over the limits,
+/// per line (every line may add two vertices, and crossings more); SVG, one per number pair
+/// written (a curve adds more: its faces are checked after the parse). Refused over the limits,
 /// before the parse; text a parser would refuse anyway passes (the parser says why).
 Status checkModelSize(const std::string& text, ModelFormat format, const ModelLimits& limits);
 
@@ -42,7 +44,7 @@ Status checkModelSize(const std::string& text, ModelFormat format, const ModelLi
 /// edges, an ORIPA file's lines) within max_face_vertices.
 Status checkFaceSizes(const Paper& paper, const ModelLimits& limits);
 
-/// The paper the text describes (FOLD: its last frame; ORIPA: scaled to `size`).
+/// The paper the text describes (FOLD: its last frame; ORIPA and SVG: scaled to `size`).
 Expected<Paper> parseModel(const std::string& text, ModelFormat format, double size);
 
 }  // namespace virtual_origami::core

@@ -49,6 +49,16 @@ struct SnappedSegment
 std::vector<std::vector<int>> pointsAlongSegments(const std::vector<SnappedSegment>& segments, SnappedPoints& points,
                                                   double tolerance);
 
+/// The half-edges leaving each point, counter-clockwise by direction (half-edge 2e + s runs from
+/// edges[e][s] to edges[e][1 - s]), and for each half-edge the one that follows it round the face
+/// on its left: at its end, the first edge clockwise from its twin.
+struct Rotation
+{
+  std::vector<std::vector<int>> outgoing;
+  std::vector<int> next;
+};
+Rotation rotationSystem(const std::vector<Vec2>& points, const std::vector<std::array<int, 2>>& edges);
+
 /// The faces of a planar graph, each a cycle of half-edges with the face on its left: the
 /// bounded faces of a connected graph come out counter-clockwise, the outer face clockwise.
 /// Half-edge 2e + s runs from edges[e][s] to edges[e][1 - s]; its twin is h ^ 1.

@@ -23,7 +23,8 @@ struct ValidityTolerance
 };
 
 /// Every crease has exactly two faces and every boundary edge one; faces are convex and
-/// counter-clockwise in the crease pattern; face areas sum to the sheet's; V − E + F = 1;
+/// counter-clockwise in the crease pattern; face areas sum to the sheet's; V − E + F = pieces −
+/// holes (a sheet in several pieces, or with holes or opened slits, is paper too);
 /// folded distances between vertices of a face equal their crease-pattern distances.
 ValidityReport checkValidity(const Paper& paper, const ValidityTolerance& tolerance = {});
 
