@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 
 #include "virtual_origami/core/face_crossings.h"
@@ -206,6 +207,33 @@ bool closeRigidly(Paper& work, double scale, const std::vector<double>& goal,
   return taken;
 }
 
+/// In a paper of several pieces, every vertex of the first face of each piece, held where it is:
+/// each piece then has its place (the driver removes one rigid motion, the whole paper's, and a
+/// piece no crease joins to the others would drift with nothing to hold it). None for one piece.
+std::vector<int> pieceAnchors(const Paper& paper)
+{
+  std::vector<int> parent(paper.vertices.size());
+  for (size_t v = 0; v < parent.size(); ++v)
+    parent[v] = static_cast<int>(v);
+  const std::function<int(int)> root = [&](int v) { return parent[v] == v ? v : parent[v] = root(parent[v]); };
+  for (const Face& f : paper.faces)
+    for (int v : f.vertices)
+      parent[root(v)] = root(f.vertices[0]);
+  std::vector<char> anchored(paper.vertices.size(), 0);
+  std::vector<int> anchors;
+  int pieces = 0;
+  for (const Face& f : paper.faces)
+  {
+    const int piece = root(f.vertices[0]);
+    if (anchored[piece])
+      continue;
+    anchored[piece] = 1;
+    ++pieces;
+    anchors.insert(anchors.end(), f.vertices.begin(), f.vertices.end());
+  }
+  return pieces > 1 ? anchors : std::vector<int>{};
+}
+
 /// Faces the commit left lying flat on each other get the order their creases allow, like every
 /// flat fold's; where none exists the result says why (the layers would pass through each other).
 void recordLayerOrder(Paper& work, AssignmentFoldResult& result)
@@ -244,6 +272,8 @@ Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFo
       return Failure::failure("held vertex " + std::to_string(v) + " is not on the paper");
     fixed[v] = 1;
   }
+  for (int v : pieceAnchors(paper))
+    fixed[v] = 1;
   std::vector<double> goal(targets.size(), kNaN);
   for (size_t e = 0; e < targets.size(); ++e)
     if (std::isfinite(targets[e]))

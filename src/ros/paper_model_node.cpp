@@ -843,7 +843,7 @@ bool PaperModelNode::load(Load::Request& req, Load::Response& res)
   const std::optional<core::ModelFormat> format = core::modelFormat(req.path);
   core::Expected<core::Paper> paper = core::Expected<core::Paper>::failure("\"" + req.path +
                                                                            "\" is a recording or a journal, not a "
-                                                                           "model: load takes .fold, .cp or .opx "
+                                                                           "model: load takes .fold, .cp, .opx or .svg "
                                                                            "files");
   if (format)
   {
