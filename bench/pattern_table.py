@@ -1,0 +1,74 @@
+#!/usr/bin/env python3
+"""The table of docs/BENCHMARKS.md's "Real crease patterns" from pattern_bench's CSV:
+   pattern_table.py docs/bench/patterns.csv > table.md"""
+import csv
+import sys
+from collections import OrderedDict
+
+STEPS = ["step_25", "step_50", "step_75", "step_100", "one_call_100"]
+
+
+def number(text):
+    try:
+        return float(text)
+    except ValueError:
+        return None
+
+
+def main(path):
+    patterns = OrderedDict()
+    with open(path) as f:
+        for row in csv.DictReader(f):
+            patterns.setdefault(row["pattern"], []).append(row)
+    print("| pattern | vertices | CPU s at 25 / 50 / 75 / 100 % | one call to 100 % | largest strain (steps) "
+          "| 100 %: strain, against, crossings, flat | one call: strain, against, crossings, flat | answer at 100 % (steps / one call) |")
+    print("|---|---|---|---|---|---|---|---|")
+    for name, rows in patterns.items():
+        done = {}
+        vertices = ""
+        note = ""
+        for row in rows:
+            if row["vertices"]:
+                vertices = row["vertices"]
+            if row["answer"].startswith("did not finish") or row["answer"].startswith("refused at load"):
+                # The call after the last one that answered is the one that did not finish.
+                answered = [r["path"] for r in rows if r["path"] in STEPS and not r["answer"].startswith("did not")]
+                after = STEPS[len(answered)] if len(answered) < len(STEPS) else "?"
+                if row["answer"].startswith("refused at load"):
+                    note = "refused at load: " + row["answer"][len("refused at load: "):][:80]
+                else:
+                    note = "%s did not finish in %s s" % (after if vertices else "load or the first step",
+                                                       row["cpu_seconds"])
+                continue
+            done[row["path"]] = row
+
+        def seconds(step):
+            r = done.get(step)
+            return "%.2g" % float(r["cpu_seconds"]) if r else "—"
+
+        def figures(step):
+            r = done.get(step)
+            if not r:
+                return "—"
+            return "%.1e, %s, %s, %s" % (float(r["max_strain"]), r["against_target"], r["crossings"],
+                                         "flat" if r["flat"] == "1" else "3D")
+
+        def verdict(step):
+            r = done.get(step)
+            if not r:
+                return "—"
+            return "success" if r["answer"] == "success" else "refused"
+
+        strains = [number(done[s]["max_strain"]) for s in STEPS[:4] if s in done]
+        strains = [s for s in strains if s is not None]
+        largest = "%.1e" % max(strains) if strains else "—"
+        answer = "%s / %s" % (verdict("step_100"), verdict("one_call_100"))
+        if note:
+            answer += "; " + note
+        print("| %s | %s | %s | %s | %s | %s | %s | %s |" % (
+            name, vertices, " / ".join(seconds(s) for s in STEPS[:4]), seconds("one_call_100"), largest,
+            figures("step_100"), figures("one_call_100"), answer))
+
+
+if __name__ == "__main__":
+    main(sys.argv[1])
