@@ -45,7 +45,12 @@ std::string field(std::string text)
 {
   std::replace(text.begin(), text.end(), ',', ';');
   std::replace(text.begin(), text.end(), '\n', ' ');
-  return text.size() > 160 ? text.substr(0, 160) : text;
+  if (text.size() <= 160)
+    return text;
+  size_t cut = 160;
+  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80)  // not inside a UTF-8 character
+    --cut;
+  return text.substr(0, cut);
 }
 
 /// Every vertex within 1e-6 of the sheet of the plane of face 0.

@@ -17,7 +17,7 @@ def number(text):
 
 def main(path):
     patterns = OrderedDict()
-    with open(path) as f:
+    with open(path, encoding='utf-8', errors='replace') as f:
         for row in csv.DictReader(f):
             patterns.setdefault(row["pattern"], []).append(row)
     print("| pattern | vertices | CPU s at 25 / 50 / 75 / 100 % | one call to 100 % | largest strain (steps) "

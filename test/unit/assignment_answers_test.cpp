@@ -139,8 +139,12 @@ TEST(AssignmentAnswers, WaterbombBaseFoldsFlatWithItsLayerOrder)
   ASSERT_TRUE(r) << r.message();
   expectFlatWithLayerOrder(*r, session.paper(), "waterbomb base");
   for (const Edge& e : session.paper().edges)
+  {
     if (e.isCrease())
+    {
       EXPECT_NEAR(e.fold_angle, e.assignment == Assignment::Valley ? M_PI : -M_PI, 1e-9);
+    }
+  }
   // Flat: a triangle of half the sheet's width, every vertex on one plane.
   const Paper& folded = session.paper();
   const Vec3 n = folded.faceNormal(0);
@@ -254,8 +258,9 @@ TEST(AssignmentAnswers, AStrainedStateIsRefusedWithItsFiguresUnlessKept)
   EXPECT_TRUE(again.paper() == session.paper());
 }
 
-/// The verdict names each problem with its figure, and a result that turned no crease although
-/// its targets asked for a change (faces that cannot bend held the creases) is never "folded".
+/// The verdict names each problem with its figure; a result whose creases did not turn where
+/// they were asked to (faces that cannot bend held them), or that ends off its targets at 100 %,
+/// is never "folded".
 TEST(AssignmentAnswers, TheVerdictNamesEveryProblem)
 {
   AssignmentFoldResult right;
@@ -276,11 +281,18 @@ TEST(AssignmentAnswers, TheVerdictNamesEveryProblem)
   keep.keep = true;
   EXPECT_EQ(assignmentFoldProblems(wrong, keep), "");
   AssignmentFoldResult held = right;
-  held.largest_turn = 0.0;
-  held.angle_error = M_PI;
-  EXPECT_THAT(assignmentFoldProblems(held, {}), HasSubstr("no crease turned"));
-  held.from_fraction = 1.0;  // asked for where it is already: nothing to turn
+  held.fraction = 0.5;
+  held.asked_to_turn = 20;
+  held.stuck = 12;
+  held.angle_error = 1.5;
+  EXPECT_THAT(assignmentFoldProblems(held, {}), HasSubstr("12 of 20 creases could not turn"));
+  held.stuck = 2;  // a few waiting for others on a rigid path
   EXPECT_EQ(assignmentFoldProblems(held, {}), "");
+  AssignmentFoldResult short_of_it = right;
+  short_of_it.angle_error = 3.04;  // all the way asked, the sheet where it was
+  EXPECT_THAT(assignmentFoldProblems(short_of_it, {}), HasSubstr("the creases end 3.04 rad (RMS) from their targets"));
+  short_of_it.fraction = 0.75;  // part way, creases miss fraction · target by design (a Miura-ori's)
+  EXPECT_EQ(assignmentFoldProblems(short_of_it, {}), "");
 }
 
 }  // namespace

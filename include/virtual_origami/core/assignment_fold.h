@@ -92,14 +92,21 @@ struct AssignmentFoldResult
   /// driven crease's angle on the way: 0 when the faces could not follow at all.
   double from_fraction = 0.0;
   double largest_turn = 0.0;
+  /// A commit's driven creases asked to turn (their goal more than 0.05 rad from where they
+  /// were), and those of them that turned less than a hundredth of the way (held by faces that
+  /// cannot bend, or waiting for others, as a bird base's petal creases near flat).
+  int asked_to_turn = 0;
+  int stuck = 0;
 };
 
 /// How far past flat a driven crease may lie before it counts as folded against its target.
 constexpr double kAgainstTargetAngle = 1e-3;
+/// At ±100 %, the RMS distance of the driven creases from their targets that counts as there.
+constexpr double kTargetReached = 1e-3;
 
 /// When a commit's result is right for paper (SPEC §2): its strain within `max_strain`, no
-/// crease against its target, no faces crossing, its layers stackable, and something folded
-/// where the targets asked for a change.
+/// crease against its target, no faces crossing, its layers stackable, most creases asked to
+/// turn turned, and at ±100 % every driven crease at its target (within kTargetReached).
 struct AssignmentFoldAcceptance
 {
   double max_strain = 1e-3;
