@@ -9,7 +9,9 @@
 //                        time to 100 %): InteractiveMarkerFeedback on interaction/feedback, as rviz
 //                        sends it, each move waited for
 //   slider_release_40    the handle let go at 40 % (and at 100 %): the commit from the flat sheet
-//   drag_preview/commit  drag_vertex, the corner vertex lifted in five steps from the 40 % state
+//   drag_vertex_preview/commit  drag_vertex, the corner vertex lifted 1 mm at a time to 5 mm from
+//                        the 40 % state; drag_preview/commit: the same with the mouse in drag mode
+//                        (feedback on interaction/feedback, the mode chosen from the sheet's menu)
 // Every action is timed from the request (the call, or the feedback published) to its answer (the
 // service's return; for the slider, the interaction node's status after the preview, or the new
 // `state` after the release) and to the `markers` message that shows it. Then a breakdown of
@@ -27,6 +29,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <mutex>
 #include <optional>
 #include <sstream>
@@ -48,6 +51,7 @@
 #include <virtual_origami/Rotate.h>
 #include <virtual_origami/Solve.h>
 #include <visualization_msgs/InteractiveMarkerFeedback.h>
+#include <visualization_msgs/InteractiveMarkerInit.h>
 #include <visualization_msgs/MarkerArray.h>
 #include <xmlrpcpp/XmlRpcClient.h>
 
@@ -55,6 +59,9 @@
 #include "virtual_origami/ros/conversions.h"
 #include "virtual_origami/ros/fold_slider.h"
 #include "virtual_origami/ros/markers.h"
+#include "virtual_origami/ros/mouse_feedback.h"
+#include "virtual_origami/core/session.h"
+#include "virtual_origami/solvers/crease_driver_factory.h"
 #include "virtual_origami/solvers/solver_factory.h"
 
 namespace
@@ -293,6 +300,14 @@ public:
             largest_tf_ = t;
         },
         ros::VoidConstPtr(), hints);
+    init_sub_ = nh_.subscribe<visualization_msgs::InteractiveMarkerInit>(
+        "interaction/update_full", 10, [this](const visualization_msgs::InteractiveMarkerInit::ConstPtr& init) {
+          std::lock_guard<std::mutex> lock(mutex_);
+          for (const auto& m : init->markers)
+            if (m.name == "paper")
+              for (const auto& entry : m.menu_entries)
+                menu_[entry.title] = entry.id;
+        });
     feedback_pub_ = nh_.advertise<InteractiveMarkerFeedback>("interaction/feedback", 100);
     fold_ = nh_.serviceClient<FoldByAssignment>("fold_by_assignment", true);
     rotate_ = nh_.serviceClient<Rotate>("rotate", true);
@@ -363,7 +378,7 @@ public:
 
   Row drag(DragVertex& d, double lift_mm)
   {
-    return timedCall(drag_, d, d.request.commit ? "drag_commit" : "drag_preview", lift_mm);
+    return timedCall(drag_, d, d.request.commit ? "drag_vertex_commit" : "drag_vertex_preview", lift_mm);
   }
 
   bool undo()
@@ -432,6 +447,75 @@ public:
     return rows;
   }
 
+  /// A vertex dragged with the mouse in drag mode (chosen from the sheet's menu): pressed at
+  /// `from`, moved in `steps` equal moves to `to` (each preview waited for), let go there. Rows:
+  /// drag_preview per move, then drag_commit.
+  std::vector<Row> mouseDrag(const core::Vec3& from, const core::Vec3& to, int steps)
+  {
+    MouseGesture gesture;
+    gesture.press = from;
+    if (!chooseMode("Drag mode", "drag", gesture))
+    {
+      Row r("drag_commit");
+      r.message = "no drag mode: " + statusMessage();
+      return { r };
+    }
+    std::vector<Row> rows;
+    feedback_pub_.publish(gesture.down(ros::Time::now()));
+    waitFor(
+        [&] {
+          auto s = status();
+          return s && s->dragging;
+        },
+        5.0);
+    for (int i = 1; i <= steps && ros::ok(); ++i)
+    {
+      const core::Vec3 at = from + (to - from) * (static_cast<double>(i) / steps);
+      const uint64_t applied = updatesApplied();
+      const int markers = markersSeen();
+      const NodeCpu::Sample cpu = cpu_.now();
+      const auto t0 = Clock::now();
+      feedback_pub_.publish(gesture.moveTo(at, ros::Time::now()));
+      Row row("drag_preview", i);
+      if (waitFor([&] { return updatesApplied() > applied; }, timeout_))
+      {
+        row.answer_ms = msSince(t0, statusAt());
+        row.markers_ms = markersAfter(t0, markers, 2.0);
+        row.success = !std::isnan(row.markers_ms);
+        row.message = row.success ? "preview drawn" : "no preview drawn: " + statusMessage();
+        row.cpuSince(cpu, cpu_.now());
+      }
+      else
+        row.message = "the interaction node applied no update";
+      rows.push_back(row);
+    }
+    const uint64_t before = revision();
+    const int markers = markersSeen();
+    const NodeCpu::Sample cpu = cpu_.now();
+    const auto t0 = Clock::now();
+    feedback_pub_.publish(gesture.upAt(to, ros::Time::now()));
+    Row row("drag_commit", steps);
+    if (waitFor([&] { return revision() > before; }, std::min(timeout_, 30.0)))
+    {
+      row.answer_ms = msSince(t0, stateAt());
+      row.markers_ms = markersAfter(t0, markers);
+      row.cpuSince(cpu, cpu_.now());
+      row.success = true;
+      row.message = "committed, revision " + std::to_string(revision());
+      interactionHas(revision());
+    }
+    else
+      row.message = "nothing committed: " + statusMessage();
+    rows.push_back(row);
+    waitFor(
+        [&] {
+          auto s = status();
+          return s && !s->dragging;
+        },
+        5.0);
+    return rows;
+  }
+
   PaperState::ConstPtr state()
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -480,7 +564,9 @@ private:
     row.answer_ms = msSince(t0);
     row.success = srv.response.success;
     row.message = srv.response.message;
-    if (row.success)
+    if (!row.success)
+      row.cpuSince(cpu, cpu_.now());  // the user waits for a refusal as for an answer
+    else
     {
       row.markers_ms = markersAfter(t0, markers);
       row.cpuSince(cpu, cpu_.now());
@@ -489,6 +575,31 @@ private:
         interactionHas(srv.response.revision);
     }
     return row;
+  }
+
+  /// The sheet's menu entry whose title holds `title` chosen (right-click at the press point);
+  /// true once the node reports `mode`.
+  bool chooseMode(const std::string& title, const std::string& mode, const MouseGesture& gesture)
+  {
+    int id = -1;
+    waitFor(
+        [&] {
+          std::lock_guard<std::mutex> lock(mutex_);
+          for (const auto& [t, i] : menu_)
+            if (t.find(title) != std::string::npos)
+              id = static_cast<int>(i);
+          return id >= 0;
+        },
+        10.0);
+    if (id < 0)
+      return false;
+    feedback_pub_.publish(gesture.menu(static_cast<uint32_t>(id), gesture.press, ros::Time::now()));
+    return waitFor(
+        [&] {
+          auto s = status();
+          return s && s->mode == mode;
+        },
+        10.0);
   }
 
   bool interactionHas(uint64_t revision)
@@ -571,7 +682,8 @@ private:
 
   double timeout_;
   NodeCpu cpu_;
-  ros::Subscriber markers_sub_, state_sub_, status_sub_, tf_sub_;
+  ros::Subscriber markers_sub_, state_sub_, status_sub_, tf_sub_, init_sub_;
+  std::map<std::string, uint32_t> menu_;  // the sheet's menu entries by title
   ros::Publisher feedback_pub_;
   ros::ServiceClient fold_, rotate_, drag_, undo_;
   std::mutex mutex_;
@@ -626,6 +738,17 @@ PaperState perturbed(const PaperState& s, double amount)
     p.vertices_folded[v].z += amount * std::sin(3.1 * v + 2);
   }
   return p;
+}
+
+/// spring_solver's limits (its dynamic_reconfigure parameters), for the same solve in this process.
+core::SolveLimits springSolverLimits(ros::NodeHandle& nh)
+{
+  core::SolveLimits limits;
+  ros::NodeHandle solver_nh(nh, "spring_solver");
+  limits.tolerance = solver_nh.param("tolerance", limits.tolerance);
+  limits.max_iterations = solver_nh.param("max_iterations", limits.max_iterations);
+  limits.max_seconds = solver_nh.param("max_seconds", limits.max_seconds);
+  return limits;
 }
 
 struct Breakdown
@@ -716,12 +839,7 @@ Breakdown measureBreakdown(UserPath& path, const std::vector<int>& held)
       return;
     // With spring_solver's own limits (its dynamic_reconfigure parameters).
     std::unique_ptr<core::ShapeSolver> solver = core::makeSolver("newton");
-    core::SolveLimits limits;
-    ros::NodeHandle solver_nh(path.nh_, "spring_solver");
-    limits.tolerance = solver_nh.param("tolerance", limits.tolerance);
-    limits.max_iterations = solver_nh.param("max_iterations", limits.max_iterations);
-    limits.max_seconds = solver_nh.param("max_seconds", limits.max_seconds);
-    solver->setLimits(limits);
+    solver->setLimits(springSolverLimits(path.nh_));
     std::vector<char> fixed(paper->vertices.size(), 0);
     for (int v : held)
       fixed[v] = 1;
@@ -740,6 +858,31 @@ Breakdown measureBreakdown(UserPath& path, const std::vector<int>& held)
     b.add("tf_largest_bytes", static_cast<double>(tf_bytes));
     b.add("tf_serialise_ms", tf_ser);
   }
+  return b;
+}
+
+/// The slider's release at `fraction` done in this process as paper_model does it (a session of
+/// the loaded paper, the default crease driver, the newton rigid solver with spring_solver's
+/// limits), from the flat state: wall and CPU ms (this process is single-threaded here).
+Breakdown commitInProcess(const PaperState& flat, double fraction, ros::NodeHandle& nh)
+{
+  Breakdown b;
+  auto paper = fromMessage(flat);
+  if (!paper)
+    return b;
+  core::Session session(std::move(*paper));
+  std::shared_ptr<core::ShapeSolver> rigid = core::makeSolver("newton");
+  rigid->setLimits(springSolverLimits(nh));
+  session.setSolver(rigid);
+  session.setCreaseDrivers(core::makeCreaseDriver(), core::makeCreaseDriver());
+  const double cpu0 = static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
+  const auto t0 = Clock::now();
+  const auto folded = session.foldByAssignment(fraction, true);
+  const double wall = msSince(t0);
+  const double cpu = (static_cast<double>(std::clock()) / CLOCKS_PER_SEC - cpu0) * 1e3;
+  const std::string percent = std::to_string(static_cast<int>(std::lround(100 * fraction)));
+  b.add("commit_" + percent + "_in_process_ms", folded ? wall : NAN);
+  b.add("commit_" + percent + "_in_process_cpu_ms", folded ? cpu : NAN);
   return b;
 }
 
@@ -835,6 +978,11 @@ int main(int argc, char** argv)
       continue;
     const PaperState flat = *path.state();
     const Corner corner = cornerOf(flat);
+    // The release at 40 % in this process, the same computation without the nodes around it
+    // (the Miura-ori only: the others' commits take half a minute at 1,000 vertices).
+    if (kind == "miura")
+      for (const auto& [name, value] : commitInProcess(flat, 0.4, nh).values)
+        breakdown << configuration << ',' << pattern->name << ',' << vertices << ',' << name << ',' << value << '\n';
 
     // fold_by_assignment commits from the flat pattern, each undone.
     for (double fraction : { 0.25, 0.5, 0.99 })
@@ -891,6 +1039,18 @@ int main(int argc, char** argv)
       d.request.commit = true;
       const Row row = path.drag(d, 5);
       write(row);
+      if (row.success)
+        path.undo();
+      // The same lift with the mouse, through the interaction node.
+      const core::Vec3 from = toVec3(folded.vertices_folded[corner.vertex]);
+      bool dragged = false;
+      for (const Row& r : path.mouseDrag(from, from + core::Vec3(0, 0, 5 * span), 5))
+      {
+        write(r);
+        dragged = r.action == "drag_commit" && r.success;
+      }
+      if (dragged)
+        path.undo();
       // The breakdown on the 40 % state, the face at the corner held as a turn holds it.
       std::vector<int> held;
       for (const Face& f : folded.faces)
@@ -899,8 +1059,6 @@ int main(int argc, char** argv)
           held.assign(f.vertices.begin(), f.vertices.end());
           break;
         }
-      if (row.success)
-        path.undo();
       const Breakdown b = measureBreakdown(path, held);
       for (const auto& [name, value] : b.values)
         breakdown << configuration << ',' << pattern->name << ',' << vertices << ',' << name << ',' << value << '\n';

@@ -95,7 +95,8 @@ step contention_bench_newton run_contention contention_newton solver:=newton tol
 run_user_path() {
   local ros_home data port status=0 prefix
   ros_home="$(mktemp -d)"
-  data="$(mktemp -d -p "$build" user_path_bench.XXXXXX)"
+  # Absolute: the nodes run in ROS_HOME, where a relative build folder means nothing.
+  data="$(cd "$(mktemp -d -p "$build" user_path_bench.XXXXXX)" && pwd)"
   prefix="$data/user_path"
   for configuration in journal_sync no_journal_sync; do
     port="$(/usr/bin/python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')"
