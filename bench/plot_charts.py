@@ -1047,10 +1047,10 @@ USER_ACTIONS = [
                        "`fold_by_assignment` preview)"),
     ("slider_release_40", "slider let go at 40 %: the commit from the flat sheet"),
     ("slider_release_100", "slider let go at 100 %: the commit from the flat sheet"),
-    ("turn_preview", "`rotate` preview of the corner face, 1°…10°"),
+    ("turn_preview", "`rotate` preview of the corner face, 2°, 4°, … 10°"),
     ("turn_commit", "`rotate` commit, 10°"),
-    ("drag_vertex_preview", "`drag_vertex` preview, the corner vertex lifted 1…5 mm (40 % state)"),
-    ("drag_vertex_commit", "`drag_vertex` commit, 5 mm"),
+    ("drag_vertex_preview", "`drag_vertex` preview, the corner vertex lifted 0.4 % of the sheet a step to 2 % (40 % state)"),
+    ("drag_vertex_commit", "`drag_vertex` commit, 2 %"),
     ("drag_preview", "the same lift with the mouse in drag mode: each move's preview (feedback → interaction → "
                      "`drag_vertex`)"),
     ("drag_commit", "the mouse let go: the drag's commit"),
