@@ -1149,6 +1149,18 @@ def chart_user_path(tables):
             + (f"{ms(num(fold[near]['commit_s']) * 1e3)} | " if near else "– | ")
             + f"{ms(turned[0]) if turned else '–'} | "
             f"{(ms(guided[0]) + ' / ' + ms(guided[-1])) if guided else '–'} |")
+    said = []
+    for v in miura:
+        release = [num(r["markers_ms"]) for r in groups[("miura_70", v)].get("slider_release_40", [])
+                   if r["success"] == "1"]
+        alone = found.get(("miura_70", v), {}).get("commit_40_in_process_ms", math.nan)
+        if release and math.isfinite(alone):
+            said.append(f"{v:,} vertices: {ms(release[0])} through the nodes, {ms(alone)} in process "
+                        f"({100 * (release[0] - alone) / alone:+.0f} %)")
+    if said:
+        side.append("")
+        side.append("The slider's release at 40 % through the nodes against the same computation in this process: "
+                    + "; ".join(said) + ".")
     tables["user_path_inprocess"] = "\n".join(side)
 
     nosync = [r for r in data if r["configuration"] == "no_journal_sync"]
@@ -1162,10 +1174,11 @@ def chart_user_path(tables):
         rel = release[0] if release and release[0]["success"] == "1" else None
         off = [r for r in nosync if r["pattern"] == pattern and int(num(r["vertices"])) == vertices
                and r["action"] == "slider_release_40" and r["success"] == "1"]
-        kb = lambda x: f"{fmt(x / 1e3)} kB"  # noqa: E731
+        kb = lambda x: f"{fmt(x / 1e6)} MB" if x >= 1e6 else f"{fmt(x / 1e3)} kB"  # noqa: E731
         brk.append(
             f"| {pattern} | {vertices:,} | {kb(q.get('state_bytes', math.nan))} | {kb(q.get('markers_bytes', math.nan))} | "
-            f"{int(q.get('tf_largest_transforms', 0))} ({kb(q.get('tf_largest_bytes', 0))}) | "
+            + (f"none ({int(q.get('faces', 0)):,} faces, over `face_frames_max`) | " if q.get("faces", 0) > 1000 else
+               f"{int(q.get('tf_largest_transforms', 0))} ({kb(q.get('tf_largest_bytes', 0))}) | ") +
             f"{ms(q.get('state_build_ms', math.nan) + q.get('state_serialise_ms', math.nan))} / "
             f"{ms(q.get('markers_build_ms', math.nan) + q.get('markers_serialise_ms', math.nan))} | "
             f"{ms(q.get('state_parse_ms', math.nan) + q.get('state_deserialise_ms', math.nan))} | "
@@ -1198,6 +1211,11 @@ def chart_user_path(tables):
                   label="fold_bench: commit 1 % on (CPU, in process)")
         ax.loglog(sizes, [num(fold[v]["slide_p95_ms"]) for v in sizes], "s--", c="C0",
                   label="fold_bench: slide frame p95 (CPU, in process)")
+    alone = [(v, found.get(("miura_70", v), {}).get("commit_40_in_process_ms", math.nan)) for v in miura]
+    alone = [p for p in alone if math.isfinite(p[1])]
+    if alone:
+        ax.loglog([p[0] for p in alone], [p[1] for p in alone], "^:", c="C1",
+                  label="the release at 40 % computed in process (wall)")
     ax.axhline(33, c="gray", ls=":", label="33 ms")
     finish(fig, ax, "vertices (Miura-ori)", "ms from the request to the markers that show it",
            "The user's path against the in-process bench", "user_path.png")

@@ -342,6 +342,7 @@ public:
     Load load;
     load.request.path = file;
     const uint64_t before = revision();
+    takeLargestTf();  // the face frames of the pattern before are not this one's
     const int markers = markersSeen();
     const NodeCpu::Sample cpu = cpu_.now();
     const auto t0 = Clock::now();
