@@ -22,8 +22,8 @@ ARGS = [a for a in sys.argv[1:] if not a.startswith("--")]
 ONLY = sys.argv[sys.argv.index("--only") + 1] if "--only" in sys.argv else None
 if ONLY:
     ARGS.remove(ONLY)
-    if ONLY not in ("wall_time", "fold", "meshers"):
-        sys.exit("plot_charts.py: --only takes wall_time, fold or meshers")
+    if ONLY not in ("wall_time", "fold", "meshers", "user_path"):
+        sys.exit("plot_charts.py: --only takes wall_time, fold, meshers or user_path")
 BENCH = ARGS[0] if len(ARGS) > 0 else "docs/bench"
 IMAGES = ARGS[1] if len(ARGS) > 1 else "docs/images/bench"
 DOC = ARGS[2] if len(ARGS) > 2 else "docs/BENCHMARKS.md"
@@ -1040,6 +1040,187 @@ def chart_gestures(tables):
     tables["gestures"] = "\n".join(lines)
 
 
+USER_ACTIONS = [
+    ("load", "load the FOLD file (`load`)"),
+    ("fold_commit", "`fold_by_assignment` commit from the flat pattern"),
+    ("slider_preview", "slider moved 1 % (0→40 %) or 5 % (0→100 %): the preview (feedback → interaction → "
+                       "`fold_by_assignment` preview)"),
+    ("slider_release_40", "slider let go at 40 %: the commit from the flat sheet"),
+    ("slider_release_100", "slider let go at 100 %: the commit from the flat sheet"),
+    ("turn_preview", "`rotate` preview of the corner face, 2°, 4°, … 10°"),
+    ("turn_commit", "`rotate` commit, 10°"),
+    ("drag_vertex_preview", "`drag_vertex` preview, the corner vertex lifted 0.4 % of the sheet a step to 2 % (40 % state)"),
+    ("drag_vertex_commit", "`drag_vertex` commit, 2 %"),
+    ("drag_preview", "the same lift with the mouse in drag mode: each move's preview (feedback → interaction → "
+                     "`drag_vertex`)"),
+    ("drag_commit", "the mouse let go: the drag's commit"),
+]
+
+
+def percentile(values, p):
+    v = sorted(x for x in values if math.isfinite(x))
+    if not v:
+        return math.nan
+    return v[min(len(v) - 1, int(p * (len(v) - 1) + 0.5))]
+
+
+def ms(x):
+    """Milliseconds as the tables give them: ms below 1 s, else s."""
+    if not math.isfinite(x):
+        return "–"
+    return f"{fmt(x)} ms" if x < 1000 else f"{fmt(x / 1000)} s"
+
+
+def chart_user_path(tables):
+    """user_path.csv and user_path_breakdown.csv (user_path_bench): origami.launch's nodes driven
+    through their services and the interaction node's feedback, request to answer and to markers;
+    beside fold_bench's in-process figures; the breakdown of where the time goes."""
+    data = rows("user_path.csv")
+    if not data:
+        return
+    sync = [r for r in data if r["configuration"] == "journal_sync"]
+    groups = {}
+    for r in sync:
+        action = r["action"]
+        if action == "fold_commit":
+            action = f"fold_commit {round(100 * num(r['step']))} %"
+        groups.setdefault((r["pattern"], int(num(r["vertices"]))), {}).setdefault(action, []).append(r)
+    order = [a for a, _ in USER_ACTIONS]
+
+    def action_key(a):
+        return (order.index(a.split()[0]) if a.split()[0] in order else 99, a)
+
+    lines = ["| pattern | vertices | action | n | answer: median | p95 | max | markers: median | p95 | max | "
+             "refused | CPU median: paper_model | spring_solver | curved_mesh_solver |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for (pattern, vertices), actions in sorted(groups.items(), key=lambda kv: (kv[0][0] != "miura_70", kv[0])):
+        for action in sorted(actions, key=action_key):
+            rs = actions[action]
+            ok = [r for r in rs if r["success"] == "1"]
+            answer = [num(r["answer_ms"]) for r in rs]
+            markers = [num(r["markers_ms"]) for r in ok]
+            cpu = lambda col: percentile([num(r[col]) for r in ok], 0.5)  # noqa: E731
+            lines.append(
+                f"| {pattern} | {vertices:,} | `{action}` | {len(rs)} | {ms(percentile(answer, 0.5))} | "
+                f"{ms(percentile(answer, 0.95))} | {ms(max(answer) if answer else math.nan)} | "
+                f"{ms(percentile(markers, 0.5))} | {ms(percentile(markers, 0.95))} | "
+                f"{ms(max(markers) if markers else math.nan)} | {len(rs) - len(ok)} | {ms(cpu('paper_model_cpu_ms'))} | "
+                f"{ms(cpu('spring_solver_cpu_ms'))} | {ms(cpu('curved_mesh_solver_cpu_ms'))} |")
+    refusals = {}
+    for r in sync:
+        if r["success"] != "1":
+            refusals.setdefault((r["pattern"], r["vertices"], r["action"]), r["message"])
+    if refusals:
+        lines.append("")
+        lines.append("Refused or unanswered: " + "; ".join(
+            f"{p} {int(num(v)):,} `{a}`: “{m}”" for (p, v, a), m in sorted(refusals.items())) + ".")
+    lines.append("")
+    lines.append("Actions: " + "; ".join(f"`{a}`: {d}" for a, d in USER_ACTIONS) + ".")
+    tables["user_path"] = "\n".join(lines)
+
+    # Where the time goes, read first: the breakdown CSV also holds the release computed in process.
+    parts = rows("user_path_breakdown.csv") or []
+    found = {}
+    for r in parts:
+        if r["configuration"] == "journal_sync":
+            found.setdefault((r["pattern"], int(num(r["vertices"]))), {})[r["quantity"]] = num(r["value"])
+
+    # Beside the in-process figures (fold_bench, quasi_newton: paper_model's crease driver).
+    fold = {int(num(r["vertices"])): r for r in rows("fold_scaling.csv") or [] if r["driver"] == "quasi_newton"}
+    turn = rows("fold_turn.csv") or []
+    guided = [num(r["cpu_s"]) * 1e3 for r in turn if r["solver"].startswith("newton guided")]
+    miura = sorted(v for (p, v) in groups if p == "miura_70")
+    side = ["| vertices | slider preview, user's path: median / p95 | fold_bench: frame of a slide, p95 CPU "
+            "(its nearest size) | slider released at 40 %, user's path | the same release in process: wall / CPU | "
+            "fold_bench: commit 1 % on, CPU | 10° turn commit, user's path | fold_bench: turn, guided, first / third "
+            "(1,681 vertices) |", "|---|---|---|---|---|---|---|---|"]
+    for v in miura:
+        a = groups[("miura_70", v)]
+        q = found.get(("miura_70", v), {})
+        near = min(fold, key=lambda n: abs(n - v)) if fold else None
+        previews = [num(r["markers_ms"]) for r in a.get("slider_preview", []) if r["success"] == "1"]
+        release = [num(r["markers_ms"]) for r in a.get("slider_release_40", []) if r["success"] == "1"]
+        turned = [num(r["markers_ms"]) for r in a.get("turn_commit", []) if r["success"] == "1"]
+        side.append(
+            f"| {v:,} | {ms(percentile(previews, 0.5))} / {ms(percentile(previews, 0.95))} | "
+            + (f"{ms(num(fold[near]['slide_p95_ms']))} ({near:,}) | " if near else "– | ")
+            + f"{ms(release[0]) if release else '–'} | "
+            f"{ms(q.get('commit_40_in_process_ms', math.nan))} / {ms(q.get('commit_40_in_process_cpu_ms', math.nan))} | "
+            + (f"{ms(num(fold[near]['commit_s']) * 1e3)} | " if near else "– | ")
+            + f"{ms(turned[0]) if turned else '–'} | "
+            f"{(ms(guided[0]) + ' / ' + ms(guided[-1])) if guided else '–'} |")
+    said = []
+    for v in miura:
+        release = [num(r["markers_ms"]) for r in groups[("miura_70", v)].get("slider_release_40", [])
+                   if r["success"] == "1"]
+        alone = found.get(("miura_70", v), {}).get("commit_40_in_process_ms", math.nan)
+        if release and math.isfinite(alone):
+            said.append(f"{v:,} vertices: {ms(release[0])} through the nodes, {ms(alone)} in process "
+                        f"({100 * (release[0] - alone) / alone:+.0f} %)")
+    if said:
+        side.append("")
+        side.append("The slider's release at 40 % through the nodes against the same computation in this process: "
+                    + "; ".join(said) + ".")
+    tables["user_path_inprocess"] = "\n".join(side)
+
+    nosync = [r for r in data if r["configuration"] == "no_journal_sync"]
+    brk = ["| pattern | vertices | state message | markers message | tf face frames | build + serialise: state / "
+           "markers | state parsed (each receiver, each solve) | trivial service: new connection / kept | one solve "
+           "through spring_solver / in process (already converged) | commit CPU in paper_model / spring_solver / "
+           "curved_mesh_solver (slider release 40 %) | journal fsync: release 40 % synced / not |",
+           "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for (pattern, vertices), q in sorted(found.items(), key=lambda kv: (kv[0][0] != "miura_70", kv[0])):
+        release = groups.get((pattern, vertices), {}).get("slider_release_40", [])
+        rel = release[0] if release and release[0]["success"] == "1" else None
+        off = [r for r in nosync if r["pattern"] == pattern and int(num(r["vertices"])) == vertices
+               and r["action"] == "slider_release_40" and r["success"] == "1"]
+        kb = lambda x: f"{fmt(x / 1e6)} MB" if x >= 1e6 else f"{fmt(x / 1e3)} kB"  # noqa: E731
+        brk.append(
+            f"| {pattern} | {vertices:,} | {kb(q.get('state_bytes', math.nan))} | {kb(q.get('markers_bytes', math.nan))} | "
+            + (f"none ({int(q.get('faces', 0)):,} faces, over `face_frames_max`) | " if q.get("faces", 0) > 1000 else
+               f"{int(q.get('tf_largest_transforms', 0))} ({kb(q.get('tf_largest_bytes', 0))}) | ") +
+            f"{ms(q.get('state_build_ms', math.nan) + q.get('state_serialise_ms', math.nan))} / "
+            f"{ms(q.get('markers_build_ms', math.nan) + q.get('markers_serialise_ms', math.nan))} | "
+            f"{ms(q.get('state_parse_ms', math.nan) + q.get('state_deserialise_ms', math.nan))} | "
+            f"{ms(q.get('trivial_call_new_connection_ms', math.nan))} / {ms(q.get('trivial_call_persistent_ms', math.nan))} | "
+            f"{ms(q.get('solve_service_converged_ms', math.nan))} / {ms(q.get('solve_in_process_converged_ms', math.nan))} | "
+            + (f"{ms(num(rel['paper_model_cpu_ms']))} / {ms(num(rel['spring_solver_cpu_ms']))} / "
+               f"{ms(num(rel['curved_mesh_solver_cpu_ms']))} of {ms(num(rel['markers_ms']))} wall | " if rel else "– | ")
+            + (f"{ms(num(rel['markers_ms']))} / {ms(num(off[0]['markers_ms']))} |" if rel and off else "– |"))
+    tables["user_path_breakdown"] = "\n".join(brk)
+
+    # Chart: the Miura-ori's user's path against vertex count, fold_bench's in-process figures beside.
+    if not miura:
+        return
+    fig, ax = plt.subplots(figsize=(9, 5))
+    styles = {"slider_preview": ("C0", "slider preview (median)"), "slider_release_40": ("C1", "slider release at 40 %"),
+              "slider_release_100": ("C3", "slider release at 100 %"), "turn_preview": ("C2", "turn preview (median)"),
+              "turn_commit": ("C4", "turn commit 10°"), "drag_preview": ("C5", "mouse drag preview (median)"),
+              "drag_commit": ("C6", "mouse drag commit")}
+    for action, (color, label) in styles.items():
+        pts = []
+        for v in miura:
+            vals = [num(r["markers_ms"]) for r in groups[("miura_70", v)].get(action, []) if r["success"] == "1"]
+            if vals:
+                pts.append((v, percentile(vals, 0.5)))
+        if pts:
+            ax.loglog([p[0] for p in pts], [p[1] for p in pts], "o-", c=color, label=f"user's path: {label}")
+    if fold:
+        sizes = sorted(fold)
+        ax.loglog(sizes, [num(fold[v]["commit_s"]) * 1e3 for v in sizes], "s--", c="C1",
+                  label="fold_bench: commit 1 % on (CPU, in process)")
+        ax.loglog(sizes, [num(fold[v]["slide_p95_ms"]) for v in sizes], "s--", c="C0",
+                  label="fold_bench: slide frame p95 (CPU, in process)")
+    alone = [(v, found.get(("miura_70", v), {}).get("commit_40_in_process_ms", math.nan)) for v in miura]
+    alone = [p for p in alone if math.isfinite(p[1])]
+    if alone:
+        ax.loglog([p[0] for p in alone], [p[1] for p in alone], "^:", c="C1",
+                  label="the release at 40 % computed in process (wall)")
+    ax.axhline(33, c="gray", ls=":", label="33 ms")
+    finish(fig, ax, "vertices (Miura-ori)", "ms from the request to the markers that show it",
+           "The user's path against the in-process bench", "user_path.png")
+
+
 def write_tables(tables):
     if not os.path.exists(DOC):
         return
@@ -1060,6 +1241,10 @@ def main():
         chart_fold(tables)
         write_tables(tables)
         return
+    if ONLY == "user_path":  # user_path_bench alone, rerun
+        chart_user_path(tables)
+        write_tables(tables)
+        return
     if ONLY == "meshers":  # mesh_bench alone, rerun
         chart_meshers(tables)
         write_tables(tables)
@@ -1078,6 +1263,7 @@ def main():
     chart_contention(tables, "contention_newton", "newton, the default solver")
     chart_fold(tables)
     chart_gestures(tables)
+    chart_user_path(tables)
     table_wall_time(tables)
     conclusions(tables)
     write_tables(tables)

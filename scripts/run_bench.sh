@@ -2,7 +2,8 @@
 # `make bench`: every benchmark driver one after the other, each timed (wall and CPU seconds into
 # docs/bench/bench_wall_time.csv), then the charts and the tables of docs/BENCHMARKS.md, whose
 # "Wall time" section is written from that file last, so the page gives the time of the run
-# that made it. Usage: scripts/run_bench.sh [BUILD_DIR]
+# that made it. Usage: [BENCH_ONLY=<step>] scripts/run_bench.sh [BUILD_DIR] (BENCH_ONLY runs one step
+# alone and leaves the wall-time table as it was)
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${1:-$root/build}"
@@ -31,9 +32,13 @@ minus() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.3f", a - b }'; }
 run_start="$(date +%s.%N)"
 children_cpu
 run_cpu="$cpu_now"
+# BENCH_ONLY=<step> runs that step alone (the wall-time table is then left as it was).
 step() {
   local name="$1"
   shift
+  if [ -n "${BENCH_ONLY:-}" ] && [ "$name" != "$BENCH_ONLY" ]; then
+    return 0
+  fi
   echo "bench: $name"
   local start cpu
   start="$(date +%s.%N)"
@@ -83,7 +88,42 @@ run_contention() {
 step contention_bench run_contention contention
 step contention_bench_newton run_contention contention_newton solver:=newton tolerance:=1e-10 max_iterations:=1000 \
   rotations:=100 rotations_alone:=50
+# The user's path (bench/user_path.launch): origami.launch's nodes (rviz aside) driven through
+# their services and the interaction node's feedback topic, as contention_bench on a master port,
+# ROS_HOME and data folder of its own; journal_sync on (the default) on every pattern, then off on
+# the Miura-ori of 1,000 vertices. USER_PATH_SIZES, USER_PATH_OTHER_SIZES and USER_PATH_NOSYNC_SIZES
+# override the vertex counts.
+run_user_path() {
+  local ros_home data port status=0 prefix
+  ros_home="$(mktemp -d)"
+  # Absolute: the nodes run in ROS_HOME, where a relative build folder means nothing.
+  data="$(cd "$(mktemp -d -p "$build" user_path_bench.XXXXXX)" && pwd)"
+  prefix="$data/user_path"
+  for configuration in journal_sync no_journal_sync; do
+    port="$(/usr/bin/python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')"
+    if [ "$configuration" = journal_sync ]; then
+      set -- sizes:="${USER_PATH_SIZES:-1000,2500,5000,10000}" other_sizes:="${USER_PATH_OTHER_SIZES:-1000}"
+    else
+      set -- journal_sync:=false patterns:=miura sizes:="${USER_PATH_NOSYNC_SIZES:-1000}"
+    fi
+    ROS_HOME="$ros_home" timeout 1200 "$build/devel/env.sh" roslaunch -p "$port" virtual_origami user_path.launch \
+      data_dir:="$data" csv_prefix:="$prefix" configuration:="$configuration" "$@" || status=$?
+  done
+  # What a run that stopped early wrote is kept too (each row is written as it is measured).
+  if [ -s "$prefix.csv" ] && [ -s "${prefix}_breakdown.csv" ]; then
+    mv "$prefix.csv" "${prefix}_breakdown.csv" "$out/"
+  else
+    echo "user_path_bench: no CSV written (roslaunch status $status)" >&2
+    status=1
+  fi
+  rm -rf "$ros_home" "$data"
+  return "$status"
+}
+step user_path_bench run_user_path
 step plot_charts /usr/bin/python3 bench/plot_charts.py "$out" docs/images/bench "$doc"
+if [ -n "${BENCH_ONLY:-}" ]; then
+  exit 0
+fi
 children_cpu
 echo "total,$(minus "$(date +%s.%N)" "$run_start"),$(minus "$cpu_now" "$run_cpu")" >>"$pending"
 mv "$pending" "$times_csv"
