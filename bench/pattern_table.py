@@ -31,14 +31,10 @@ def main(path):
             if row["vertices"]:
                 vertices = row["vertices"]
             if row["answer"].startswith("did not finish") or row["answer"].startswith("refused at load"):
-                # The call after the last one that answered is the one that did not finish.
-                answered = [r["path"] for r in rows if r["path"] in STEPS and not r["answer"].startswith("did not")]
-                after = STEPS[len(answered)] if len(answered) < len(STEPS) else "?"
                 if row["answer"].startswith("refused at load"):
                     note = "refused at load: " + row["answer"][len("refused at load: "):][:80]
-                else:
-                    note = "%s did not finish in %s s" % (after if vertices else "load or the first step",
-                                                       row["cpu_seconds"])
+                else:  # the row names the call that did not finish (or the load)
+                    note = "%s did not finish in %s s" % (row["path"].replace("_", " "), row["cpu_seconds"])
                 continue
             done[row["path"]] = row
 
