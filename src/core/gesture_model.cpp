@@ -518,6 +518,15 @@ void GestureModel::toggleSnapping(const Pointer& at)
        rightClick(at));
 }
 
+void GestureModel::toggleKeepRefusedFolds(const Pointer& at)
+{
+  keep_refused_folds_ = !keep_refused_folds_;
+  showSheet();  // the menu's check mark
+  tell(keep_refused_folds_ ? "Folds by assignment are kept even when strained or crossing, their figures said." :
+                             "Folds by assignment that strain or cross the paper are refused.",
+       rightClick(at));
+}
+
 void GestureModel::togglePickedLayersOnly(const Pointer& at)
 {
   picked_layers_only_ = !picked_layers_only_;

@@ -75,7 +75,7 @@ void GestureModel::foldByAssignment(double fraction, const Pointer& at)
 
 std::string GestureModel::commitFold(double fraction)
 {
-  const PaperReply reply = send(FoldByAssignmentCall{ fraction, false });
+  const PaperReply reply = send(FoldByAssignmentCall{ fraction, false, keep_refused_folds_ });
   if (reply.answered && reply.success)
     committed_fraction_ = std::make_pair(reply.revision, fraction);
   return reply.message;

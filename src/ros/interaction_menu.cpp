@@ -66,6 +66,8 @@ std::vector<InteractionNode::MenuEntry> InteractionNode::menuEntries()
       [this] { return model_.pickedLayersOnly(); } },
     { "Snap the line", "", [this](const Feedback& f) { model_.toggleSnapping(pointer(f)); },
       [this] { return model_.snapping(); } },
+    { "Keep refused folds by assignment", "", [this](const Feedback& f) { model_.toggleKeepRefusedFolds(pointer(f)); },
+      [this] { return model_.keepRefusedFolds(); } },
   };
 }
 

@@ -182,6 +182,7 @@ core::PaperReply InteractionNode::send(const core::PaperRequest& request)
                           FoldByAssignment srv;
                           srv.request.fraction = c.fraction;
                           srv.request.preview = c.preview;
+                          srv.request.keep = c.keep;
                           core::PaperReply r = reply(fold_, srv);
                           r.revision = srv.response.revision;
                           return r;

@@ -420,6 +420,36 @@ TEST_F(GestureModelTest, TheSliderPreviewsWhileMovingAndCommitsOnRelease)
   EXPECT_EQ(model.state(), GestureState::Idle);
 }
 
+TEST_F(GestureModelTest, ReleasesKeepRefusedFoldsOnlyWhenTheMenuSaysSo)
+{
+  load(Paper::square(1.0));
+  const auto slide = [&](double fraction) {
+    model.slidePress();
+    model.slideMove(fraction);
+    model.update();
+    model.slideRelease(fraction);
+    return out.sent<FoldByAssignmentCall>().back();
+  };
+  const FoldByAssignmentCall refused = slide(0.5);
+  EXPECT_FALSE(refused.preview);
+  EXPECT_FALSE(refused.keep);
+  EXPECT_FALSE(model.keepRefusedFolds());
+  model.toggleKeepRefusedFolds(at(p3(0.5, 0.5)));
+  EXPECT_TRUE(model.keepRefusedFolds());
+  const FoldByAssignmentCall kept = slide(0.75);
+  EXPECT_FALSE(kept.preview);
+  EXPECT_TRUE(kept.keep);
+  model.foldByAssignment(1.0, at(p3(0.5, 0.5)));  // the menu's fractions too
+  EXPECT_TRUE(out.sent<FoldByAssignmentCall>().back().keep);
+  for (const FoldByAssignmentCall& c : out.sent<FoldByAssignmentCall>())
+    if (c.preview)
+    {
+      EXPECT_FALSE(c.keep) << "a preview is never refused: nothing to keep";
+    }
+  model.toggleKeepRefusedFolds(at(p3(0.5, 0.5)));
+  EXPECT_FALSE(slide(0.25).keep);
+}
+
 TEST_F(GestureModelTest, MenuCommandsAndPinsAskPaperModelAndSayItsAnswer)
 {
   load(Paper::square(1.0));

@@ -120,6 +120,9 @@ public:
   void foldMarks(double angle, const Pointer& at);
   void clearMarks(const Pointer& at);
   void toggleSnapping(const Pointer& at);
+  /// Fold-by-assignment commits (the slider's release, the menu's fractions) keep a state the
+  /// service would refuse as wrong for paper (strained, crossing), as Origami Simulator shows it.
+  void toggleKeepRefusedFolds(const Pointer& at);
   void togglePickedLayersOnly(const Pointer& at);
   /// The sheet marker changed for another reason (strain colours): sent now or after the drag.
   void refreshSheet();
@@ -137,6 +140,10 @@ public:
   bool snapping() const
   {
     return snapping_;
+  }
+  bool keepRefusedFolds() const
+  {
+    return keep_refused_folds_;
   }
   bool pickedLayersOnly() const
   {
@@ -281,6 +288,7 @@ private:
   double entered_ = 0.0;  // when the state was entered (clock seconds)
   GestureMode mode_ = GestureMode::Crease;
   bool snapping_ = true;             // a drawn line snaps (Fig. 6); off: exactly as drawn
+  bool keep_refused_folds_ = false;  // fold-by-assignment commits keep what the service would refuse
   bool picked_layers_only_ = false;  // a rotation turns the picked face's own layers only
 
   std::optional<Paper> paper_;

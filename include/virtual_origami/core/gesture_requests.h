@@ -52,6 +52,7 @@ struct FoldByAssignmentCall
 {
   double fraction = 0.0;
   bool preview = false;
+  bool keep = false;  // commit a state the service would refuse (strained, crossing), its figures said
 };
 
 /// The services without parameters.
