@@ -96,15 +96,6 @@ int againstTarget(const Paper& paper, const std::vector<double>& goal)
   return count;
 }
 
-double largestTurn(const Paper& before, const Paper& after, const std::vector<double>& goal)
-{
-  double turn = 0.0;
-  for (size_t e = 0; e < goal.size(); ++e)
-    if (std::isfinite(goal[e]))
-      turn = std::max(turn, std::abs(after.edges[e].fold_angle - before.edges[e].fold_angle));
-  return turn;
-}
-
 void countStuck(const Paper& before, const Paper& after, const std::vector<double>& goal, AssignmentFoldResult& result)
 {
   for (size_t e = 0; e < goal.size(); ++e)
@@ -319,7 +310,6 @@ Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFo
     // from each crease's own angle: a pattern that cannot meet its targets (a Miura-ori's
     // straight and zigzag creases differ) misses some by far at any fraction.
     const double from = foldFraction(work);
-    result.from_fraction = from;
     double largest_target = 0.0;
     for (double t : targets)
       if (std::isfinite(t))
@@ -369,7 +359,6 @@ Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFo
   result.against_target = againstTarget(work, goal);
   if (request.converge)
   {
-    result.largest_turn = largestTurn(paper, work, goal);
     countStuck(paper, work, goal, result);
     result.crossings = static_cast<int>(findFaceCrossings(work).size());
     recordLayerOrder(work, result);

@@ -265,7 +265,6 @@ TEST(AssignmentAnswers, TheVerdictNamesEveryProblem)
 {
   AssignmentFoldResult right;
   right.fraction = 1.0;
-  right.largest_turn = 3.0;
   EXPECT_EQ(assignmentFoldProblems(right, {}), "");
   AssignmentFoldResult wrong = right;
   wrong.max_strain = 0.94;

@@ -88,10 +88,6 @@ struct AssignmentFoldResult
   /// A commit's pairs of faces passing through each other (face_crossings.h); previews are
   /// not checked (a frame's budget is for the solve).
   int crossings = 0;
-  /// A commit's start (foldFraction of the paper it started from), and the largest change of a
-  /// driven crease's angle on the way: 0 when the faces could not follow at all.
-  double from_fraction = 0.0;
-  double largest_turn = 0.0;
   /// A commit's driven creases asked to turn (their goal more than 0.05 rad from where they
   /// were), and those of them that turned less than a hundredth of the way (held by faces that
   /// cannot bend, or waiting for others, as a bird base's petal creases near flat).
