@@ -1045,8 +1045,8 @@ USER_ACTIONS = [
     ("fold_commit", "`fold_by_assignment` commit from the flat pattern"),
     ("slider_preview", "slider moved 1 % (0→40 %) or 5 % (0→100 %): the preview (feedback → interaction → "
                        "`fold_by_assignment` preview)"),
-    ("slider_release_40", "slider let go at 40 %: the commit from the flat sheet"),
-    ("slider_release_100", "slider let go at 100 %: the commit from the flat sheet"),
+    ("slider_release_40", "slider let go at 40 %: the commit from the last preview"),
+    ("slider_release_100", "slider let go at 100 %: the commit from the last preview"),
     ("turn_preview", "`rotate` preview of the corner face, 2°, 4°, … 10°"),
     ("turn_commit", "`rotate` commit, 10°"),
     ("drag_vertex_preview", "`drag_vertex` preview, the corner vertex lifted 0.4 % of the sheet a step to 2 % (40 % state)"),

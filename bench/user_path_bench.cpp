@@ -8,7 +8,7 @@
 //   slider_preview       the fold slider's handle moved 1 % at a time from 0 to 40 % (and 5 % at a
 //                        time to 100 %): InteractiveMarkerFeedback on interaction/feedback, as rviz
 //                        sends it, each move waited for
-//   slider_release_40    the handle let go at 40 % (and at 100 %): the commit from the flat sheet
+//   slider_release_40    the handle let go at 40 % (and at 100 %): the commit from the last preview
 //   drag_vertex_preview/commit  drag_vertex, the corner vertex lifted 0.4 % of the sheet at a time
 //                        to 2 % from the 40 % state; drag_preview/commit: the same with the mouse in drag mode
 //                        (feedback on interaction/feedback, the mode chosen from the sheet's menu)
@@ -868,8 +868,10 @@ Breakdown measureBreakdown(UserPath& path, const std::vector<int>& held)
 }
 
 /// The slider's release at `fraction` done in this process as paper_model does it (a session of
-/// the loaded paper, the default crease driver, the newton rigid solver with spring_solver's
-/// limits), from the flat state: wall and CPU ms (this process is single-threaded here).
+/// the loaded paper, the default crease driver and its clone for previews with paper_model's
+/// default frame budget, the newton rigid solver with spring_solver's limits): the slide's
+/// previews 1 % apart from the flat state, then the release, timed alone: wall and CPU ms (this
+/// process is single-threaded here).
 Breakdown commitInProcess(const PaperState& flat, double fraction, ros::NodeHandle& nh)
 {
   Breakdown b;
@@ -880,7 +882,15 @@ Breakdown commitInProcess(const PaperState& flat, double fraction, ros::NodeHand
   std::shared_ptr<core::ShapeSolver> rigid = core::makeSolver("newton");
   rigid->setLimits(springSolverLimits(nh));
   session.setSolver(rigid);
-  session.setCreaseDrivers(core::makeCreaseDriver(), core::makeCreaseDriver());
+  std::shared_ptr<core::CreaseDriver> driver = core::makeCreaseDriver();
+  std::shared_ptr<core::CreaseDriver> preview = driver->clone();
+  core::SolveLimits budget = preview->limits();
+  budget.max_seconds = 0.03;  // paper_model's fold_preview_seconds
+  preview->setLimits(budget);
+  session.setCreaseDrivers(driver, preview);
+  const int steps = static_cast<int>(std::lround(100 * fraction));
+  for (int k = 1; k <= steps; ++k)
+    session.foldByAssignment(fraction * k / steps, false);
   const double cpu0 = static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
   const auto t0 = Clock::now();
   const auto folded = session.foldByAssignment(fraction, true);

@@ -291,12 +291,27 @@ Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFo
   // A preview frame works on the paper itself (a copy of a 10,000-vertex paper is a tenth of a
   // frame's budget) and puts its positions back where the driver fails; a commit on a copy.
   Paper copy;
-  if (request.converge)
+  if (request.converge || request.result)
     copy = paper;
-  Paper& work = request.converge ? copy : paper;
+  Paper& work = request.converge || request.result ? copy : paper;
   AssignmentFoldResult result;
   result.fraction = request.fraction;
-  if (!request.converge)
+  if (request.result)
+  {
+    const Positions& given = *request.result;
+    if (given.cols() != static_cast<Eigen::Index>(paper.vertices.size()))
+      return Failure::failure("a recorded fold gives " + std::to_string(given.cols()) +
+                              " positions for a paper of " + std::to_string(paper.vertices.size()) +
+                              " vertices: it was made on another paper");
+    if (!given.allFinite())
+      return Failure::failure("a recorded fold gives a position that is not a number");
+    for (size_t v = 0; v < fixed.size(); ++v)
+      if (fixed[v] && (given.col(static_cast<Eigen::Index>(v)) - paper.vertices[v].folded).norm() > 1e-9 * paper.scale())
+        return Failure::failure("a recorded fold moves vertex " + std::to_string(v) + ", which is held here");
+    setFoldedPositions(work, given);
+    result.solve.converged = true;
+  }
+  else if (!request.converge)
   {
     const Positions before = foldedPositions(paper);
     result.solve = driver.drive(work, goal, fixed);
@@ -351,15 +366,17 @@ Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFo
     return Failure::failure(result.solve.message.empty() ? "the crease driver diverged" : result.solve.message);
   measureAngles(work);
 
-  if (request.converge && rigid && closeRigidly(work, paper.scale(), goal, fixed, driver, *rigid))
+  if (request.converge && !request.result && rigid && closeRigidly(work, paper.scale(), goal, fixed, driver, *rigid))
     result.rigid = true;
   result.face_strain = faceStrains(work);
   result.max_strain = largest(result.face_strain);
+  if (request.result)
+    result.rigid = result.max_strain <= kRigidStrain;
   result.angle_error = angleError(work, goal);
   result.against_target = againstTarget(work, goal);
-  if (request.converge)
+  if (request.converge || request.result)
   {
-    countStuck(paper, work, goal, result);
+    countStuck(request.committed ? *request.committed : paper, work, goal, result);
     result.crossings = static_cast<int>(findFaceCrossings(work).size());
     recordLayerOrder(work, result);
     paper = std::move(copy);

@@ -149,7 +149,8 @@ Expected<Computed<PullResult>> computePull(Workspace workspace, const std::vecto
 
 Expected<Computed<AssignmentFoldResult>> computeFoldByAssignment(Workspace workspace, double fraction, bool commit,
                                                                  const AssignmentFoldAcceptance& acceptance,
-                                                                 AssignmentFoldResult* figures)
+                                                                 AssignmentFoldResult* figures,
+                                                                 const std::vector<Vec3>* recorded)
 {
   using Answer = Expected<Computed<AssignmentFoldResult>>;
   if (!(fraction >= -1.0 && fraction <= 1.0))  // NaN fails both
@@ -166,15 +167,33 @@ Expected<Computed<AssignmentFoldResult>> computeFoldByAssignment(Workspace works
   for (int v : workspace.held)
     if (v >= 0 && v < static_cast<int>(workspace.paper.vertices.size()))
       held_at.emplace_back(v, workspace.paper.vertices[v].folded);
-  // A commit starts from the committed paper, so that applying the log again gives the same
-  // paper; a preview goes on from the last preview frame (one solve per frame).
-  Paper paper = !commit && workspace.assignment_preview ? std::move(*workspace.assignment_preview) :
-                                                          std::move(workspace.paper);
   AssignmentFoldRequest request;
   request.fraction = fraction;
   request.converge = commit;
+  Positions given;
+  if (recorded && commit)
+  {
+    given.resize(3, static_cast<Eigen::Index>(recorded->size()));
+    for (size_t v = 0; v < recorded->size(); ++v)
+      given.col(static_cast<Eigen::Index>(v)) = (*recorded)[v];
+    request.result = &given;
+  }
+  // Previews and commits go on from the last preview frame: a preview is one solve per frame,
+  // and a commit polishes the state the user saw (a release after a long slide solves the last
+  // step, not the whole slide again from flat). The commit records where it ended, which is
+  // what replays take; from flat when no preview is on show, or when the driver fails from it.
+  const bool from_preview = workspace.assignment_preview && !request.result;
+  Paper paper = from_preview ? std::move(*workspace.assignment_preview) : workspace.paper;
+  if (from_preview && commit)
+    request.committed = &workspace.paper;
   Expected<AssignmentFoldResult> result =
       core::foldByAssignment(paper, request, *driver, workspace.solver.get(), workspace.held);
+  if (!result && from_preview && commit)
+  {
+    request.committed = nullptr;
+    paper = std::move(workspace.paper);
+    result = core::foldByAssignment(paper, request, *driver, workspace.solver.get(), workspace.held);
+  }
   if (!result)
     return Answer::failure(result.message());
   if (figures)
@@ -487,9 +506,10 @@ Expected<PullResult> Session::pull(const std::vector<PullTarget>& targets)
 }
 
 Expected<AssignmentFoldResult> Session::foldByAssignment(double fraction, bool commit_it,
-                                                         const AssignmentFoldAcceptance& acceptance)
+                                                         const AssignmentFoldAcceptance& acceptance,
+                                                         const std::vector<Vec3>* recorded)
 {
-  auto computed = computeFoldByAssignment(workspace(), fraction, commit_it, acceptance);
+  auto computed = computeFoldByAssignment(workspace(), fraction, commit_it, acceptance, nullptr, recorded);
   if (!computed)
     return Expected<AssignmentFoldResult>::failure(computed.message());
   if (commit_it)
@@ -560,7 +580,8 @@ Status Session::apply(const Operation& operation)
       // A recorded fold was accepted when it was made (or kept on purpose): its replay keeps it.
       AssignmentFoldAcceptance recorded;
       recorded.keep = true;
-      const auto r = foldByAssignment(operation.fraction, true, recorded);
+      const auto r = foldByAssignment(operation.fraction, true, recorded,
+                                      operation.folded.empty() ? nullptr : &operation.folded);
       return r ? success() : failure(r.message());
     }
     case Operation::Kind::FlatFold:

@@ -122,7 +122,7 @@ core::Expected<core::Paper> fromMessage(const PaperState& state)
   return paper;
 }
 
-Operation toMessage(const core::Operation& op)
+Operation toMessage(const core::Operation& op, const core::Paper* after)
 {
   Operation msg;
   msg.revision = op.revision;
@@ -168,6 +168,11 @@ Operation toMessage(const core::Operation& op)
       break;
     case core::Operation::Kind::AssignmentFold:
       msg.fraction = op.fraction;
+      for (const core::Vec3& p : op.folded)
+        msg.folded.push_back(toPoint(p));
+      if (op.folded.empty() && after)
+        for (const core::Vertex& v : after->vertices)
+          msg.folded.push_back(toPoint(v.folded));
       break;
     case core::Operation::Kind::Pull:
       for (const core::PullTarget& target : op.pull)
@@ -243,6 +248,8 @@ core::Expected<core::Operation> fromMessage(const Operation& msg)
       break;
     case core::Operation::Kind::AssignmentFold:
       op.fraction = msg.fraction;
+      for (const geometry_msgs::Point& p : msg.folded)
+        op.folded.push_back(toVec3(p));
       break;
     case core::Operation::Kind::Pull:
       if (msg.vertices.size() != msg.positions.size())

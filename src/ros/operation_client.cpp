@@ -114,6 +114,7 @@ core::Status OperationClient::apply(const Operation& op, int animation_steps, do
     srv.request.fraction = op.fraction;
     srv.request.preview = false;
     srv.request.keep = true;  // it was accepted (or kept on purpose) when it was recorded
+    srv.request.positions = op.folded;  // where it ended: taken, not solved again
     return call(nh_, "fold_by_assignment", srv);
   }
   if (op.type == "flat_fold")

@@ -135,9 +135,11 @@ PaperModelNode::PaperModelNode(ros::NodeHandle nh, ros::NodeHandle private_nh) :
   history_limit_ = static_cast<size_t>(std::max(0.0, private_nh.param("history_memory_mb", 256.0)) * 1e6);
   const std::string driver = private_nh.param<std::string>("crease_driver", "quasi_newton");
   crease_driver_ = core::makeCreaseDriver(driver);
-  preview_driver_ = core::makeCreaseDriver(driver);
-  if (!crease_driver_ || !preview_driver_)
+  if (!crease_driver_)
     throw std::runtime_error("crease_driver \"" + driver + "\" is not a crease driver");
+  // A clone shares what depends on the pattern alone (the factorisation's ordering): the
+  // slider's release does not order a 10,000-vertex pattern again after its previews did.
+  preview_driver_ = crease_driver_->clone();
   const std::string run_id = nh_.param<std::string>("/run_id", "");
   const bool resume = private_nh.param("resume", true);
 
@@ -332,7 +334,7 @@ core::Status PaperModelNode::commit(core::Change change, const std::string& what
                       "history_memory_mb (%zu so far); the journal keeps every operation",
                       session_.forgottenStates());
   notice_.clear();
-  Operation op = toMessage(session_.log().back());
+  Operation op = toMessage(session_.log().back(), &session_.paper());
   op.header.stamp = ros::Time::now();
   op.header.frame_id = style_.frame_id;
   operations_pub_.publish(op);
@@ -728,10 +730,22 @@ bool PaperModelNode::foldByAssignment(FoldByAssignment::Request& req, FoldByAssi
   acceptance.max_strain = max_assignment_strain_;
   acceptance.keep = req.keep;
   core::AssignmentFoldResult figures;
+  std::vector<core::Vec3> recorded;
+  for (const geometry_msgs::Point& p : req.positions)
+    recorded.push_back(toVec3(p));
+  if (!recorded.empty() && !commit_it)
+  {
+    res.success = false;
+    res.message = "positions are a recorded commit's result: a preview solves its frame";
+    std::lock_guard<std::mutex> lock(mutex_);
+    res.revision = session_.revision();
+    return true;
+  }
   const auto result = computeAndCommit<core::AssignmentFoldResult>(
       [&](core::Workspace workspace) {
         std::lock_guard<std::mutex> drivers(drivers_mutex_);
-        return core::computeFoldByAssignment(std::move(workspace), req.fraction, commit_it, acceptance, &figures);
+        return core::computeFoldByAssignment(std::move(workspace), req.fraction, commit_it, acceptance, &figures,
+                                             recorded.empty() ? nullptr : &recorded);
       },
       commit_it, "folded by assignment", res.revision);
   res.success = result.ok();

@@ -44,7 +44,7 @@ core::Status writeBag(const std::string& path, const core::Session& session, con
   for (size_t i = 0; s && i < log.size(); ++i)
   {
     t += ros::Duration(1.0);
-    Operation op = toMessage(log[i]);
+    Operation op = toMessage(log[i], &states[i + 1]);
     op.header.stamp = t;
     op.header.frame_id = "paper";
     s = writer.write("/origami/operations", op);

@@ -367,11 +367,15 @@ TEST_F(FoldByAssignmentTest, ANegativeFractionFoldsEveryCreaseTheOtherWay)
   EXPECT_LT(fittedFraction(state), -0.1);
 }
 
-TEST_F(FoldByAssignmentTest, PreviewsStayOutOfHistoryAndReplayReproducesTheCommit)
+TEST_F(FoldByAssignmentTest, ASlideReleasedCommitsBalancedAndItsReplayIsBitForBit)
 {
-  const FoldByAssignment preview = fold(0.3, true);
-  ASSERT_TRUE(preview.response.success) << preview.response.message;
-  EXPECT_EQ(preview.response.revision, base_);
+  // The slider's path: previews 5 % apart to 60 %, then the release commits from the last.
+  for (int percent = 5; percent <= 60; percent += 5)
+  {
+    const FoldByAssignment preview = fold(0.01 * percent, true);
+    ASSERT_TRUE(preview.response.success) << preview.response.message;
+    EXPECT_EQ(preview.response.revision, base_);
+  }
   const FoldByAssignment committed = fold(0.6);
   ASSERT_TRUE(committed.response.success) << committed.response.message;
   EXPECT_EQ(committed.response.revision, base_ + 1);
@@ -383,21 +387,27 @@ TEST_F(FoldByAssignmentTest, PreviewsStayOutOfHistoryAndReplayReproducesTheCommi
   ASSERT_TRUE(waitFor([&] { return foldsPublished().size() == 1; }));
   const Operation recorded = foldsPublished()[0];
   EXPECT_EQ(recorded.fraction, 0.6);
+  // The recording carries where the commit ended.
+  EXPECT_EQ(recorded.folded, first.vertices_folded);
 
-  // Undo, then the recorded operation applied again as a replay does.
+  // Undo, then the recorded operation applied again as a replay does: it takes the result.
   ASSERT_TRUE(client_.trigger("undo").response.success);
   client_.stateAt(base_ + 2);
   OperationClient replay("/origami");
   const core::Status applied = replay.apply(recorded);
   ASSERT_TRUE(applied.ok()) << applied.message();
   const PaperState again = client_.stateAt(base_ + 3);
-  ASSERT_EQ(again.vertices_folded.size(), first.vertices_folded.size());
-  for (size_t v = 0; v < first.vertices_folded.size(); ++v)
-  {
-    EXPECT_NEAR(again.vertices_folded[v].x, first.vertices_folded[v].x, 1e-9);
-    EXPECT_NEAR(again.vertices_folded[v].y, first.vertices_folded[v].y, 1e-9);
-    EXPECT_NEAR(again.vertices_folded[v].z, first.vertices_folded[v].z, 1e-9);
-  }
+  EXPECT_EQ(again.vertices_folded, first.vertices_folded);
+
+  // A recorded result of another paper, or as a preview, is refused and changes nothing.
+  FoldByAssignment::Request wrong;
+  wrong.fraction = 0.6;
+  wrong.positions = recorded.folded;
+  wrong.positions.pop_back();
+  expectRefused(client_.call<FoldByAssignment>("fold_by_assignment", wrong), again);
+  wrong.positions = recorded.folded;
+  wrong.preview = true;
+  expectRefused(client_.call<FoldByAssignment>("fold_by_assignment", wrong), again);
 }
 
 TEST_F(FoldByAssignmentTest, AnAnimatedReplayOfTheRecordedFoldsEndsInTheRecordedState)

@@ -131,23 +131,94 @@ TEST(FoldByAssignmentSession, UndoAndRedoGoBackAndForthBitIdentically)
   EXPECT_EQ(session.revision(), 3u);
 }
 
-TEST(FoldByAssignmentSession, ApplyingTheLogAgainReproducesThePaper)
+/// The operation as `operations` carries it: with the positions the commit ended at.
+Operation recorded(const Session& session)
+{
+  Operation op = session.log().back();
+  for (const Vertex& v : session.paper().vertices)
+    op.folded.push_back(v.folded);
+  return op;
+}
+
+TEST(FoldByAssignmentSession, ApplyingTheRecordedLogAgainReproducesThePaperBitForBit)
 {
   Session session = foldingSession(miuraWithTargets());
-  // Previews in between must not change what the commit makes.
+  // Commits go on from the previews before them (the slide the user saw); the recording
+  // carries where each ended, and a replay takes it.
+  std::vector<Operation> recording;
   ASSERT_TRUE(session.foldByAssignment(0.7, false).ok());
   ASSERT_TRUE(session.foldByAssignment(0.3).ok());
+  recording.push_back(recorded(session));
   ASSERT_TRUE(session.foldByAssignment(0.9, false).ok());
   ASSERT_TRUE(session.foldByAssignment(0.6).ok());
+  recording.push_back(recorded(session));
 
   Session again = foldingSession(miuraWithTargets());
-  for (const Operation& op : session.log())
+  for (const Operation& op : recording)
   {
     const Status applied = again.apply(op);
     ASSERT_TRUE(applied.ok()) << applied.message();
   }
   EXPECT_TRUE(again.paper() == session.paper());
   EXPECT_EQ(again.revision(), session.revision());
+  // The log itself keeps no positions (the states hold them).
+  for (const Operation& op : session.log())
+    EXPECT_TRUE(op.folded.empty());
+}
+
+TEST(FoldByAssignmentSession, AReleaseAfterASlideCommitsFromTheLastPreviewBalancedAndRigid)
+{
+  Session slid = foldingSession(miuraWithTargets());
+  for (int percent = 5; percent <= 60; percent += 5)
+    ASSERT_TRUE(slid.foldByAssignment(0.01 * percent, false).ok());
+  const Paper last_preview = *slid.preview();
+  const auto released = slid.foldByAssignment(0.6);
+  ASSERT_TRUE(released.ok()) << released.message();
+  EXPECT_TRUE(released->rigid);
+  EXPECT_LE(released->max_strain, 1e-9);
+  // One branch (a Miura-ori is a mechanism of one degree of freedom): the slide's commit and one
+  // call from flat end on the same shape, within the solver's tolerance (placed apart by a rigid
+  // motion: no vertex is held, and each path leaves the sheet where its start had it).
+  Session direct = foldingSession(miuraWithTargets());
+  ASSERT_TRUE(direct.foldByAssignment(0.6).ok());
+  double angles_apart = 0.0, from_preview = 0.0;
+  for (size_t e = 0; e < slid.paper().edges.size(); ++e)
+    angles_apart = std::max(angles_apart, std::abs(slid.paper().edges[e].fold_angle - direct.paper().edges[e].fold_angle));
+  for (size_t v = 0; v < slid.paper().vertices.size(); ++v)
+    from_preview = std::max(from_preview, (slid.paper().vertices[v].folded - last_preview.vertices[v].folded).norm());
+  EXPECT_LE(angles_apart, 1e-6);
+  // It went on from the preview: the slide's previews were balanced, the release polished them.
+  EXPECT_LE(from_preview, 1e-3 * slid.paper().scale());
+}
+
+TEST(FoldByAssignmentSession, ARecordedFoldOfAnotherPaperIsRefusedAndChangesNothing)
+{
+  Session session = foldingSession(miuraWithTargets());
+  ASSERT_TRUE(session.foldByAssignment(0.4).ok());
+  Operation op = recorded(session);
+  Session other = foldingSession(miuraTessellation(3, 3).value().paper);
+  const Paper before = other.paper();
+  const Status applied = other.apply(op);
+  EXPECT_FALSE(applied.ok());
+  EXPECT_NE(applied.message().find("another paper"), std::string::npos) << applied.message();
+  EXPECT_TRUE(other.paper() == before);
+  EXPECT_EQ(other.revision(), 0u);
+  op.folded[3].x() = std::numeric_limits<double>::quiet_NaN();
+  Session same = foldingSession(miuraWithTargets());
+  const Status nan = same.apply(op);
+  EXPECT_FALSE(nan.ok());
+  EXPECT_NE(nan.message().find("not a number"), std::string::npos) << nan.message();
+  EXPECT_EQ(same.revision(), 0u);
+}
+
+TEST(FoldByAssignmentSession, AnOperationRecordedWithoutItsResultIsSolvedAgain)
+{
+  // Recordings made before commits carried their result: the fold is solved from the paper.
+  Session session = foldingSession(miuraWithTargets());
+  ASSERT_TRUE(session.foldByAssignment(0.5).ok());
+  Session again = foldingSession(miuraWithTargets());
+  ASSERT_TRUE(again.apply(session.log().back()).ok());
+  EXPECT_TRUE(again.paper() == session.paper());  // no preview on either: the same solve
 }
 
 TEST(FoldByAssignmentSession, TargetAnglesAndTheFractionSurviveTheJournal)

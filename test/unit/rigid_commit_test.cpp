@@ -10,6 +10,7 @@
 #include "closed_form_search.h"
 #include "virtual_origami/core/assignment_fold.h"
 #include "virtual_origami/core/reference_patterns.h"
+#include "virtual_origami/core/session.h"
 #include "virtual_origami/core/tessellations.h"
 #include "virtual_origami/solvers/crease_driver_factory.h"
 #include "virtual_origami/solvers/driven_faces.h"
@@ -96,6 +97,40 @@ TEST(RigidCommit, MiuraOriCommittedByQuartersStaysRigid)
   }
   EXPECT_NEAR(rhoOf(paper), closedFormRho(t, 0.99), 1e-6);
 }
+
+/// The slider's path: previews 1 % apart to 99 % (each from the last, within a frame's budget:
+/// here a few iterations, as a loaded machine leaves in paper_model's 30 ms; a time budget would
+/// make the test depend on the machine), then the release commits from the last preview. Rigid
+/// on the closed form all the same: the commit polishes the state the user saw, and closes it
+/// where the springs balance.
+class SlidMiuraOri : public ::testing::TestWithParam<int>
+{
+};
+
+TEST_P(SlidMiuraOri, At99PercentAndReleasedIsRigidOnItsClosedForm)
+{
+  const Tessellation t = miuraTessellation(kColumns, kRows, 1.0, 1.0, kGamma).value();
+  Session session(t.paper);
+  auto rigid = std::make_shared<NewtonSolver>();
+  rigid->setLimits(kSpringSolverLimits);
+  session.setSolver(rigid);
+  std::shared_ptr<CreaseDriver> preview = makeCreaseDriver("quasi_newton");
+  SolveLimits budget = preview->limits();
+  budget.max_iterations = GetParam();
+  budget.max_seconds = 0.0;
+  preview->setLimits(budget);
+  session.setCreaseDrivers(makeCreaseDriver("quasi_newton"), preview);
+  for (int percent = 1; percent <= 99; ++percent)
+    ASSERT_TRUE(session.foldByAssignment(0.01 * percent, false)) << percent;
+  const Expected<AssignmentFoldResult> result = session.foldByAssignment(0.99);
+  ASSERT_TRUE(result) << result.message();
+  EXPECT_TRUE(result->rigid);
+  EXPECT_LE(result->max_strain, 1e-9);
+  EXPECT_LE(offFamily(session.paper()), 1e-8);
+  EXPECT_NEAR(rhoOf(session.paper()), closedFormRho(t, 0.99), 1e-6);
+}
+
+INSTANTIATE_TEST_SUITE_P(FrameBudgets, SlidMiuraOri, ::testing::Values(1, 3, 20));
 
 }  // namespace
 }  // namespace virtual_origami::core

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "virtual_origami/core/paper.h"
+#include "virtual_origami/core/positions.h"
 #include "virtual_origami/core/result.h"
 #include "virtual_origami/core/shape_solver.h"
 
@@ -67,7 +68,17 @@ struct AssignmentFoldRequest
   /// faces, which stiff faces never enter. The stages run with it, then the goal is balanced
   /// again with the driver's stiffness. A one-stage commit (a slide's step) stays stiff.
   double path_stiffness = 100.0;
+  /// A recorded commit's result (a replay): the folded positions to take instead of driving
+  /// anything, one column per vertex. Its figures are measured as a solve's are, so a replay
+  /// is answered as the commit was; rigid when its faces keep their shape to kRigidStrain.
+  const Positions* result = nullptr;
+  /// The committed paper a commit goes on from when it starts at a preview frame: the creases
+  /// asked to turn, and those that did not, are counted from it (from the paper given if null).
+  const Paper* committed = nullptr;
 };
+
+/// The strain below which a taken result counts as rigid (what the rigid solver closes to).
+constexpr double kRigidStrain = 1e-9;
 
 struct AssignmentFoldResult
 {
@@ -115,7 +126,8 @@ struct AssignmentFoldAcceptance
 std::string assignmentFoldProblems(const AssignmentFoldResult& result, const AssignmentFoldAcceptance& acceptance);
 
 /// Folds `paper` by assignment. Fails (paper untouched) on a fraction outside [−1, 1] or not
-/// finite, a paper without a driven crease, or a driver that diverged.
+/// finite, a paper without a driven crease, a driver that diverged, or a given result that does
+/// not fit the paper (one finite position per vertex, held vertices where they are).
 Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFoldRequest& request,
                                                 CreaseDriver& driver, ShapeSolver* rigid,
                                                 const std::vector<int>& held = {});

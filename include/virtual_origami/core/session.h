@@ -43,6 +43,10 @@ struct Operation
   std::string path;       // Load: where the model came from
   std::vector<PullTarget> pull;  // Pull: where the vertices were pulled to (pins following frames)
   double fraction = 0.0;  // AssignmentFold: how far towards the creases' targets, −1 to 1
+  /// AssignmentFold: where every vertex ended, when a recording gives it (Operation.msg's
+  /// `folded`); applying the operation then takes these positions instead of solving again.
+  /// Not kept in the history's log (the state after the operation holds them).
+  std::vector<Vec3> folded;
   FlatFoldRequest flat_fold;  // FlatFold: the creases, their angles and the face that stays
   PullTarget drag;            // DragVertex: the vertex and where it was dragged to
   uint64_t revision = 0;  // the revision it produced
@@ -110,15 +114,20 @@ Expected<Computed<RotateResult>> computeRotate(Workspace workspace, const Rotate
 Expected<Computed<SquashResult>> computeSquash(Workspace workspace);
 Expected<Computed<PullResult>> computePull(Workspace workspace, const std::vector<PullTarget>& targets);
 /// Folds every driven crease to `fraction` (−1 to 1) of its target (assignment_fold.h).
-/// `commit` true: converged from the committed paper (what replay reproduces), and refused when
-/// the result is wrong for paper by `acceptance` (assignmentFoldProblems: strain, creases
-/// against their target, crossings, layers) unless it keeps it; false: a preview frame from the
-/// last preview, within the preview driver's budget, never refused for its figures. Pins are
-/// held. `figures`, when given, receives the result's figures whether or not it is refused.
+/// `commit` true: converged from the last preview on this revision (the branch the user saw as
+/// the slider moved; from the committed paper when there is none, or when the driver diverges
+/// from the preview), and refused when the result is wrong for paper by `acceptance`
+/// (assignmentFoldProblems: strain, creases against their target, crossings, layers) unless it
+/// keeps it. The change's state is the result, and its positions are what a replay takes
+/// (`recorded`, Operation::folded): a replay lands where the commit did, bit for bit, without
+/// solving again. `commit` false: a preview frame from the last preview, within the preview
+/// driver's budget, never refused for its figures. Pins are held. `figures`, when given,
+/// receives the result's figures whether or not it is refused.
 Expected<Computed<AssignmentFoldResult>> computeFoldByAssignment(Workspace workspace, double fraction,
                                                                  bool commit = true,
                                                                  const AssignmentFoldAcceptance& acceptance = {},
-                                                                 AssignmentFoldResult* figures = nullptr);
+                                                                 AssignmentFoldResult* figures = nullptr,
+                                                                 const std::vector<Vec3>* recorded = nullptr);
 /// Folds on chosen creases (flat_fold.h). Refused when the fold moves nothing or would move a
 /// held vertex (a pin). The change's state is the folded paper.
 Expected<Computed<FlatFoldResult>> computeFlatFold(Workspace workspace, const FlatFoldRequest& request);
@@ -181,7 +190,8 @@ public:
   Expected<PullResult> pull(const std::vector<PullTarget>& targets);
   /// Folds by assignment to `fraction`; with commit false a preview, as for rotate.
   Expected<AssignmentFoldResult> foldByAssignment(double fraction, bool commit = true,
-                                                  const AssignmentFoldAcceptance& acceptance = {});
+                                                  const AssignmentFoldAcceptance& acceptance = {},
+                                                  const std::vector<Vec3>* recorded = nullptr);
   /// Folds on chosen creases; with commit false a preview (`preview()`) `fraction` of the way.
   Expected<FlatFoldResult> flatFold(const FlatFoldRequest& request, bool commit = true, double fraction = 1.0);
   /// Drags a vertex to a point; with commit false a preview, as for rotate.

@@ -31,8 +31,9 @@ PaperState toMessage(const core::Paper& paper, uint64_t revision, const Pins& pi
 core::Expected<core::Paper> fromMessage(const PaperState& state);
 
 /// Every parameter of the operation (rotate's carry_stack as picked_layers_only = !carry_stack;
-/// a flat fold's segments at z = 0).
-Operation toMessage(const core::Operation& operation);
+/// a flat fold's segments at z = 0). `after`, the paper the operation made, gives a fold by
+/// assignment's result (`folded`), which the session's log does not keep.
+Operation toMessage(const core::Operation& operation, const core::Paper* after = nullptr);
 /// The operation a message names, for applying it to a session again; fails on a type that is
 /// not in a session's history (pin) or unknown, and on arrays of different lengths.
 core::Expected<core::Operation> fromMessage(const Operation& operation);
