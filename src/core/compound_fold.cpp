@@ -5,8 +5,6 @@
 #include <functional>
 #include <map>
 #include <set>
-#include <cstdio>
-#include <cstdlib>
 
 #include <Eigen/Geometry>
 
@@ -439,13 +437,6 @@ Expected<CompoundFolds::Resolved> CompoundFolds::resolve(size_t index)
         return;
       }
       valid.push_back(Valid{ std::move(request), tuckedFaces(folded, *result), coveredFaces(folded, *result, side_) });
-      if (std::getenv("VO_DEBUG"))
-      {
-        std::fprintf(stderr, "  valid %d %d:", valid.back().tucked, valid.back().covered);
-        for (auto& c : valid.back().request.creases)
-          std::fprintf(stderr, " %+.0f", c.angle * 180 / M_PI);
-        std::fprintf(stderr, "\n");
-      }
       return;
     }
     for (const double sign : { 1.0, -1.0 })

@@ -1,0 +1,111 @@
+// Flap mode: a fold by one drag (compound_fold.h under the mouse). The press works out the folds
+// the pressed flap can make; each update previews the one that takes the pressed point nearest
+// the pointer, as far along as the pointer is; the release commits it flat.
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+
+#include "virtual_origami/core/gesture_model.h"
+#include "virtual_origami/core/layer_pick.h"
+
+namespace virtual_origami::core
+{
+namespace
+{
+/// A release this far from where the fold takes the pressed point, of the way there, folds
+/// nothing: the pointer is nearer the press than the fold.
+constexpr double kMissedFold = 0.5;
+}  // namespace
+
+void GestureModel::pressFlap()
+{
+  flap_.reset();
+  flap_refusal_.clear();
+  flap_previewed_.reset();
+  const Vec3 view = sight(press_camera_, press_);
+  // A layer picked here (Next layer down) is pressed instead of the top one.
+  int face = pickedHere(Pick::Kind::Face, press_) ? pick_.current() : -1;
+  if (face < 0)
+  {
+    const std::vector<int> under = facesUnder(*paper_, press_, view);
+    face = under.empty() ? -1 : under[0];
+  }
+  if (face < 0)
+  {
+    flap_refusal_ = "No paper here: press on a flap and drag it where it should lie.";
+    return;
+  }
+  Expected<CompoundFolds> folds = CompoundFolds::at(*paper_, face, press_, -view);
+  if (!folds)
+    flap_refusal_ = "Not folded: " + folds.message() + ".";
+  else if (folds->outcomes().empty())
+    flap_refusal_ = "This flap folds no other way flat along the creases there: crease it first.";
+  else
+    flap_ = std::move(*folds);
+}
+
+Vec3 GestureModel::flapTarget() const
+{
+  if (!pointer_camera_)
+    return pointer_;
+  // Where the pointer's sight line meets the plane the paper lies in.
+  return alongSightOnto(*pointer_camera_, pointer_, press_, Vec3::UnitZ()).value_or(pointer_);
+}
+
+void GestureModel::updateFlap()
+{
+  if (!flap_)
+    return;
+  const auto chosen = flap_->nearestResolved(flapTarget());
+  if (!chosen)
+    return;
+  const auto& [choice, fold] = *chosen;
+  if (flap_previewed_ && flap_previewed_->first == choice.outcome &&
+      std::abs(flap_previewed_->second - choice.fraction) < 1e-3)
+    return;
+  if (!flap_previewed_ && choice.fraction < 1e-3)
+    return;  // nothing to show yet
+  if (send(FlatFoldCall{ fold.request, choice.fraction, false }).success)
+    flap_previewed_ = std::make_pair(choice.outcome, choice.fraction);
+}
+
+std::string GestureModel::releaseFlap()
+{
+  if (!flap_)
+    return flap_refusal_;
+  const auto chosen = clicked() ? std::nullopt : flap_->nearestResolved(flapTarget());
+  std::string message;
+  if (chosen)
+  {
+    const auto& [choice, fold] = *chosen;
+    const double way = (flap_->outcomes()[choice.outcome].landing - press_).norm();
+    if (choice.miss <= kMissedFold * way)
+    {
+      message = refusal(send(FlatFoldCall{ fold.request, 1.0, true }));
+      if (message.empty())
+      {
+        message = compoundKindName(fold.kind);
+        message[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(message[0])));
+        message += ".";
+      }
+      flap_.reset();
+      flap_previewed_.reset();
+      pick_ = Pick{};
+      return message;
+    }
+  }
+  // No fold: the preview shown goes back to the paper as it is.
+  if (flap_previewed_)
+  {
+    const Expected<CompoundFolds::Resolved> shown = flap_->resolve(flap_previewed_->first);
+    if (shown)
+      send(FlatFoldCall{ shown->request, 0.0, false });
+  }
+  flap_.reset();
+  flap_previewed_.reset();
+  return clicked() ? "Flap mode: drag the flap where it should lie (a click folds nothing)." :
+                     "Not folded: no fold along the creases here takes the flap there. Drag it where a squash, "
+                     "petal or reverse fold puts it.";
+}
+
+}  // namespace virtual_origami::core
