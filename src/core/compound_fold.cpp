@@ -25,6 +25,9 @@ constexpr size_t kMaxAssignments = 20000;
 constexpr size_t kMaxPool = 22;
 /// Fold directions tried per outcome, at most (each a flat fold).
 constexpr int kMaxDirections = 64;
+/// Ways of the pressed point that pass the pointer within this of each other (of the paper's
+/// scale) are alike: a hand does not draw straighter.
+constexpr double kAlikeWays = 0.02;
 
 bool isFolded(double angle)
 {
@@ -342,21 +345,34 @@ Expected<CompoundFolds> CompoundFolds::at(const Paper& paper, int face, const Ve
 
 std::optional<CompoundFolds::Choice> CompoundFolds::nearest(const Vec3& pointer) const
 {
+  // The fold whose way (the pressed point's, from the press to its landing) the pointer is on:
+  // a drag shows one fold all the way, not each fold landing near the pointer on the way.
+  // Of folds whose ways pass alike, the one landing nearest the pointer; of those landing at
+  // the same place, the one that moves the rest of the paper least.
+  const double alike = kAlikeWays * paper_.scale(), same = 1e-9 * paper_.scale();
   std::optional<Choice> best;
+  double best_off = 0.0;
   for (size_t i = 0; i < outcomes_.size(); ++i)
   {
     const CompoundOutcome& o = outcomes_[i];
     if (resolved_[i] && !resolved_[i]->ok())
       continue;  // no fold directions make it
-    const double miss = (o.landing - pointer).norm();
-    // Of outcomes landing at the same place, the one that moves the rest of the paper least.
-    const double same = 1e-9 * paper_.scale();
-    if (best && (miss > best->miss + same ||
-                 (miss > best->miss - same && o.disturbance >= outcomes_[best->outcome].disturbance - same)))
-      continue;
     const Vec3 way = o.landing - press_;
     const double fraction = std::clamp((pointer - press_).dot(way) / way.squaredNorm(), 0.0, 1.0);
+    const double off = (press_ + fraction * way - pointer).norm();
+    const double miss = (o.landing - pointer).norm();
+    if (best)
+    {
+      const CompoundOutcome& b = outcomes_[best->outcome];
+      const bool better =
+          off < best_off - alike ||
+          (off <= best_off + alike &&
+           (miss < best->miss - same || (miss <= best->miss + same && o.disturbance < b.disturbance - same)));
+      if (!better)
+        continue;
+    }
     best = Choice{ i, fraction, miss };
+    best_off = off;
   }
   return best;
 }

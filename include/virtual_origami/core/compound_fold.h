@@ -63,10 +63,11 @@ public:
     return fixed_face_;
   }
 
-  /// The outcome whose pressed point lands nearest `pointer`, and how far along the way there
-  /// the pointer is (0 at the press, 1 at the landing). Of outcomes landing at the same place,
-  /// the one that changes fewest creases; outcomes `resolve` found no fold directions for are
-  /// passed over.
+  /// The outcome the pointer drags: the one whose way (the pressed point's, from the press to
+  /// its landing) passes nearest `pointer` — of ways passing alike (within 2 % of the paper's
+  /// scale), the one landing nearest it, then the one moving the rest of the paper least — and
+  /// how far along its way the pointer is (0 at the press, 1 at the landing). Outcomes `resolve`
+  /// found no fold directions for are passed over.
   struct Choice
   {
     size_t outcome = 0;
