@@ -41,7 +41,12 @@ void GestureModel::pressFlap()
   else if (folds->outcomes().empty())
     flap_refusal_ = "This flap folds no other way flat along the creases there: crease it first.";
   else
+  {
+    // Their fold directions now, while the press is still: the previews then only ask for frames.
+    for (size_t i = 0; i < folds->outcomes().size(); ++i)
+      folds->resolve(i);
     flap_ = std::move(*folds);
+  }
 }
 
 Vec3 GestureModel::flapTarget() const
