@@ -176,6 +176,8 @@ Expected<CompoundFolds> CompoundFolds::at(const Paper& paper, int face, const Ve
   using Failure = Expected<CompoundFolds>;
   if (face < 0 || face >= static_cast<int>(paper.faces.size()))
     return Failure::failure("press on the paper: on a flap to fold");
+  if (!press.allFinite() || !eye_side.allFinite() || eye_side.norm() == 0.0)
+    return Failure::failure("the press and the side it is seen from must be finite, the side not zero");
   for (const Edge& edge : paper.edges)
     if (edge.isCrease() && std::abs(edge.fold_angle) > kFlatAngleTolerance &&
         std::abs(std::abs(edge.fold_angle) - M_PI) > kFlatAngleTolerance)
@@ -500,7 +502,14 @@ Expected<CompoundFolds::Resolved> CompoundFolds::resolve(size_t index)
     kind = outcome.patch      ? CompoundKind::Petal :
            chosen->tucked > 0 ? CompoundKind::InsideReverse :
                                 CompoundKind::Reverse;
-  Resolved resolved{ chosen->request, kind };
+  Resolved resolved{ chosen->request, kind, std::nullopt };
+  if (kind == CompoundKind::InsideReverse)
+  {
+    // The other way round: the tip wrapped round the layers, none of it between them.
+    for (const Valid& v : valid)
+      if (v.tucked == 0 && (!resolved.outside || v.covered < chosen->covered))
+        resolved.outside = v.request;
+  }
   resolved_[index] = resolved;
   return resolved;
 }

@@ -100,6 +100,31 @@ TEST(CompoundFold, DraggingABirdBaseFlapsTipUpAndOutReverseFoldsItInside)
   expectTheReferenceFold(19, Vec2(0.9917, 0.06), CompoundKind::Reverse);          // the head
 }
 
+TEST(CompoundFold, AnInsideReverseFoldHasTheOutsideOneAlongTheSameCreases)
+{
+  const FlapDrag drag = flapDrag(crane(), 15, Vec2(0.6911, 0.0589));
+  Expected<CompoundFolds> folds = CompoundFolds::at(crane()[14], drag.face, drag.press);
+  ASSERT_TRUE(folds.ok());
+  const auto chosen = folds->nearestResolved(drag.target);
+  ASSERT_TRUE(chosen.has_value());
+  ASSERT_EQ(chosen->second.kind, CompoundKind::InsideReverse);
+  ASSERT_TRUE(chosen->second.outside.has_value());
+  const FlatFoldRequest& inside = chosen->second.request;
+  const FlatFoldRequest& outside = *chosen->second.outside;
+  ASSERT_EQ(outside.creases.size(), inside.creases.size());
+  for (size_t k = 0; k < inside.creases.size(); ++k)
+  {
+    EXPECT_EQ(outside.creases[k].start, inside.creases[k].start);
+    EXPECT_EQ(outside.creases[k].angle, -inside.creases[k].angle);  // each crease the other way
+  }
+  // The same places, the layers stacked otherwise.
+  Paper in = crane()[14], out = crane()[14];
+  ASSERT_TRUE(flatFold(in, inside).ok());
+  ASSERT_TRUE(flatFold(out, outside).ok());
+  EXPECT_LE(largestOffset(in, out), 1e-9);
+  EXPECT_NE(in.face_orders, out.face_orders);
+}
+
 TEST(CompoundFold, ThePointersWayAlongTheDragIsTheFractionPreviewed)
 {
   const FlapDrag drag = flapDrag(crane(), 15, Vec2(0.6911, 0.0589));
@@ -151,6 +176,8 @@ TEST(CompoundFold, PaperThatDoesNotLieFlatOrAPressOffThePaperIsRefused)
   ASSERT_FALSE(standing.ok());
   EXPECT_NE(standing.message().find("does not lie flat"), std::string::npos) << standing.message();
   EXPECT_FALSE(CompoundFolds::at(crane()[6], -1, Vec3::Zero()).ok());
+  EXPECT_FALSE(CompoundFolds::at(crane()[6], 0, Vec3(NAN, 0, 0)).ok());
+  EXPECT_FALSE(CompoundFolds::at(crane()[6], 0, crane()[6].faceCentroid(0), Vec3::Zero()).ok());
   EXPECT_FALSE(CompoundFolds::at(crane()[6], static_cast<int>(crane()[6].faces.size()), Vec3::Zero()).ok());
   // A sheet without creases folds no flap.
   const Paper flat = Paper::square(1.0);

@@ -3,7 +3,7 @@
 // and drags it to where it should lie; the creases are inferred: among the flat folds that
 // change only creases around the pressed face — the creases at one of its corners (a squash),
 // or along a line through one of its edges with the creases meeting that line (a petal fold,
-// inside and outside reverse folds) — the one whose pressed point lands nearest the pointer.
+// inside and outside reverse folds) — the one whose pressed point's way the pointer is on.
 // The result is a flat fold on chosen creases (flat_fold.h), previewed and committed as the
 // marked-creases fold is.
 #pragma once
@@ -44,7 +44,9 @@ struct CompoundOutcome
 };
 
 /// The flat folds a drag from `press` on `face` can make, worked out at the press. Fails when
-/// the paper does not lie flat (every crease at 0 or ±180°) or the face is not one of its faces.
+/// the paper does not lie flat (every crease at 0 or ±180°), the face is not one of its faces,
+/// or a point or the side is not finite. The face that stays is the one farthest from the
+/// pressed face on the sheet.
 class CompoundFolds
 {
 public:
@@ -82,6 +84,9 @@ public:
   {
     FlatFoldRequest request;
     CompoundKind kind = CompoundKind::Fold;
+    /// For an inside reverse fold, the outside one along the same creases (the pressed point
+    /// lands at the same place), when the layers let the tip wrap round them.
+    std::optional<FlatFoldRequest> outside;
   };
   Expected<Resolved> resolve(size_t outcome);
   /// `nearest`, resolved: the nearest outcome that folds flat.
