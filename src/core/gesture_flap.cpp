@@ -49,6 +49,22 @@ void GestureModel::pressFlap()
   }
 }
 
+std::pair<const FlatFoldRequest*, CompoundKind> GestureModel::flapFold(const CompoundFolds::Resolved& fold) const
+{
+  if (outside_reverse_ && fold.outside)
+    return { &*fold.outside, CompoundKind::OutsideReverse };
+  return { &fold.request, fold.kind };
+}
+
+void GestureModel::toggleOutsideReverse(const Pointer& at)
+{
+  outside_reverse_ = !outside_reverse_;
+  showSheet();  // the menu's check mark
+  tell(outside_reverse_ ? "A flap dragged over a line wraps its tip round the layers (an outside reverse fold)." :
+                          "A flap dragged over a line turns its tip in between the layers (an inside reverse fold).",
+       rightClick(at));
+}
+
 Vec3 GestureModel::flapTarget() const
 {
   if (!pointer_camera_)
@@ -70,7 +86,7 @@ void GestureModel::updateFlap()
     return;
   if (!flap_previewed_ && choice.fraction < 1e-3)
     return;  // nothing to show yet
-  if (send(FlatFoldCall{ fold.request, choice.fraction, false }).success)
+  if (send(FlatFoldCall{ *flapFold(fold).first, choice.fraction, false }).success)
     flap_previewed_ = std::make_pair(choice.outcome, choice.fraction);
 }
 
@@ -86,10 +102,11 @@ std::string GestureModel::releaseFlap()
     const double way = (flap_->outcomes()[choice.outcome].landing - press_).norm();
     if (choice.miss <= kMissedFold * way)
     {
-      message = refusal(send(FlatFoldCall{ fold.request, 1.0, true }));
+      const auto [request, kind] = flapFold(fold);
+      message = refusal(send(FlatFoldCall{ *request, 1.0, true }));
       if (message.empty())
       {
-        message = compoundKindName(fold.kind);
+        message = compoundKindName(kind);
         message[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(message[0])));
         message += ".";
       }
@@ -104,7 +121,7 @@ std::string GestureModel::releaseFlap()
   {
     const Expected<CompoundFolds::Resolved> shown = flap_->resolve(flap_previewed_->first);
     if (shown)
-      send(FlatFoldCall{ shown->request, 0.0, false });
+      send(FlatFoldCall{ *flapFold(*shown).first, 0.0, false });
   }
   flap_.reset();
   flap_previewed_.reset();

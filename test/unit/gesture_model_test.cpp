@@ -420,6 +420,33 @@ TEST_F(GestureModelTest, AFlapLetGoNearWhereItWasFoldsNothingAndTheShownPreviewG
   EXPECT_EQ(out.lastSaid().rfind("No paper here", 0), 0u) << out.lastSaid();
 }
 
+TEST_F(GestureModelTest, InFlapModeAReverseFoldGoesInsideUnlessTheOutsideOneIsChosen)
+{
+  const Expected<std::vector<Paper>> states = craneStates();
+  ASSERT_TRUE(states.ok()) << states.message();
+  const FlapDrag flap = flapDrag(*states, 15, Vec2(0.6911, 0.0589));
+  load((*states)[14]);
+  model.chooseMode(GestureMode::Flap, at(p3(0.5, 0.5)));
+  drag(flap.press, { flap.target });
+  EXPECT_EQ(out.lastSaid(), "Inside reverse fold.");
+  const FlatFoldCall inside = out.sent<FlatFoldCall>().back();
+  EXPECT_FALSE(model.outsideReverse());
+  model.toggleOutsideReverse(at(p3(0.5, 0.5)));
+  EXPECT_TRUE(model.outsideReverse());
+  out.forget();
+  drag(flap.press, { flap.target });
+  EXPECT_EQ(out.lastSaid(), "Outside reverse fold.");
+  const std::vector<FlatFoldCall> calls = out.sent<FlatFoldCall>();
+  ASSERT_EQ(calls.size(), 2u);  // the preview and the commit, both of the outside fold
+  for (const FlatFoldCall& call : calls)
+    for (size_t k = 0; k < call.fold.creases.size(); ++k)
+      EXPECT_EQ(call.fold.creases[k].angle, -inside.fold.creases[k].angle);
+  // It folds the flap to the same places, wrapped round.
+  Paper wrapped = (*states)[14];
+  ASSERT_TRUE(flatFold(wrapped, calls.back().fold).ok());
+  EXPECT_LE(largestOffset(wrapped, flap.after), 1e-6);
+}
+
 TEST_F(GestureModelTest, ANewInputFinishesTheAnimatedFoldAtOnce)
 {
   std::vector<int> left;

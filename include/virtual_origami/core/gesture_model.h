@@ -127,6 +127,9 @@ public:
   /// service would refuse as wrong for paper (strained, crossing), as Origami Simulator shows it.
   void toggleKeepRefusedFolds(const Pointer& at);
   void togglePickedLayersOnly(const Pointer& at);
+  /// A flap dragged over a line makes the outside reverse fold (the tip wrapped round the
+  /// layers) instead of the inside one (turned in between them).
+  void toggleOutsideReverse(const Pointer& at);
   /// The sheet marker changed for another reason (strain colours): sent now or after the drag.
   void refreshSheet();
 
@@ -147,6 +150,10 @@ public:
   bool keepRefusedFolds() const
   {
     return keep_refused_folds_;
+  }
+  bool outsideReverse() const
+  {
+    return outside_reverse_;
   }
   bool pickedLayersOnly() const
   {
@@ -280,6 +287,8 @@ private:
 
   // Folds by dragging a flap (gesture_flap.cpp).
   void pressFlap();
+  /// The fold a resolved flap drag makes (the outside reverse fold when chosen) and its name.
+  std::pair<const FlatFoldRequest*, CompoundKind> flapFold(const CompoundFolds::Resolved& fold) const;
   Vec3 flapTarget() const;
   void updateFlap();
   std::string releaseFlap();
@@ -299,6 +308,7 @@ private:
   bool snapping_ = true;             // a drawn line snaps (Fig. 6); off: exactly as drawn
   bool keep_refused_folds_ = false;  // fold-by-assignment commits keep what the service would refuse
   bool picked_layers_only_ = false;  // a rotation turns the picked face's own layers only
+  bool outside_reverse_ = false;     // a flap drag's reverse fold wraps the tip round the layers
 
   std::optional<Paper> paper_;
   uint64_t revision_ = 0;
