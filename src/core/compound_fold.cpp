@@ -91,6 +91,12 @@ Eigen::Isometry3d motionOf(const Paper& paper, const std::vector<Vec3>& after, i
   return motion;
 }
 
+/// Whether `other` lies above `face` along +z, by a face order of `paper`.
+bool aboveAlongZ(const Paper& paper, const FaceOrder& o)
+{
+  return (o.above > 0) == (paper.faceNormal(o.face).z() > 0);
+}
+
 /// How many of the faces a fold moved lie between faces it left in place (faces both above and
 /// below them, as the layer order of `folded` stacks them): a reverse fold's tip turned in
 /// between the layers has them, one wrapped round them has none.
@@ -103,8 +109,7 @@ int tuckedFaces(const Paper& folded, const FlatFoldResult& result)
   {
     if (o.face < 0 || o.other < 0 || o.above == 0 || moved[o.face] == moved[o.other])
       continue;
-    // Whether `other` lies above `face` along +z.
-    const bool other_above = (o.above > 0) == (folded.faceNormal(o.face).z() > 0);
+    const bool other_above = aboveAlongZ(folded, o);
     if (moved[o.face])
       (other_above ? above : below)[o.face] = 1;
     else
@@ -114,12 +119,6 @@ int tuckedFaces(const Paper& folded, const FlatFoldResult& result)
   for (int f : result.moved_faces)
     tucked += above[f] && below[f];
   return tucked;
-}
-
-/// Whether `other` lies above `face` along +z, by a face order of `paper`.
-bool aboveAlongZ(const Paper& paper, const FaceOrder& o)
-{
-  return (o.above > 0) == (paper.faceNormal(o.face).z() > 0);
 }
 
 /// How many faces a fold moved lie under a face it left in place, seen from `side`: a flap
@@ -148,6 +147,309 @@ bool onLine(const Vec3& a, const Vec3& b, const Vec3& p, double tolerance)
 {
   const Vec3 d = (b - a).normalized();
   return ((p - a) - (p - a).dot(d) * d).norm() < tolerance;
+}
+
+/// The face farthest from `face` on the sheet: the one that stays (the bulk of the model, away
+/// from the flap).
+int farthestFace(const Paper& paper, int face)
+{
+  const Vec2 pressed = creasePatternPoint(paper, face);
+  int farthest = face;
+  double distance = -1.0;
+  for (size_t f = 0; f < paper.faces.size(); ++f)
+  {
+    const double d = (creasePatternPoint(paper, static_cast<int>(f)) - pressed).norm();
+    if (d > distance)
+    {
+      distance = d;
+      farthest = static_cast<int>(f);
+    }
+  }
+  return farthest;
+}
+
+/// The search for the flat folds of a pressed face: every way of folding or unfolding a set of
+/// creases that folds flat at each inner vertex (Kawasaki, checked as soon as a vertex's creases
+/// are decided), closes over the whole paper and moves the pressed face.
+class OutcomeSearch
+{
+public:
+  OutcomeSearch(const Paper& paper, int face, const Vec3& press, int fixed_face)
+    : paper_(paper)
+    , face_(face)
+    , fixed_face_(fixed_face)
+    , press_(press)
+    , incidence_(paper)
+    , folded_now_(paper.edges.size(), 0)
+    , root_pose_(facePose(paper, fixed_face))
+    , tolerance_(1e-7 * paper.scale())
+  {
+    for (size_t e = 0; e < paper.edges.size(); ++e)
+      folded_now_[e] = isFolded(paper.edges[e].fold_angle);
+  }
+
+  bool inner(int v) const
+  {
+    return incidence_.inner[v] != 0;
+  }
+
+  /// The creases on the line through `edge` (as folded) and those meeting them at inner
+  /// vertices, in the part of the paper the line cuts off with the pressed face or (`patch`) in
+  /// the pressed face's layer: the faces reached from it without crossing the line or a folded
+  /// crease.
+  void foldAlong(int edge, bool patch)
+  {
+    const Vec3 a = paper_.vertices[paper_.edges[edge].vertices[0]].folded;
+    const Vec3 b = paper_.vertices[paper_.edges[edge].vertices[1]].folded;
+    const auto lies = [&](int e) {
+      return onLine(a, b, paper_.vertices[paper_.edges[e].vertices[0]].folded, tolerance_) &&
+             onLine(a, b, paper_.vertices[paper_.edges[e].vertices[1]].folded, tolerance_);
+    };
+    const std::vector<char> reached =
+        walkFaces(paper_, face_, {}, [&](int e) { return !lies(e) && (!patch || !folded_now_[e]); });
+    if (reached[fixed_face_] && !patch)
+      return;  // the line cuts nothing off
+    std::set<int> vertices;
+    std::vector<int> line_creases;
+    for (size_t f = 0; f < paper_.faces.size(); ++f)
+      if (reached[f])
+        for (int e : paper_.faces[f].edges)
+        {
+          if (!paper_.edges[e].isCrease() || !lies(e))
+            continue;
+          if (std::find(line_creases.begin(), line_creases.end(), e) == line_creases.end())
+            line_creases.push_back(e);
+          for (int v : paper_.edges[e].vertices)
+            if (inner(v))
+              vertices.insert(v);
+        }
+    foldCreasesAt(std::vector<int>(vertices.begin(), vertices.end()), line_creases, true, patch);
+  }
+
+  /// Every way of folding the creases at `vertices` and `line_creases` (at least one of those
+  /// changing, when given) into `outcomes`.
+  void foldCreasesAt(const std::vector<int>& vertices, const std::vector<int>& line_creases, bool from_line, bool patch)
+  {
+    pool_ = line_creases;
+    for (int v : vertices)
+      for (int e : incidence_.creases[v])
+        if (std::find(pool_.begin(), pool_.end(), e) == pool_.end())
+          pool_.push_back(e);
+    if (pool_.empty() || pool_.size() > kMaxPool)
+      return;
+    std::sort(pool_.begin(), pool_.end());
+    position_.assign(paper_.edges.size(), -1);
+    for (size_t i = 0; i < pool_.size(); ++i)
+      position_[pool_[i]] = static_cast<int>(i);
+    // Each inner vertex a pool crease meets is checked once its last pool crease is decided.
+    check_at_.assign(pool_.size(), {});
+    std::set<int> touched;
+    for (int e : pool_)
+      for (int v : paper_.edges[e].vertices)
+        if (inner(v))
+          touched.insert(v);
+    for (int v : touched)
+    {
+      int last = -1;
+      for (int e : incidence_.creases[v])
+        last = std::max(last, position_[e]);
+      check_at_[last].push_back(v);
+    }
+    line_creases_ = line_creases;
+    from_line_ = from_line;
+    patch_ = patch;
+    state_.assign(pool_.size(), 0);
+    assignments_ = 0;
+    decide(0);
+  }
+
+  std::vector<CompoundOutcome> outcomes;
+
+private:
+  bool folded(int e) const
+  {
+    return position_[e] >= 0 ? state_[position_[e]] != 0 : folded_now_[e] != 0;
+  }
+
+  void decide(size_t i)
+  {
+    if (assignments_ >= kMaxAssignments)
+      return;
+    if (i == pool_.size())
+    {
+      ++assignments_;
+      record();
+      return;
+    }
+    for (const char s : { folded_now_[pool_[i]], static_cast<char>(!folded_now_[pool_[i]]) })
+    {
+      state_[i] = s;
+      bool flat = true;
+      for (int v : check_at_[i])
+        flat = flat && foldsFlatAt(paper_, v, incidence_.creases[v], [this](int e) { return folded(e); });
+      if (flat)
+        decide(i + 1);
+    }
+  }
+
+  /// The outcome of the creases as decided, when it changes something new, closes and moves
+  /// the pressed face.
+  void record()
+  {
+    std::vector<std::pair<int, char>> changes;
+    bool on_line = line_creases_.empty();
+    for (size_t k = 0; k < pool_.size(); ++k)
+      if (state_[k] != folded_now_[pool_[k]])
+      {
+        changes.emplace_back(pool_[k], state_[k]);
+        on_line = on_line || std::count(line_creases_.begin(), line_creases_.end(), pool_[k]) > 0;
+      }
+    if (changes.empty() || !on_line || !seen_.insert(changes).second)
+      return;
+    std::vector<double> angles(paper_.edges.size());
+    for (size_t e = 0; e < paper_.edges.size(); ++e)
+      angles[e] = paper_.edges[e].fold_angle;
+    for (const auto& [e, f] : changes)
+      angles[e] = f ? M_PI : 0.0;  // either direction puts the faces in the same places
+    const Expected<std::vector<Vec3>> placed =
+        foldedPositionsFromAngles(paper_, angles, fixed_face_, root_pose_, tolerance_);
+    if (!placed)
+      return;
+    const Vec3 landing = motionOf(paper_, *placed, face_) * press_;
+    if ((landing - press_).norm() < 1e-6 * paper_.scale())
+      return;
+    CompoundOutcome outcome;
+    for (const auto& [e, f] : changes)
+    {
+      outcome.edges.push_back(e);
+      outcome.folded.push_back(f);
+    }
+    outcome.landing = landing;
+    for (size_t v = 0; v < paper_.vertices.size(); ++v)
+      outcome.disturbance += ((*placed)[v] - paper_.vertices[v].folded).norm();
+    outcome.line_creases = line_creases_;
+    outcome.from_line = from_line_;
+    outcome.patch = patch_;
+    outcomes.push_back(std::move(outcome));
+  }
+
+  const Paper& paper_;
+  const int face_, fixed_face_;
+  const Vec3 press_;
+  const Incidence incidence_;
+  std::vector<char> folded_now_;
+  const Eigen::Isometry3d root_pose_;
+  const double tolerance_;
+  std::set<std::vector<std::pair<int, char>>> seen_;  // the change sets recorded
+  // The crease set being decided.
+  std::vector<int> pool_, position_, line_creases_;
+  std::vector<std::vector<int>> check_at_;
+  std::vector<char> state_;
+  bool from_line_ = false, patch_ = false;
+  size_t assignments_ = 0;
+};
+
+/// A choice of fold directions for an outcome that folds flat, and how its layers stack.
+struct Directed
+{
+  FlatFoldRequest request;
+  int tucked = 0;   // tuckedFaces
+  int covered = 0;  // coveredFaces
+};
+
+/// Every choice of directions for the creases `outcome` folds (up to kMaxDirections) with which
+/// every inner vertex has mountains and valleys differing by two (Maekawa) and the fold itself
+/// succeeds (big-little-big, the layers); `refusal`: why the last one tried did not.
+std::vector<Directed> foldDirections(const Paper& paper, const CompoundOutcome& outcome, const Vec2& fixed_point,
+                                     const Vec3& side, std::string& refusal)
+{
+  const Incidence incidence(paper);
+  std::vector<double> angles(paper.edges.size());
+  for (size_t e = 0; e < paper.edges.size(); ++e)
+    angles[e] = paper.edges[e].fold_angle;
+  std::vector<int> choose;  // the creases it folds, whose direction is chosen
+  for (size_t k = 0; k < outcome.edges.size(); ++k)
+  {
+    angles[outcome.edges[k]] = outcome.folded[k] ? M_PI : 0.0;
+    if (outcome.folded[k])
+      choose.push_back(outcome.edges[k]);
+  }
+  const auto maekawa = [&](int v) {
+    if (!incidence.inner[v])
+      return true;
+    int valleys = 0, mountains = 0;
+    for (int e : incidence.creases[v])
+      if (isFolded(angles[e]))
+        (angles[e] > 0 ? valleys : mountains)++;
+    return valleys + mountains == 0 || std::abs(valleys - mountains) == 2;
+  };
+  // Each vertex is checked once the last of its creases to choose is chosen.
+  std::vector<std::vector<int>> check_at(choose.size());
+  for (size_t i = 0; i < choose.size(); ++i)
+    for (int v : paper.edges[choose[i]].vertices)
+    {
+      size_t last = i;
+      for (int e : incidence.creases[v])
+      {
+        const auto it = std::find(choose.begin(), choose.end(), e);
+        if (it != choose.end())
+          last = std::max(last, static_cast<size_t>(it - choose.begin()));
+      }
+      if (last == i)
+        check_at[i].push_back(v);
+    }
+  std::vector<Directed> valid;
+  int tried = 0;
+  refusal = "no fold directions fold flat";
+  std::function<void(size_t)> direct = [&](size_t i) {
+    if (tried >= kMaxDirections)
+      return;
+    if (i == choose.size())
+    {
+      ++tried;
+      FlatFoldRequest request;
+      request.fixed_point = fixed_point;
+      for (int e : outcome.edges)
+      {
+        const Edge& edge = paper.edges[e];
+        request.creases.push_back(CreaseLineAngle{ paper.vertices[edge.vertices[0]].crease_pattern,
+                                                   paper.vertices[edge.vertices[1]].crease_pattern, angles[e] });
+      }
+      Paper folded = paper;
+      const Expected<FlatFoldResult> result = flatFold(folded, request);
+      if (!result)
+      {
+        refusal = result.message();
+        return;
+      }
+      valid.push_back(
+          Directed{ std::move(request), tuckedFaces(folded, *result), coveredFaces(folded, *result, side) });
+      return;
+    }
+    for (const double sign : { 1.0, -1.0 })
+    {
+      angles[choose[i]] = sign * M_PI;
+      bool ok = true;
+      for (int v : check_at[i])
+        ok = ok && maekawa(v);
+      if (ok)
+        direct(i + 1);
+    }
+  };
+  direct(0);
+  return valid;
+}
+
+/// Whether the creases a fold folds all fold the same way.
+bool oneWay(const FlatFoldRequest& request)
+{
+  int valleys = 0, mountains = 0;
+  for (const CreaseLineAngle& line : request.creases)
+  {
+    valleys += line.angle > M_PI / 2;
+    mountains += line.angle < -M_PI / 2;
+  }
+  return valleys == 0 || mountains == 0;
 }
 }  // namespace
 
@@ -190,157 +492,21 @@ Expected<CompoundFolds> CompoundFolds::at(const Paper& paper, int face, const Ve
   const Vec3 towards_eye = eye_side.normalized();
   const std::vector<int> under = facesUnder(paper, press, -towards_eye);
   folds.side_ = under.size() > 1 && under.back() == face ? -towards_eye : towards_eye;
-  const double tolerance = 1e-7 * paper.scale();
-  // The face that stays: the one farthest from the pressed face on the sheet (the bulk of the
-  // model, away from the flap).
-  const Vec2 pressed = creasePatternPoint(paper, face);
-  double farthest = -1.0;
-  for (size_t f = 0; f < paper.faces.size(); ++f)
-  {
-    const double d = (creasePatternPoint(paper, static_cast<int>(f)) - pressed).norm();
-    if (d > farthest)
-    {
-      farthest = d;
-      folds.fixed_face_ = static_cast<int>(f);
-    }
-  }
-  const Incidence incidence(paper);
-  std::vector<char> folded_now(paper.edges.size(), 0);
-  for (size_t e = 0; e < paper.edges.size(); ++e)
-    folded_now[e] = isFolded(paper.edges[e].fold_angle);
-  const Eigen::Isometry3d root_pose = facePose(paper, folds.fixed_face_);
-  std::set<std::vector<std::pair<int, char>>> seen;
+  folds.fixed_face_ = farthestFace(paper, face);
 
-  // Every way of folding or unfolding the creases at `vertices` (and `line_creases`) that folds
-  // flat at each inner vertex and closes over the whole paper, and that moves the pressed face.
-  const auto tryVertexSet = [&](const std::vector<int>& vertices, const std::vector<int>& line_creases, bool from_line,
-                                bool patch) {
-    std::vector<int> pool = line_creases;
-    for (int v : vertices)
-      for (int e : incidence.creases[v])
-        if (std::find(pool.begin(), pool.end(), e) == pool.end())
-          pool.push_back(e);
-    if (pool.empty() || pool.size() > kMaxPool)
-      return;
-    std::sort(pool.begin(), pool.end());
-    std::vector<int> position(paper.edges.size(), -1);
-    for (size_t i = 0; i < pool.size(); ++i)
-      position[pool[i]] = static_cast<int>(i);
-    // Each inner vertex a pool crease meets is checked once its last pool crease is decided.
-    std::vector<std::vector<int>> check_at(pool.size());
-    std::set<int> touched;
-    for (int e : pool)
-      for (int v : paper.edges[e].vertices)
-        if (incidence.inner[v])
-          touched.insert(v);
-    for (int v : touched)
-    {
-      int last = -1;
-      for (int e : incidence.creases[v])
-        last = std::max(last, position[e]);
-      check_at[last].push_back(v);
-    }
-    std::vector<char> state(pool.size(), 0);
-    const auto folded = [&](int e) { return position[e] >= 0 ? state[position[e]] != 0 : folded_now[e] != 0; };
-    size_t assignments = 0;
-    std::function<void(size_t)> assign = [&](size_t i) {
-      if (assignments >= kMaxAssignments)
-        return;
-      if (i == pool.size())
-      {
-        ++assignments;
-        std::vector<std::pair<int, char>> changes;
-        bool on_line = line_creases.empty();
-        for (size_t k = 0; k < pool.size(); ++k)
-          if (state[k] != folded_now[pool[k]])
-          {
-            changes.emplace_back(pool[k], state[k]);
-            on_line = on_line || std::find(line_creases.begin(), line_creases.end(), pool[k]) != line_creases.end();
-          }
-        if (changes.empty() || !on_line || !seen.insert(changes).second)
-          return;
-        std::vector<double> angles(paper.edges.size());
-        for (size_t e = 0; e < paper.edges.size(); ++e)
-          angles[e] = paper.edges[e].fold_angle;
-        for (const auto& [e, f] : changes)
-          angles[e] = f ? M_PI : 0.0;
-        const Expected<std::vector<Vec3>> placed =
-            foldedPositionsFromAngles(paper, angles, folds.fixed_face_, root_pose, tolerance);
-        if (!placed)
-          return;
-        const Vec3 landing = motionOf(paper, *placed, face) * press;
-        if ((landing - press).norm() < 1e-6 * paper.scale())
-          return;
-        CompoundOutcome outcome;
-        for (const auto& [e, f] : changes)
-        {
-          outcome.edges.push_back(e);
-          outcome.folded.push_back(f);
-        }
-        outcome.landing = landing;
-        for (size_t v = 0; v < paper.vertices.size(); ++v)
-          outcome.disturbance += ((*placed)[v] - paper.vertices[v].folded).norm();
-        outcome.line_creases = line_creases;
-        outcome.from_line = from_line;
-        outcome.patch = patch;
-        folds.outcomes_.push_back(std::move(outcome));
-        return;
-      }
-      for (char s : { folded_now[pool[i]], static_cast<char>(!folded_now[pool[i]]) })
-      {
-        state[i] = s;
-        bool flat = true;
-        for (int v : check_at[i])
-          flat = flat && foldsFlatAt(paper, v, incidence.creases[v], folded);
-        if (flat)
-          assign(i + 1);
-      }
-    };
-    assign(0);
-  };
-
-  const std::vector<int>& corners = paper.faces[face].vertices;
+  OutcomeSearch search(paper, face, press, folds.fixed_face_);
   // A squash: the creases at one corner of the pressed face.
-  for (int v : corners)
-    if (incidence.inner[v])
-      tryVertexSet({ v }, {}, false, false);
+  for (int v : paper.faces[face].vertices)
+    if (search.inner(v))
+      search.foldCreasesAt({ v }, {}, false, false);
   // Along a line through an edge of the pressed face: the creases on it, and those meeting it,
   // in the part of the paper the line cuts off with the face (a reverse fold) or in the face's
   // layer (a petal fold).
   for (int edge : paper.faces[face].edges)
-  {
-    if (!paper.edges[edge].isCrease())
-      continue;
-    const Vec3 a = paper.vertices[paper.edges[edge].vertices[0]].folded;
-    const Vec3 b = paper.vertices[paper.edges[edge].vertices[1]].folded;
-    const auto lies = [&](int e) {
-      return onLine(a, b, paper.vertices[paper.edges[e].vertices[0]].folded, tolerance) &&
-             onLine(a, b, paper.vertices[paper.edges[e].vertices[1]].folded, tolerance);
-    };
-    for (const bool patch : { false, true })
-    {
-      const std::vector<char> reached =
-          walkFaces(paper, face, {}, [&](int e) { return !lies(e) && (!patch || !folded_now[e]); });
-      std::set<int> vertices;
-      std::vector<int> line_creases;
-      for (size_t f = 0; f < paper.faces.size(); ++f)
-        if (reached[f])
-          for (size_t i = 0; i < paper.faces[f].edges.size(); ++i)
-          {
-            const int e = paper.faces[f].edges[i];
-            if (!paper.edges[e].isCrease() || !lies(e))
-              continue;
-            if (std::find(line_creases.begin(), line_creases.end(), e) == line_creases.end())
-              line_creases.push_back(e);
-            for (int v : paper.edges[e].vertices)
-              if (incidence.inner[v])
-                vertices.insert(v);
-          }
-      if (reached[folds.fixed_face_] && !patch)
-        continue;  // the line cuts nothing off
-      tryVertexSet(std::vector<int>(vertices.begin(), vertices.end()), line_creases, true, patch);
-    }
-  }
+    if (paper.edges[edge].isCrease())
+      for (const bool patch : { false, true })
+        search.foldAlong(edge, patch);
+  folds.outcomes_ = std::move(search.outcomes);
   folds.resolved_.resize(folds.outcomes_.size());
   return folds;
 }
@@ -387,128 +553,43 @@ Expected<CompoundFolds::Resolved> CompoundFolds::resolve(size_t index)
   if (resolved_[index])
     return *resolved_[index];
   const CompoundOutcome& outcome = outcomes_[index];
-  const Incidence incidence(paper_);
-  // The directions of the creases it folds: every inner vertex with mountains and valleys
-  // differing by two (Maekawa), then the fold itself decides (big-little-big, the layers).
-  std::vector<double> angles(paper_.edges.size());
-  for (size_t e = 0; e < paper_.edges.size(); ++e)
-    angles[e] = paper_.edges[e].fold_angle;
-  std::vector<int> choose;
-  for (size_t k = 0; k < outcome.edges.size(); ++k)
-  {
-    angles[outcome.edges[k]] = outcome.folded[k] ? M_PI : 0.0;
-    if (outcome.folded[k])
-      choose.push_back(outcome.edges[k]);
-  }
-  const auto maekawa = [&](int v) {
-    if (!incidence.inner[v])
-      return true;
-    int valleys = 0, mountains = 0;
-    for (int e : incidence.creases[v])
-      if (isFolded(angles[e]))
-        (angles[e] > 0 ? valleys : mountains)++;
-    return valleys + mountains == 0 || std::abs(valleys - mountains) == 2;
-  };
-  std::vector<std::vector<int>> check_at(choose.size());
-  for (size_t i = 0; i < choose.size(); ++i)
-    for (int v : paper_.edges[choose[i]].vertices)
-    {
-      size_t last = i;
-      for (int e : incidence.creases[v])
-      {
-        const auto it = std::find(choose.begin(), choose.end(), e);
-        if (it != choose.end())
-          last = std::max(last, static_cast<size_t>(it - choose.begin()));
-      }
-      if (last == i)
-        check_at[i].push_back(v);
-    }
-  struct Valid
-  {
-    FlatFoldRequest request;
-    int tucked = 0;
-    int covered = 0;
-  };
-  std::vector<Valid> valid;
-  int tried = 0;
-  std::string last_refusal = "no fold directions fold flat";
-  const Vec2 fixed_point = creasePatternPoint(paper_, fixed_face_);
-  std::function<void(size_t)> direct = [&](size_t i) {
-    if (tried >= kMaxDirections)
-      return;
-    if (i == choose.size())
-    {
-      ++tried;
-      FlatFoldRequest request;
-      request.fixed_point = fixed_point;
-      for (int e : outcome.edges)
-      {
-        const Edge& edge = paper_.edges[e];
-        request.creases.push_back(CreaseLineAngle{ paper_.vertices[edge.vertices[0]].crease_pattern,
-                                                   paper_.vertices[edge.vertices[1]].crease_pattern, angles[e] });
-      }
-      Paper folded = paper_;
-      const Expected<FlatFoldResult> result = flatFold(folded, request);
-      if (!result)
-      {
-        last_refusal = result.message();
-        return;
-      }
-      valid.push_back(Valid{ std::move(request), tuckedFaces(folded, *result), coveredFaces(folded, *result, side_) });
-      return;
-    }
-    for (const double sign : { 1.0, -1.0 })
-    {
-      angles[choose[i]] = sign * M_PI;
-      bool ok = true;
-      for (int v : check_at[i])
-        ok = ok && maekawa(v);
-      if (ok)
-        direct(i + 1);
-    }
-  };
-  direct(0);
+  std::string refusal;
+  const std::vector<Directed> valid =
+      foldDirections(paper_, outcome, creasePatternPoint(paper_, fixed_face_), side_, refusal);
   if (valid.empty())
   {
-    resolved_[index] = Failure::failure(last_refusal);
+    resolved_[index] = Failure::failure(refusal);
     return *resolved_[index];
   }
-  // Along a line cutting a flap off: a reverse fold, its tip turned in between the layers
-  // (the most faces tucked) unless the user asks otherwise.
-  // Otherwise the flap stays on the side it was pressed from; a squash folds its new creases
-  // one way (the flap's sides both under it).
-  const auto oneWay = [](const FlatFoldRequest& request) {
-    int valleys = 0, mountains = 0;
-    for (const CreaseLineAngle& line : request.creases)
-    {
-      valleys += line.angle > M_PI / 2;
-      mountains += line.angle < -M_PI / 2;
-    }
-    return valleys == 0 || mountains == 0;
-  };
-  const auto better = [&](const Valid& a, const Valid& b) {
-    if (outcome.from_line && !outcome.patch && a.tucked != b.tucked)
+  const bool reverse = outcome.from_line && !outcome.patch;
+  // A reverse fold turns the tip in between the layers (the most faces tucked); a squash folds
+  // its new creases one way (the flap's sides both under it); and the flap stays on the side it
+  // was pressed from.
+  const auto better = [&](const Directed& a, const Directed& b) {
+    if (reverse && a.tucked != b.tucked)
       return a.tucked > b.tucked;
     if (!outcome.from_line && oneWay(a.request) != oneWay(b.request))
       return oneWay(a.request);
     return a.covered < b.covered;
   };
-  const Valid* chosen = &valid.front();
-  for (const Valid& v : valid)
-    if (better(v, *chosen))
-      chosen = &v;
-  CompoundKind kind = CompoundKind::Squash;
+  const Directed* chosen = &valid.front();
+  for (const Directed& d : valid)
+    if (better(d, *chosen))
+      chosen = &d;
+  Resolved resolved{ chosen->request, CompoundKind::Squash, std::nullopt };
   if (outcome.from_line)
-    kind = outcome.patch      ? CompoundKind::Petal :
-           chosen->tucked > 0 ? CompoundKind::InsideReverse :
-                                CompoundKind::Reverse;
-  Resolved resolved{ chosen->request, kind, std::nullopt };
-  if (kind == CompoundKind::InsideReverse)
+    resolved.kind = outcome.patch      ? CompoundKind::Petal :
+                    chosen->tucked > 0 ? CompoundKind::InsideReverse :
+                                         CompoundKind::Reverse;
+  if (resolved.kind == CompoundKind::InsideReverse)
   {
     // The other way round: the tip wrapped round the layers, none of it between them.
-    for (const Valid& v : valid)
-      if (v.tucked == 0 && (!resolved.outside || v.covered < chosen->covered))
-        resolved.outside = v.request;
+    const Directed* outside = nullptr;
+    for (const Directed& d : valid)
+      if (d.tucked == 0 && (!outside || d.covered < outside->covered))
+        outside = &d;
+    if (outside)
+      resolved.outside = outside->request;
   }
   resolved_[index] = resolved;
   return resolved;
