@@ -21,6 +21,9 @@ namespace
 /// How many ways of folding the creases of one vertex set are tried, at most: a press must
 /// answer at once.
 constexpr size_t kMaxAssignments = 20000;
+/// Faces placed, summed over the folds tried, at most per press (each fold tried places every
+/// face): a press on a large crease pattern answers within a second or so.
+constexpr size_t kMaxFacesPlaced = 2000000;
 /// Vertex sets with more creases than this are left out (2^n assignments).
 constexpr size_t kMaxPool = 22;
 /// Fold directions tried per outcome, at most (each a flat fold).
@@ -273,7 +276,7 @@ private:
 
   void decide(size_t i)
   {
-    if (assignments_ >= kMaxAssignments)
+    if (assignments_ >= kMaxAssignments || faces_placed_ >= kMaxFacesPlaced)
       return;
     if (i == pool_.size())
     {
@@ -311,6 +314,7 @@ private:
       angles[e] = paper_.edges[e].fold_angle;
     for (const auto& [e, f] : changes)
       angles[e] = f ? M_PI : 0.0;  // either direction puts the faces in the same places
+    faces_placed_ += paper_.faces.size();
     const Expected<std::vector<Vec3>> placed =
         foldedPositionsFromAngles(paper_, angles, fixed_face_, root_pose_, tolerance_);
     if (!placed)
@@ -347,6 +351,7 @@ private:
   std::vector<char> state_;
   bool from_line_ = false, patch_ = false;
   size_t assignments_ = 0;
+  size_t faces_placed_ = 0;  // over the whole press
 };
 
 /// A choice of fold directions for an outcome that folds flat, and how its layers stack.

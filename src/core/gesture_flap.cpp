@@ -15,6 +15,8 @@ namespace
 /// A release this far from where the fold takes the pressed point, of the way there, folds
 /// nothing: the pointer is nearer the press than the fold.
 constexpr double kMissedFold = 0.5;
+/// Folds whose directions the press works out, at most (each a flat fold or a few).
+constexpr size_t kResolvedAtPress = 64;
 }  // namespace
 
 void GestureModel::pressFlap()
@@ -42,8 +44,9 @@ void GestureModel::pressFlap()
     flap_refusal_ = "This flap folds no other way flat along the creases there: crease it first.";
   else
   {
-    // Their fold directions now, while the press is still: the previews then only ask for frames.
-    for (size_t i = 0; i < folds->outcomes().size(); ++i)
+    // Their fold directions now, while the press is still: the previews then only ask for
+    // frames (of many folds, the rest when the pointer first comes near them).
+    for (size_t i = 0; i < std::min(folds->outcomes().size(), kResolvedAtPress); ++i)
       folds->resolve(i);
     flap_ = std::move(*folds);
   }
