@@ -1,6 +1,6 @@
 // Flap mode: a fold by one drag (compound_fold.h under the mouse). The press works out the folds
-// the pressed flap can make; each update previews the one that takes the pressed point nearest
-// the pointer, as far along as the pointer is; the release commits it flat.
+// the pressed flap can make; each update previews the one whose way (the pressed point's) the
+// pointer is on, as far along as the pointer is; the release commits it flat.
 #include <algorithm>
 #include <cctype>
 #include <cmath>
