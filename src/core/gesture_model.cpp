@@ -28,6 +28,8 @@ const char* modeName(GestureMode mode)
       return "fold";
     case GestureMode::Drag:
       return "drag";
+    case GestureMode::Flap:
+      return "flap";
   }
   return "";
 }
@@ -213,6 +215,10 @@ void GestureModel::press(const Pointer& pointer)
       enter(GestureState::HoldingVertex);
       pressVertex();
       break;
+    case GestureMode::Flap:
+      enter(GestureState::DraggingFlap);
+      pressFlap();
+      break;
   }
   if (state_ != GestureState::TurningNothing)  // the drag goes on in rviz, but turns nothing
     updateDrag();
@@ -286,6 +292,9 @@ void GestureModel::updateDrag()
     case GestureState::TurningFace:
       updateRing();
       break;
+    case GestureState::DraggingFlap:
+      updateFlap();
+      break;
     default:
       break;
   }
@@ -350,6 +359,9 @@ void GestureModel::release(const Pointer& pointer)
       break;
     case GestureState::DrawingLine:
       message = releaseLine();
+      break;
+    case GestureState::DraggingFlap:
+      message = releaseFlap();
       break;
     default:
       break;
@@ -474,6 +486,10 @@ void GestureModel::chooseMode(GestureMode mode, const Pointer& at)
       break;
     case GestureMode::Drag:
       said = "Drag mode: press on a vertex and drag it.";
+      break;
+    case GestureMode::Flap:
+      said = "Flap mode: press on a flap and drag it where it should lie; the squash, petal or reverse fold "
+             "that takes it there folds flat on release.";
       break;
   }
   tell(said, rightClick(at));

@@ -68,6 +68,7 @@ std::vector<InteractionNode::MenuEntry> InteractionNode::menuEntries()
       [this] { return model_.snapping(); } },
     { "Keep refused folds by assignment", "", [this](const Feedback& f) { model_.toggleKeepRefusedFolds(pointer(f)); },
       [this] { return model_.keepRefusedFolds(); } },
+    titled(mode(GestureMode::Flap), "Flap mode: drag a flap"),
   };
 }
 

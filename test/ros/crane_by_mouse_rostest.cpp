@@ -6,6 +6,7 @@
 // on the folded model, and which layer the interaction says it picked.
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -19,9 +20,12 @@
 #include "../unit/crane_walkthrough.h"
 #include "ros_test_client.h"
 #include "virtual_origami/core/chosen_creases.h"
+#include "virtual_origami/core/compound_fold.h"
 #include "virtual_origami/core/drag.h"
 #include "virtual_origami/core/fold_sequence.h"
 #include "virtual_origami/core/geometry.h"
+#include "virtual_origami/core/kinematics.h"
+#include "virtual_origami/core/layer_pick.h"
 #include "virtual_origami/ros/conversions.h"
 #include "virtual_origami/ros/mouse_feedback.h"
 #include "virtual_origami/solvers/solver_factory.h"
@@ -106,15 +110,17 @@ std::string sequenceJson(const std::vector<core::Operation>& operations, const c
     {
       json creases = json::array();
       for (const core::CreaseLineAngle& line : op.flat_fold.creases)
-        creases.push_back({ { "start", xy(line.start) }, { "end", xy(line.end) }, { "angle_deg", line.angle * 180.0 / M_PI } });
+        creases.push_back(
+            { { "start", xy(line.start) }, { "end", xy(line.end) }, { "angle_deg", line.angle * 180.0 / M_PI } });
       step["flat_fold"] = { { "creases", creases }, { "fixed", xy(op.flat_fold.fixed_point) } };
     }
     if (i < reference.steps.size())
       step["note"] = reference.steps[i].note;
     steps.push_back(step);
   }
-  json sequence = { { "title", reference.title }, { "size", reference.size }, { "solver", reference.solver },
-                    { "steps", steps } };
+  json sequence = {
+    { "title", reference.title }, { "size", reference.size }, { "solver", reference.solver }, { "steps", steps }
+  };
   return sequence.dump(1);
 }
 
@@ -130,7 +136,8 @@ bool sameOperations(const core::FoldSequence& shipped, const std::vector<core::O
     const core::Operation& b = operations[i];
     if (a.kind != b.kind)
       return false;
-    if (a.kind == core::Operation::Kind::Crease && !(near(a.crease.start, b.crease.start) && near(a.crease.end, b.crease.end)))
+    if (a.kind == core::Operation::Kind::Crease &&
+        !(near(a.crease.start, b.crease.start) && near(a.crease.end, b.crease.end)))
       return false;
     if (a.kind == core::Operation::Kind::Rotate &&
         !(a.rotate.face == b.rotate.face && a.rotate.axis_edge == b.rotate.axis_edge &&
@@ -138,7 +145,8 @@ bool sameOperations(const core::FoldSequence& shipped, const std::vector<core::O
       return false;
     if (a.kind == core::Operation::Kind::FlatFold)
     {
-      if (a.flat_fold.creases.size() != b.flat_fold.creases.size() || !near(a.flat_fold.fixed_point, b.flat_fold.fixed_point))
+      if (a.flat_fold.creases.size() != b.flat_fold.creases.size() ||
+          !near(a.flat_fold.fixed_point, b.flat_fold.fixed_point))
         return false;
       for (size_t k = 0; k < a.flat_fold.creases.size(); ++k)
         if (!near(a.flat_fold.creases[k].start, b.flat_fold.creases[k].start) ||
@@ -156,11 +164,13 @@ protected:
   void SetUp() override
   {
     feedback_pub_ = client_.nh().advertise<InteractiveMarkerFeedback>("interaction/feedback", 1000);
-    status_sub_ = client_.nh().subscribe<InteractionStatus>("interaction_status", 100,
-                                                            [this](const InteractionStatus::ConstPtr& s) {
-                                                              status_ = *s;
-                                                              ++statuses_;
-                                                            });
+    status_sub_ = client_.nh().subscribe<InteractionStatus>(
+        "interaction_status", 100, [this](const InteractionStatus::ConstPtr& s) {
+          status_ = *s;
+          ++statuses_;
+          if (s->mode == "flap" && s->dragging)
+            longest_flap_update_ = std::max(longest_flap_update_, s->apply_seconds);
+        });
     init_sub_ = client_.nh().subscribe<visualization_msgs::InteractiveMarkerInit>(
         "interaction/update_full", 10,
         [this](const visualization_msgs::InteractiveMarkerInit::ConstPtr& init) { init_ = *init; });
@@ -285,7 +295,8 @@ protected:
       return;
     const std::map<std::string, std::string> entries{ { "crease", "Crease mode" },
                                                       { "rotate", "Rotate mode" },
-                                                      { "fold", "Fold mode: mark creases" } };
+                                                      { "fold", "Fold mode: mark creases" },
+                                                      { "flap", "Flap mode: drag a flap" } };
     menu(entries.at(name));
     ASSERT_EQ(status_.mode, name);
   }
@@ -426,6 +437,53 @@ protected:
     committed("the fold on the marked creases");
   }
 
+  /// Where the reference's paper after the fold (`after`) puts the crease-pattern point `cp`,
+  /// moved rigidly so that `fixed` (a face of `now`) lies where it lies now.
+  static core::Vec3 whereTheReferencePuts(const core::Paper& after, const core::Paper& now, int fixed,
+                                          const core::Vec2& cp)
+  {
+    const std::vector<int>& corners = now.faces[fixed].vertices;
+    Eigen::Matrix3Xd from(3, corners.size()), to(3, corners.size());
+    for (size_t i = 0; i < corners.size(); ++i)
+    {
+      const int v = after.vertexAt(now.vertices[corners[i]].crease_pattern, 1e-9);
+      EXPECT_GE(v, 0);
+      from.col(static_cast<Eigen::Index>(i)) = after.vertices[std::max(v, 0)].folded;
+      to.col(static_cast<Eigen::Index>(i)) = now.vertices[corners[i]].folded;
+    }
+    Eigen::Isometry3d motion;
+    motion.matrix() = Eigen::umeyama(from, to, false);
+    const int face = core::faceContaining(after, cp);
+    return motion * (core::facePose(after, face) * core::Vec3(cp.x(), cp.y(), 0.0));
+  }
+
+  /// A fold by one drag, as the walkthrough's text says: the flap pressed at `named`'s point (the
+  /// layer there picked by Next layer down when it is not on top) and dragged to where the
+  /// reference puts that point.
+  void flapFold(const test::FlapDragNamed& named, const core::Paper& after)
+  {
+    mode("flap");
+    const core::Paper now = paper();
+    const core::Vec2 cp(named.x, named.y);
+    const int face = core::faceContaining(now, cp);
+    ASSERT_GE(face, 0) << "no face at (" << named.x << ", " << named.y << ")";
+    const core::Vec3 at = core::facePose(now, face) * core::Vec3(cp.x(), cp.y(), 0.0);
+    const std::vector<int> under = core::facesUnder(now, at, kFromAbove);
+    if (under.empty() || under[0] != face)
+    {
+      for (int down = 0; status_.picked_face != face && down < 16; ++down)
+        menu("Next layer down", at);
+      ASSERT_EQ(status_.picked_face, face) << "the flap's layer was never picked";
+    }
+    // The face the interaction keeps in place is the one compound_fold keeps.
+    const core::Expected<core::CompoundFolds> folds = core::CompoundFolds::at(now, face, at);
+    ASSERT_TRUE(folds.ok()) << folds.message();
+    drag(at, whereTheReferencePuts(after, now, folds->fixedFace(), cp));
+    committed("the " + named.kind);
+    EXPECT_EQ(status_.message,
+              std::string(1, static_cast<char>(std::toupper(named.kind[0]))) + named.kind.substr(1) + ".");
+  }
+
   PaperClient client_;
   ros::Publisher feedback_pub_;
   ros::Subscriber status_sub_, init_sub_, operations_sub_;
@@ -433,6 +491,7 @@ protected:
   visualization_msgs::InteractiveMarkerInit init_;
   InteractionStatus status_;
   int statuses_ = 0;
+  double longest_flap_update_ = 0.0;  // the longest update of a flap drag, its preview included (s)
   std::map<std::string, int> menu_;
   MouseGesture gesture_;
   uint64_t revision_ = 0;
@@ -476,7 +535,9 @@ TEST_F(CraneByMouse, TheCraneFoldsByMouseAloneAsTheWalkthroughSaysAndTheScriptFo
     ASSERT_NE(row, nullptr) << "the walkthrough has no row for step " << number;
     if (number == row->first)
       row_start = gestures_;
-    if (step.operation.kind == core::Operation::Kind::FlatFold)
+    if (step.operation.kind == core::Operation::Kind::FlatFold && row->drags.count(number))
+      flapFold(row->drags.at(number), (*reference)[i + 1]);
+    else if (step.operation.kind == core::Operation::Kind::FlatFold)
     {
       ASSERT_TRUE(row->marks.count(number)) << "the walkthrough names no marks for step " << number;
       flatFold(step.operation.flat_fold, row->marks.at(number), (*reference)[i], (*reference)[i + 1]);
@@ -508,6 +569,7 @@ TEST_F(CraneByMouse, TheCraneFoldsByMouseAloneAsTheWalkthroughSaysAndTheScriptFo
   EXPECT_EQ(walkthrough.steps, static_cast<int>(sequence->steps.size()));
   std::printf("crane by mouse: %zu steps, %d gestures (clicks, drags, menu selections)\n", sequence->steps.size(),
               gestures_);
+  std::printf("the longest update of a flap drag, its preview call included: %.1f ms\n", 1e3 * longest_flap_update_);
   // The shipped crane (sequences/crane.json) is written in the operations the mouse issued.
   ASSERT_TRUE(waitFor([&] { return operations_.size() >= sequence->steps.size(); }, 10));
   std::vector<core::Operation> issued;

@@ -1,17 +1,38 @@
 // The crane walkthrough of docs/INTERACTION.md ("## Fold a crane") read as a person reads it:
 // per row of its table the steps, the gestures they take, and for each fold step the marks it
-// names (`**7**: ... *unfold*, ... *valley* ×2`), in the order of the reference's creases. The
+// names (`**20**: ... *valley* ×3`), in the order of the reference's creases, or the flap it
+// drags (`**7**: press at (0.33, 0.17) ... *squash fold*`). The
 // rostest crane_by_mouse marks what the text says and counts the gestures against it;
 // crane_walkthrough_test checks the text against the reference script.
 #pragma once
 
 #include <map>
+#include <optional>
 #include <regex>
 #include <string>
 #include <vector>
 
 namespace virtual_origami::test
 {
+/// A fold step made by dragging a flap (flap mode): where the flap is pressed, in the crease
+/// pattern, and the fold the text says the drag makes.
+struct FlapDragNamed
+{
+  double x = 0.0, y = 0.0;
+  std::string kind;  // "squash fold", "petal fold", "inside reverse fold", ...
+};
+
+/// The flap drag named after `**N**:` (`press at (x, y)` and `*… fold*`), if any.
+inline std::optional<FlapDragNamed> flapDragNamed(const std::string& text)
+{
+  static const std::regex press(R"(press at \(([-0-9.]+), ([-0-9.]+)\))");
+  static const std::regex kind(R"(\*((?:squash|petal|inside reverse|outside reverse|reverse) fold)\*)");
+  std::smatch p, k;
+  if (!std::regex_search(text, p, press) || !std::regex_search(text, k, kind))
+    return std::nullopt;
+  return FlapDragNamed{ std::stod(p[1]), std::stod(p[2]), k[1] };
+}
+
 /// One row of the table: steps `first`–`last`.
 struct WalkthroughRow
 {
@@ -19,6 +40,7 @@ struct WalkthroughRow
   int gestures = 0;
   std::string how;                        // the row's instructions, as written
   std::map<int, std::vector<int>> marks;  // per fold step: +1 valley, −1 mountain, 0 unfold
+  std::map<int, FlapDragNamed> drags;     // per fold step made by dragging a flap
 };
 
 struct Walkthrough
@@ -84,7 +106,11 @@ inline Walkthrough parseCraneWalkthrough(const std::string& markdown)
     for (size_t i = 0; i < numbers.size(); ++i)
     {
       const size_t until = i + 1 < numbers.size() ? numbers[i + 1].at : r.how.size();
-      r.marks[numbers[i].step] = marksNamed(r.how.substr(numbers[i].after, until - numbers[i].after));
+      const std::string said = r.how.substr(numbers[i].after, until - numbers[i].after);
+      if (const std::optional<FlapDragNamed> drag = flapDragNamed(said))
+        r.drags[numbers[i].step] = *drag;
+      else
+        r.marks[numbers[i].step] = marksNamed(said);
     }
     w.rows.push_back(std::move(r));
   }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "crane_reference.h"
+#include "flap_drags.h"
 #include "test_models.h"
 #include "virtual_origami/core/gesture_model.h"
 
@@ -330,6 +331,120 @@ TEST_F(GestureModelTest, MarkedCreasesFoldInFramesThenTheMarksGo)
   }
   EXPECT_EQ(model.state(), GestureState::Idle);
   EXPECT_TRUE(model.status().marked_edges.empty());
+}
+
+TEST_F(GestureModelTest, InFlapModeOneDragSquashesAFlapPreviewingAsFarAsThePointerWent)
+{
+  const Expected<std::vector<Paper>> states = craneStates();
+  ASSERT_TRUE(states.ok()) << states.message();
+  const Paper& triangle = (*states)[6];
+  const FlapDrag flap = flapDrag(*states, 7, Vec2(1.0 / 3, 1.0 / 6));
+  load(triangle);
+  model.chooseMode(GestureMode::Flap, at(p3(0.5, 0.5)));
+  EXPECT_STREQ(modeName(model.mode()), "flap");
+  out.forget();
+  model.press(at(flap.press));
+  EXPECT_EQ(model.state(), GestureState::DraggingFlap);
+  EXPECT_TRUE(model.dragging());
+  std::vector<Vec3> way;
+  for (int i = 1; i <= 4; ++i)
+    way.push_back(flap.press + (flap.target - flap.press) * (i / 4.0));
+  for (const Vec3& p : way)
+  {
+    model.move(dragged(flap.press, p));
+    model.update();
+  }
+  const std::vector<FlatFoldCall> calls = out.sent<FlatFoldCall>();
+  ASSERT_EQ(calls.size(), 4u);  // a preview per update, none committed yet
+  for (size_t i = 0; i < calls.size(); ++i)
+  {
+    EXPECT_NEAR(calls[i].fraction, (i + 1) / 4.0, 1e-9);
+    EXPECT_FALSE(calls[i].commit);
+  }
+  model.release(dragged(flap.press, way.back()));
+  const std::vector<FlatFoldCall> after = out.sent<FlatFoldCall>();
+  ASSERT_EQ(after.size(), 5u);
+  EXPECT_TRUE(after.back().commit);
+  EXPECT_EQ(after.back().fraction, 1.0);
+  EXPECT_EQ(out.lastSaid(), "Squash fold.");
+  EXPECT_EQ(model.state(), GestureState::Idle);
+  // What it commits is the reference's squash (to 1e-6, the face that stays in place).
+  Paper folded = triangle;
+  ASSERT_TRUE(flatFold(folded, after.back().fold).ok());
+  EXPECT_LE(largestOffset(folded, flap.after), 1e-6);
+}
+
+TEST_F(GestureModelTest, InFlapModeTheLayerPickedByNextLayerDownIsTheFlapDragged)
+{
+  const Expected<std::vector<Paper>> states = craneStates();
+  ASSERT_TRUE(states.ok()) << states.message();
+  const FlapDrag flap = flapDrag(*states, 8, Vec2(5.0 / 6, 2.0 / 3));
+  load((*states)[7]);
+  model.chooseMode(GestureMode::Flap, at(p3(0.5, 0.5)));
+  model.nextLayer(at(flap.press));
+  EXPECT_EQ(model.status().picked_face, flap.face);
+  out.forget();
+  drag(flap.press, { flap.press + 0.5 * (flap.target - flap.press), flap.target });
+  const std::vector<FlatFoldCall> calls = out.sent<FlatFoldCall>();
+  ASSERT_FALSE(calls.empty());
+  ASSERT_TRUE(calls.back().commit);
+  Paper folded = (*states)[7];
+  ASSERT_TRUE(flatFold(folded, calls.back().fold).ok());
+  EXPECT_LE(largestOffset(folded, flap.after), 1e-6);  // the squash underneath, as the reference's
+}
+
+TEST_F(GestureModelTest, AFlapLetGoNearWhereItWasFoldsNothingAndTheShownPreviewGoesBack)
+{
+  const Expected<std::vector<Paper>> states = craneStates();
+  ASSERT_TRUE(states.ok()) << states.message();
+  const FlapDrag flap = flapDrag(*states, 15, Vec2(0.6911, 0.0589));
+  load((*states)[14]);
+  model.chooseMode(GestureMode::Flap, at(p3(0.5, 0.5)));
+  out.forget();
+  drag(flap.press, { flap.press + 0.6 * (flap.target - flap.press), flap.press + 0.2 * (flap.target - flap.press) });
+  const std::vector<FlatFoldCall> calls = out.sent<FlatFoldCall>();
+  ASSERT_EQ(calls.size(), 3u);  // 60 %, 20 %, then back to none on release
+  EXPECT_NEAR(calls[0].fraction, 0.6, 1e-9);
+  EXPECT_NEAR(calls[1].fraction, 0.2, 1e-9);
+  EXPECT_EQ(calls[2].fraction, 0.0);
+  for (const FlatFoldCall& call : calls)
+    EXPECT_FALSE(call.commit);
+  EXPECT_EQ(out.lastSaid().rfind("Not folded", 0), 0u) << out.lastSaid();
+  // A click folds nothing and says how; a press off the paper says so on release.
+  out.forget();
+  click(flap.press);
+  EXPECT_TRUE(out.sent<FlatFoldCall>().empty());
+  EXPECT_NE(out.lastSaid().find("drag the flap"), std::string::npos) << out.lastSaid();
+  drag(p3(-0.5, -0.5), { p3(-0.2, -0.5) });
+  EXPECT_TRUE(out.sent<FlatFoldCall>().empty());
+  EXPECT_EQ(out.lastSaid().rfind("No paper here", 0), 0u) << out.lastSaid();
+}
+
+TEST_F(GestureModelTest, InFlapModeAReverseFoldGoesInsideUnlessTheOutsideOneIsChosen)
+{
+  const Expected<std::vector<Paper>> states = craneStates();
+  ASSERT_TRUE(states.ok()) << states.message();
+  const FlapDrag flap = flapDrag(*states, 15, Vec2(0.6911, 0.0589));
+  load((*states)[14]);
+  model.chooseMode(GestureMode::Flap, at(p3(0.5, 0.5)));
+  drag(flap.press, { flap.target });
+  EXPECT_EQ(out.lastSaid(), "Inside reverse fold.");
+  const FlatFoldCall inside = out.sent<FlatFoldCall>().back();
+  EXPECT_FALSE(model.outsideReverse());
+  model.toggleOutsideReverse(at(p3(0.5, 0.5)));
+  EXPECT_TRUE(model.outsideReverse());
+  out.forget();
+  drag(flap.press, { flap.target });
+  EXPECT_EQ(out.lastSaid(), "Outside reverse fold.");
+  const std::vector<FlatFoldCall> calls = out.sent<FlatFoldCall>();
+  ASSERT_EQ(calls.size(), 2u);  // the preview and the commit, both of the outside fold
+  for (const FlatFoldCall& call : calls)
+    for (size_t k = 0; k < call.fold.creases.size(); ++k)
+      EXPECT_EQ(call.fold.creases[k].angle, -inside.fold.creases[k].angle);
+  // It folds the flap to the same places, wrapped round.
+  Paper wrapped = (*states)[14];
+  ASSERT_TRUE(flatFold(wrapped, calls.back().fold).ok());
+  EXPECT_LE(largestOffset(wrapped, flap.after), 1e-6);
 }
 
 TEST_F(GestureModelTest, ANewInputFinishesTheAnimatedFoldAtOnce)

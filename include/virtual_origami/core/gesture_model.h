@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "virtual_origami/core/chosen_creases.h"
+#include "virtual_origami/core/compound_fold.h"
 #include "virtual_origami/core/drag.h"
 #include "virtual_origami/core/gesture_outputs.h"
 #include "virtual_origami/core/gesture_requests.h"
@@ -32,11 +33,12 @@ enum class GestureMode
   Rotate,  // turn a face about a crease
   Fold,    // mark creases, pick the face that stays, fold (SPEC §3.7)
   Drag,    // drag a vertex (SPEC §3.6)
+  Flap,    // drag a flap: the squash, petal or reverse fold it makes is inferred (compound_fold.h)
 };
-const char* modeName(GestureMode mode);  // "crease", "rotate", "fold", "drag"
+const char* modeName(GestureMode mode);  // "crease", "rotate", "fold", "drag", "flap"
 
 /// What the mouse holds. Idle between gestures; one state per kind of drag. The transitions:
-///   Idle --press--> DrawingLine | TurningFace | TurningNothing | PickingFold | HoldingVertex
+///   Idle --press--> DrawingLine | TurningFace | TurningNothing | PickingFold | HoldingVertex | DraggingFlap
 ///   HoldingVertex <--rigid faces follow / do not, bent paper does--> Bending
 ///   Idle --slider press--> Sliding;  Idle --Fold on the marked creases--> FoldingMarks
 ///   any --release, last frame, mode change--> Idle (a new press or input finishes the fold first)
@@ -52,6 +54,7 @@ enum class GestureState
   Bending,         // drag mode: the curved model holds the vertex where rigid faces cannot follow
   Sliding,         // the fold slider's handle
   FoldingMarks,    // the fold on the marked creases, animated frame by frame
+  DraggingFlap,    // flap mode: the fold the pressed flap makes to the pointer, previewed
 };
 
 /// Where the mouse is, as rviz reports it on the sheet marker (in the paper frame).
@@ -124,6 +127,9 @@ public:
   /// service would refuse as wrong for paper (strained, crossing), as Origami Simulator shows it.
   void toggleKeepRefusedFolds(const Pointer& at);
   void togglePickedLayersOnly(const Pointer& at);
+  /// A flap dragged over a line makes the outside reverse fold (the tip wrapped round the
+  /// layers) instead of the inside one (turned in between them).
+  void toggleOutsideReverse(const Pointer& at);
   /// The sheet marker changed for another reason (strain colours): sent now or after the drag.
   void refreshSheet();
 
@@ -144,6 +150,10 @@ public:
   bool keepRefusedFolds() const
   {
     return keep_refused_folds_;
+  }
+  bool outsideReverse() const
+  {
+    return outside_reverse_;
   }
   bool pickedLayersOnly() const
   {
@@ -275,6 +285,14 @@ private:
   void bend(const Vec3& target);
   std::string releaseVertex(bool bent);
 
+  // Folds by dragging a flap (gesture_flap.cpp).
+  void pressFlap();
+  /// The fold a resolved flap drag makes (the outside reverse fold when chosen) and its name.
+  std::pair<const FlatFoldRequest*, CompoundKind> flapFold(const CompoundFolds::Resolved& fold) const;
+  Vec3 flapTarget() const;
+  void updateFlap();
+  std::string releaseFlap();
+
   // The fold slider (gesture_slider.cpp).
   void updateSlider();
   /// Folds to `fraction` (committed); what to tell the user.
@@ -290,6 +308,7 @@ private:
   bool snapping_ = true;             // a drawn line snaps (Fig. 6); off: exactly as drawn
   bool keep_refused_folds_ = false;  // fold-by-assignment commits keep what the service would refuse
   bool picked_layers_only_ = false;  // a rotation turns the picked face's own layers only
+  bool outside_reverse_ = false;     // a flap drag's reverse fold wraps the tip round the layers
 
   std::optional<Paper> paper_;
   uint64_t revision_ = 0;
@@ -329,6 +348,11 @@ private:
   Vec3 vertex_at_press_ = Vec3::Zero();
   std::optional<Vec3> vertex_previewed_;  // the last target a preview took
   std::string vertex_refusal_;
+
+  // Flap mode: the folds the pressed flap can make, and the one previewed (outcome, fraction).
+  std::optional<CompoundFolds> flap_;
+  std::string flap_refusal_;
+  std::optional<std::pair<size_t, double>> flap_previewed_;
 
   // The fold slider.
   double slider_fraction_ = 0.0, fraction_at_press_ = 0.0;
