@@ -69,6 +69,8 @@ std::vector<InteractionNode::MenuEntry> InteractionNode::menuEntries()
     { "Keep refused folds by assignment", "", [this](const Feedback& f) { model_.toggleKeepRefusedFolds(pointer(f)); },
       [this] { return model_.keepRefusedFolds(); } },
     titled(mode(GestureMode::Flap), "Flap mode: drag a flap"),
+    { "Reverse folds go round the layers", "", [this](const Feedback& f) { model_.toggleOutsideReverse(pointer(f)); },
+      [this] { return model_.outsideReverse(); } },
   };
 }
 

@@ -37,6 +37,7 @@ core::GestureSettings gestureSettings(const ros::NodeHandle& private_nh)
   s.mode = mode == "rotate" ? core::GestureMode::Rotate :
            mode == "fold"   ? core::GestureMode::Fold :
            mode == "drag"   ? core::GestureMode::Drag :
+           mode == "flap"   ? core::GestureMode::Flap :
                               core::GestureMode::Crease;
   return s;
 }

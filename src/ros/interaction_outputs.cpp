@@ -253,6 +253,7 @@ void InteractionNode::showPaper()
   const std::string description = mode == core::GestureMode::Crease ? "crease: drag a line" :
                                   mode == core::GestureMode::Rotate ? "rotate: drag a face" :
                                   mode == core::GestureMode::Fold   ? "fold: click creases, then Fold" :
+                                  mode == core::GestureMode::Flap   ? "flap: drag a flap where it should lie" :
                                                                       "drag: drag a vertex";
   style_.pick_lift = model_.shownLift();
   // With the camera known the drag plane faces the view: the pointer is on the mouse's sight
