@@ -50,6 +50,7 @@ public:
   void letGo()
   {
     grab_.reset();
+    moved_ = Vec3::Zero();
   }
   bool holding() const
   {
