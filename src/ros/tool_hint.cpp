@@ -14,17 +14,16 @@ std::string whatAClickDoes(core::GestureMode mode, const core::GestureStatus& st
   switch (mode)
   {
     case core::GestureMode::Crease:
-      return "Crease mode: drag a line across the paper to crease it.";
+      return "Crease mode: drag a line across the paper.";
     case core::GestureMode::Rotate:
-      return "Rotate mode: drag a face to turn it about its crease; click a crease to make it the axis.";
+      return "Rotate mode: drag a face to turn it; click a crease for the axis.";
     case core::GestureMode::Drag:
-      return "Drag mode: drag a vertex to move it.";
+      return "Drag mode: drag a vertex.";
     case core::GestureMode::Fold:
       if (status.marked_edges.empty())
-        return "Fold mode: click a crease to mark it valley (again: mountain, again: unmarked).";
+        return "Fold mode: click a crease to mark it valley, again mountain, again none.";
       if (status.picked_face < 0)
-        return "Fold mode: " + creases(status.marked_edges.size()) +
-               " marked; click a crease to change its mark, or the face that stays.";
+        return "Fold mode: " + creases(status.marked_edges.size()) + " marked; click the face that stays.";
       return "Fold mode: " + creases(status.marked_edges.size()) +
              " marked, a face stays: Enter or a double click folds.";
   }
@@ -36,11 +35,12 @@ std::string toolHint(core::GestureMode mode, const core::GestureStatus& status)
 {
   if (status.dragging)
     return "Release to finish the drag; Esc cancels it.";
-  std::string hint = whatAClickDoes(mode, status);
+  const std::string hint = whatAClickDoes(mode, status);
+  // One line in rviz's status bar: the layers under the pick, else the keys.
   if (status.layers > 1)
-    hint += " Layer " + std::to_string(status.picked_layer) + " of " + std::to_string(status.layers) +
-            " under the pick: the wheel or Tab for the next one down.";
-  return hint + " Keys: 1 crease, 2 rotate, 3 fold, 4 drag, Ctrl+Z undo, Ctrl+Y redo.";
+    return hint + " Layer " + std::to_string(status.picked_layer) + " of " + std::to_string(status.layers) +
+           ": the wheel or Tab for the next.";
+  return hint + " Keys: 1-4 mode, Ctrl+Z undo, Ctrl+Y redo.";
 }
 
 }  // namespace virtual_origami

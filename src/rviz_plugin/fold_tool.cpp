@@ -33,11 +33,11 @@ uint8_t modifierBits(Qt::KeyboardModifiers modifiers)
 FoldTool::FoldTool()
 {
   shortcut_key_ = 'f';
-  topic_property_ = new rviz::StringProperty("Topic", "tool_events",
+  topic_property_ = new rviz::StringProperty("Topic", "/origami/tool_events",
                                              "virtual_origami/ToolEvent for the interaction node: presses, drags, "
                                              "double clicks, the wheel and keys, with the line of sight.",
                                              getPropertyContainer(), SLOT(updateTopics()), this);
-  status_topic_property_ = new rviz::StringProperty("Status Topic", "interaction_status",
+  status_topic_property_ = new rviz::StringProperty("Status Topic", "/origami/interaction_status",
                                                     "virtual_origami/InteractionStatus of the interaction node: its "
                                                     "hint is the status "
                                                     "line (what a click does).",

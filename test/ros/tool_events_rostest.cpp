@@ -187,6 +187,7 @@ TEST_F(ToolEvents, NumberKeysChooseTheModeAndTheHintSaysWhatAClickDoes)
     EXPECT_EQ(status_.hint.rfind(title + " mode: ", 0), 0u) << status_.hint;
   }
   EXPECT_NE(status_.hint.find("drag a line"), std::string::npos) << status_.hint;
+  EXPECT_NE(status_.hint.find("Ctrl+Z undo"), std::string::npos) << status_.hint;
   key("3", ToolEvent::ALT);  // not a mode key
   key("A");
   EXPECT_EQ(status_.mode, "crease");
