@@ -8,6 +8,7 @@
 #include <tf2/exceptions.h>
 
 #include "virtual_origami/ros/conversions.h"
+#include "virtual_origami/ros/fold_slider.h"
 #include "virtual_origami/ros/interaction_node.h"
 #include "virtual_origami/ros/tool_keys.h"
 
@@ -89,7 +90,12 @@ void InteractionNode::toolEvent(const ToolEvent& event)
   if (!ray || !model_.paper())
   {
     if (event.kind == ToolEvent::RELEASE || event.kind == ToolEvent::CANCEL)
+    {
       ray_pointer_.letGo();
+      if (tool_sliding_)
+        model_.slideRelease(model_.sliderFraction());
+      tool_sliding_ = false;
+    }
     return;
   }
   const core::Paper& paper = *model_.paper();
@@ -98,25 +104,46 @@ void InteractionNode::toolEvent(const ToolEvent& event)
   switch (event.kind)
   {
     case ToolEvent::PRESS:
+      if (slider_shown_ && sliderOnRay(*ray, true))
+      {
+        tool_slide_from_ = model_.sliderFraction();
+        model_.slidePress();
+        tool_sliding_ = model_.state() == core::GestureState::Sliding;
+        break;
+      }
       model_.press(ray_pointer_.press(paper, *ray, sheet));
       if (!model_.dragging())
         ray_pointer_.letGo();  // off the paper: nothing held, as rviz sends the marker nothing
       break;
     case ToolEvent::MOVE:
-      if (ray_pointer_.holding())
+      if (tool_sliding_)
+      {
+        if (const std::optional<double> fraction = sliderOnRay(*ray, false))
+        {
+          model_.slideMove(*fraction);
+          placeSliderHandle(*fraction);
+        }
+      }
+      else if (ray_pointer_.holding())
         model_.move(ray_pointer_.move(*ray));
       break;
     case ToolEvent::RELEASE:
-      if (ray_pointer_.holding())
+      if (tool_sliding_)
+      {
+        tool_sliding_ = false;
+        model_.slideRelease(sliderOnRay(*ray, false).value_or(model_.sliderFraction()));
+        placeSliderHandle(model_.sliderFraction());
+      }
+      else if (ray_pointer_.holding())
         model_.release(ray_pointer_.release(paper, *ray, sheet));
       break;
     case ToolEvent::DOUBLE_CLICK:
       // Its first click came as a press and release (a face picked to stay, or a mark).
-      if (!ray_pointer_.holding())
+      if (!toolHolds())
         model_.foldMarks(M_PI, at);
       break;
     case ToolEvent::WHEEL:
-      if (ray_pointer_.holding())
+      if (toolHolds())
         break;
       if (at.mouse_point)
         model_.nextLayer(at);
@@ -146,7 +173,7 @@ void InteractionNode::toolKey(const ToolEvent& event, const core::Pointer& at)
     cancelToolDrag(at);
     return;
   }
-  if (ray_pointer_.holding())
+  if (toolHolds())
     return;  // the drag first: released or cancelled
   switch (action)
   {
@@ -185,6 +212,17 @@ void InteractionNode::toolKey(const ToolEvent& event, const core::Pointer& at)
 
 void InteractionNode::cancelToolDrag(const core::Pointer& at)
 {
+  if (tool_sliding_)
+  {
+    // The handle back where it was pressed: its preview puts the paper back; no commit.
+    tool_sliding_ = false;
+    model_.slideMove(tool_slide_from_);
+    model_.update();
+    model_.chooseMode(model_.mode(), at);
+    placeSliderHandle(model_.sliderFraction());
+    tell(core::Message{ "Cancelled: nothing changed.", core::Vec3::Zero(), core::Message::Place::Slider });
+    return;
+  }
   if (!ray_pointer_.holding())
     return;
   ray_pointer_.letGo();
@@ -196,6 +234,38 @@ void InteractionNode::cancelToolDrag(const core::Pointer& at)
   model_.update();
   model_.chooseMode(model_.mode(), at);
   tell(core::Message{ "Cancelled: nothing changed.", core::Vec3::Zero(), core::Message::Place::Beside });
+}
+
+std::optional<double> InteractionNode::sliderOnRay(const core::SightRay& ray, bool on_handle) const
+{
+  const double along = ray.direction.z();
+  if (std::abs(along) < 1e-12)
+    return std::nullopt;
+  const double t = (track_.start.z() - ray.camera.eye.z()) / along;
+  if (t <= 0)
+    return std::nullopt;
+  const core::Vec3 at = ray.camera.eye + t * ray.direction;
+  if (on_handle)
+  {
+    const double reach = slider_style_.handle_size * (model_.paper() ? model_.paper()->scale() : 1.0);
+    if ((at - sliderPoint(track_, model_.sliderFraction())).norm() > reach)
+      return std::nullopt;
+  }
+  return sliderFraction(track_, at);
+}
+
+void InteractionNode::placeSliderHandle(double fraction)
+{
+  if (!slider_shown_)
+    return;
+  geometry_msgs::Pose pose;
+  const core::Vec3 along = (track_.end - track_.start).normalized();
+  const double yaw = std::atan2(along.y(), along.x());
+  pose.position = toPoint(sliderPoint(track_, fraction));
+  pose.orientation.z = std::sin(yaw / 2);
+  pose.orientation.w = std::cos(yaw / 2);
+  server_.setPose(slider_style_.marker_name, pose);
+  server_.applyChanges();
 }
 
 }  // namespace virtual_origami

@@ -5,13 +5,19 @@
 // undo and redo, Esc cancels a drag, number keys choose the mode.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
 #include <virtual_origami/FlatFold.h>
+#include <virtual_origami/Load.h>
 #include <virtual_origami/ToolEvent.h>
 
 #include "interaction_fixture.h"
+#include "virtual_origami/core/data_folder.h"
 #include "virtual_origami/core/fold_sequence.h"
 #include "virtual_origami/core/layer_pick.h"
 
@@ -345,6 +351,64 @@ TEST_F(ToolEvents, APressOffThePaperHoldsNothing)
   drag(p3(-0.03, 0.5), p3(1.03, 0.5), 8);
   const PaperState& state = client_.stateAt(base_ + 1);
   EXPECT_GE(creaseBetween(state, vertexAt(state, 0, 0.5), vertexAt(state, 1, 0.5)), 0);
+}
+
+TEST_F(ToolEvents, TheSlidersHandleFoldsByAssignmentAndEscPutsItBack)
+{
+  // A square with a valley diagonal as a designer's FOLD file: a driven crease, so a slider.
+  nlohmann::json fold;
+  fold["file_spec"] = 1.1;
+  fold["frame_classes"] = { "creasePattern" };
+  fold["vertices_coords"] = { { 0, 0 }, { 1, 0 }, { 1, 1 }, { 0, 1 } };
+  fold["edges_vertices"] = { { 0, 1 }, { 1, 2 }, { 2, 3 }, { 3, 0 }, { 0, 2 } };
+  fold["edges_assignment"] = { "B", "B", "B", "B", "V" };
+  fold["faces_vertices"] = { { 0, 1, 2 }, { 0, 2, 3 } };
+  const std::string name = "tool_slider_" + std::to_string(::getpid()) + ".fold";
+  const std::string path = core::defaultDataFolder() + "/" + name;
+  std::ofstream(path) << fold.dump();
+  Load::Request load;
+  load.path = name;
+  const Load loaded = client_.call<Load>("load", load);
+  std::filesystem::remove(path);
+  ASSERT_TRUE(loaded.response.success) << loaded.response.message;
+  std::map<std::string, visualization_msgs::Marker> slider;
+  ros::Subscriber slider_sub = client_.nh().subscribe<visualization_msgs::MarkerArray>(
+      "fold_slider_markers", 100, [&](const visualization_msgs::MarkerArray::ConstPtr& array) {
+        for (const auto& m : array->markers)
+          slider[m.ns] = m;
+      });
+  ASSERT_TRUE(waitFor(
+      [&] {
+        return slider.count("fold_slider_track") && slider["fold_slider_track"].points.size() >= 2 &&
+               slider.count("fold_slider_percent") && status_.revision > base_;
+      },
+      10))
+      << "no fold slider";
+  base_ = status_.revision;
+  const PaperState flat = client_.stateAt(base_);
+  const int diagonal = creaseBetween(flat, vertexAt(flat, 0, 0), vertexAt(flat, 1, 1));
+  ASSERT_GE(diagonal, 0);
+  const core::Vec3 minus = toVec3(slider["fold_slider_track"].points[0]);
+  const core::Vec3 plus = toVec3(slider["fold_slider_track"].points[1]);
+  const core::Vec3 zero = 0.5 * (minus + plus);  // a flat pattern: the handle at 0 %
+  // Esc while the handle is held at 75 %: nothing committed, the handle back at 0 %.
+  drag(zero, zero + 0.75 * (plus - zero), 8, false);
+  ASSERT_TRUE(waitFor([&] { return slider["fold_slider_percent"].text == "fold 75 %"; }, 10))
+      << slider["fold_slider_percent"].text;
+  EXPECT_TRUE(status_.dragging);
+  key("Esc");
+  EXPECT_FALSE(status_.dragging);
+  EXPECT_TRUE(waitFor([&] { return slider["fold_slider_percent"].text == "fold 0 %"; }, 10))
+      << slider["fold_slider_percent"].text;
+  sendAndSettle(event(ToolEvent::RELEASE, zero + 0.75 * (plus - zero)));
+  expectUnchanged();
+  // A press beside the handle takes nothing; a drag of the handle to 50 % folds half way.
+  drag(zero + 0.3 * (plus - zero), zero + 0.9 * (plus - zero), 4);
+  expectUnchanged();
+  drag(zero, zero + 0.5 * (plus - zero), 8);
+  const PaperState& half = client_.stateAt(base_ + 1);
+  EXPECT_NEAR(half.edges[diagonal].fold_angle, M_PI / 2, 1e-3);
+  EXPECT_EQ(slider["fold_slider_percent"].text, "fold 50 %");
 }
 
 int main(int argc, char** argv)

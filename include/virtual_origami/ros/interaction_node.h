@@ -82,6 +82,15 @@ private:
   /// The event's line of sight in the paper frame; none when tf cannot say where it lies.
   std::optional<core::SightRay> sightRay(const ToolEvent& event) const;
   void toolKey(const ToolEvent& event, const core::Pointer& at);
+  /// The slider's fraction where the line of sight meets the track's plane; with `on_handle`
+  /// only there within the handle's size of it (a press takes the handle).
+  std::optional<double> sliderOnRay(const core::SightRay& ray, bool on_handle) const;
+  /// The handle where the tool's drag has it (rviz moves it only for its own drags).
+  void placeSliderHandle(double fraction);
+  bool toolHolds() const
+  {
+    return ray_pointer_.holding() || tool_sliding_;
+  }
   /// Lets go of the tool's drag: the pointer back where it grabbed (previews put the paper
   /// back), then the mode chosen again (nothing committed, the view turned back).
   void cancelToolDrag(const core::Pointer& at);
@@ -125,6 +134,8 @@ private:
   uint64_t received_ = 0, coalesced_ = 0;
 
   core::RayPointer ray_pointer_;  // the Fold tool's held press
+  bool tool_sliding_ = false;     // the Fold tool holds the slider's handle
+  double tool_slide_from_ = 0.0;  // the fraction the handle was pressed at
 
   // The fold slider: drawn here, driven by the model.
   bool slider_enabled_ = true;
