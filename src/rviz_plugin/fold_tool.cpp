@@ -224,7 +224,7 @@ int FoldTool::processKeyEvent(QKeyEvent* event, rviz::RenderPanel* panel)
 
 bool FoldTool::eventFilter(QObject* watched, QEvent* event)
 {
-  if (!active_ || watched != filtered_panel_)
+  if (!active_ || watched != filtered_panel_.data())
     return false;
   if (event->type() == QEvent::KeyPress)
   {

@@ -10,8 +10,10 @@
 
 #include <string>
 
+#include <QPointer>
 #include <QString>
 #include <ros/ros.h>
+#include <rviz/render_panel.h>
 #include <rviz/tool.h>
 #include <virtual_origami/InteractionStatus.h>
 #include <virtual_origami/ToolEvent.h>
@@ -74,7 +76,7 @@ private:
   ros::Subscriber status_sub_;
   Held held_ = Held::None;
   bool active_ = false;
-  rviz::RenderPanel* filtered_panel_ = nullptr;
+  QPointer<rviz::RenderPanel> filtered_panel_;  // gone with the window, maybe before the tool
   Ogre::Viewport* last_viewport_ = nullptr;
   int last_x_ = 0, last_y_ = 0;
   std::string hint_;
