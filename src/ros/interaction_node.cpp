@@ -261,7 +261,9 @@ void InteractionNode::publishStatus(const ros::TimerEvent&)
   status.applied_stamp = applied_stamp_;
   status.apply_seconds = apply_seconds_;
   status.message = message_;
-  status.hint = toolHint(model_.mode(), gestures);
+  core::GestureStatus held = gestures;  // a fold animating holds nothing the user could let go
+  held.dragging = model_.dragging() || model_.state() == core::GestureState::Sliding;
+  status.hint = toolHint(model_.mode(), held);
   status_pub_.publish(status);
 }
 
