@@ -13,10 +13,12 @@ paper on `state` and the interaction on `interaction_status`:
   5. a click marks the crease again and a double click on the other half folds with that half
      staying;
   6. Esc during a drag cancels it: nothing committed, the tool still the current one;
-  7. on a quarter fold (four layers, folded through the services) in rotate mode (key 2) the
+  7. the fold slider's handle (at 100 % for the folded diagonal) dragged by the tool to 50 %
+     folds the diagonal to 90°;
+  8. on a quarter fold (four layers, folded through the services) in rotate mode (key 2) the
      wheel (down and up) and Tab walk the layers under the pointer down to the fourth, and say
      when there is none below;
-  8. F again puts the tool away: a click reaches the sheet marker as before (the interactive
+  9. F again puts the tool away: a click reaches the sheet marker as before (the interactive
      marker path unchanged).
 Screenshots of every step (the status line shows what a click does) go to the output folder.
 
@@ -34,6 +36,7 @@ from interaction_e2e import Failure, wait_for, xdotool  # noqa: E402
 
 import rospy  # noqa: E402
 from virtual_origami.msg import ToolEvent  # noqa: E402
+from visualization_msgs.msg import MarkerArray  # noqa: E402
 
 TIME_LIMIT = 280  # seconds for the whole test
 
@@ -44,7 +47,13 @@ class ToolChecker(e2e.Checker):
     def __init__(self):
         super().__init__()
         self.tool_events = []
+        self.slider = {}  # the fold slider's plain markers by namespace
         rospy.Subscriber('/origami/tool_events', ToolEvent, self._tool_event)
+        rospy.Subscriber('/origami/fold_slider_markers', MarkerArray, self._slider)
+
+    def _slider(self, msg):
+        for m in msg.markers:
+            self.slider[m.ns] = m
 
     def _tool_event(self, msg):
         self.tool_events.append(msg)
@@ -201,7 +210,24 @@ def run(out):
     shot('09_cancelled.png')
     print('Esc: the drag cancelled, nothing committed, the tool still on')
 
-    # 7. The wheel and Tab on a quarter fold (four layers), in rotate mode.
+    # 7. The fold slider's handle, at 100 % for the folded diagonal, dragged by the tool to 50 %.
+    wait_for(lambda: 'fold_slider_track' in check.slider and 'fold_slider_percent' in check.slider and
+             check.slider['fold_slider_percent'].text == 'fold 100 %', 10, 'no fold slider at 100 %')
+    track = check.slider['fold_slider_track'].points
+    minus, plus = (track[0].x, track[0].y, track[0].z), (track[1].x, track[1].y, track[1].z)
+    zero = e2e.mul(0.5, e2e.add(minus, plus))
+    half = e2e.add(zero, e2e.mul(0.5, e2e.sub(plus, zero)))
+    mouse.drag(plus, half, during=lambda: shot('10_slider_drag.png'))
+    slid = check.wait_revision(revision + 1, 'the slider dragged by the Fold tool')
+    revision += 1
+    angle = slid.edges[diagonal].fold_angle
+    if abs(abs(angle) - math.pi / 2) > 0.05:
+        raise Failure('the slider at 50 %% left the diagonal at %.1f°, not 90°' % math.degrees(angle))
+    time.sleep(1.0)
+    shot('11_slider_half.png')
+    print('slider: dragged from 100 %% to 50 %%, the diagonal at %.1f°' % math.degrees(angle))
+
+    # 8. The wheel and Tab on a quarter fold (four layers), in rotate mode.
     check.reset()
     check.crease(start=e2e.rospy_point(0.5, 0), end=e2e.rospy_point(0.5, 1))
     check.rotate(face=-1, axis_edge=-1, click=e2e.rospy_point(0.75, 0.5), angle=math.pi, commit=True)
@@ -223,7 +249,7 @@ def run(out):
                  (action, step + 2, check.status.picked_layer, check.status.layers))
         walked.append((action, check.status.picked_layer, check.status.layers))
         time.sleep(0.5)  # rviz draws the pick
-        shot('10_layer_%d.png' % (step + 2))
+        shot('12_layer_%d.png' % (step + 2))
     if check.status.layers != 4:
         raise Failure('%d layers under the pointer, expected 4' % check.status.layers)
     xdotool('click', 5)
@@ -232,7 +258,7 @@ def run(out):
         raise Failure('walking the layers changed the paper')
     print('layers: %s, then "%s"' % (', '.join('%s -> %d of %d' % w for w in walked), check.status.message))
 
-    # 8. F puts the tool away: the sheet marker takes the clicks again.
+    # 9. F puts the tool away: the sheet marker takes the clicks again.
     key('f')
     mouse.away()
     time.sleep(0.5)
@@ -242,7 +268,7 @@ def run(out):
              'sheet marker')
     if len(check.tool_events) != events:
         raise Failure('with the Fold tool put away it still sent events')
-    shot('11_interact_again.png')
+    shot('13_interact_again.png')
     print('F again: the Interact tool, the sheet marker takes the click')
     print('screenshots:\n  ' + '\n  '.join(shots))
 
