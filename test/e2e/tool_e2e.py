@@ -18,7 +18,8 @@ paper on `state` and the interaction on `interaction_status`:
   8. on a quarter fold (four layers, folded through the services) in rotate mode (key 2) the
      wheel (down and up) and Tab walk the layers under the pointer down to the fourth, and say
      when there is none below;
-  9. F again puts the tool away: a click reaches the sheet marker as before (the interactive
+  9. a drag beside the paper turns the view and sends the node nothing;
+  10. F again puts the tool away: a click reaches the sheet marker as before (the interactive
      marker path unchanged).
 Screenshots of every step (the status line shows what a click does) go to the output folder.
 
@@ -258,7 +259,24 @@ def run(out):
         raise Failure('walking the layers changed the paper')
     print('layers: %s, then "%s"' % (', '.join('%s -> %d of %d' % w for w in walked), check.status.message))
 
-    # 9. F puts the tool away: the sheet marker takes the clicks again.
+    # 9. A drag beside the paper turns the view (rviz's own gesture) and sends the node nothing.
+    events, eye = len(check.tool_events), check.camera()[0]
+    corner = (mouse.cx - e2e.PANEL[2] / 2.0 + 60, mouse.cy - e2e.PANEL[3] / 2.0 + 60)
+    mouse.move(corner)
+    time.sleep(0.3)
+    xdotool('mousedown', 1)
+    mouse.glide(corner, (corner[0] + 120, corner[1] + 40), steps=12)
+    xdotool('mouseup', 1)
+    time.sleep(1.0)
+    moved = e2e.norm(e2e.sub(check.camera()[0], eye))
+    if moved < 0.01:
+        raise Failure('a drag beside the paper did not turn the view (the eye moved %.4f m)' % moved)
+    if len(check.tool_events) != events:
+        raise Failure('a drag beside the paper sent the node %s' % check.kinds(events))
+    shot('13_view_turned.png')
+    print('beside the paper: the drag turned the view (the eye moved %.2f m), no ToolEvent' % moved)
+
+    # 10. F puts the tool away: the sheet marker takes the clicks again.
     key('f')
     mouse.away()
     time.sleep(0.5)
@@ -268,7 +286,7 @@ def run(out):
              'sheet marker')
     if len(check.tool_events) != events:
         raise Failure('with the Fold tool put away it still sent events')
-    shot('13_interact_again.png')
+    shot('14_interact_again.png')
     print('F again: the Interact tool, the sheet marker takes the click')
     print('screenshots:\n  ' + '\n  '.join(shots))
 
