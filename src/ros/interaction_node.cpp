@@ -15,6 +15,7 @@
 #include <virtual_origami/VertexTarget.h>
 
 #include "virtual_origami/ros/conversions.h"
+#include "virtual_origami/ros/tool_hint.h"
 
 namespace virtual_origami
 {
@@ -84,6 +85,7 @@ InteractionNode::InteractionNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   view_turn_pub_ = nh_.advertise<geometry_msgs::PoseStamped>("view_turn", 1);
   slider_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("fold_slider_markers", 10, true);
   state_sub_ = nh_.subscribe("state", 1, &InteractionNode::stateReceived, this);
+  tool_sub_ = nh_.subscribe("tool_events", 100, &InteractionNode::toolReceived, this);
   timer_ = nh_.createTimer(ros::Duration(1.0 / private_nh.param("rate", 30.0)), &InteractionNode::handleEvents, this);
   status_timer_ = nh_.createTimer(ros::Duration(1.0), &InteractionNode::publishStatus, this);
 }
@@ -125,8 +127,15 @@ void InteractionNode::handleEvents(const ros::TimerEvent&)
   ros::Time pointer_stamp;
   for (const Event& e : events)
   {
-    const Feedback& f = *e.feedback;
-    if (e.chosen)
+    static const Feedback none;
+    const Feedback& f = e.feedback ? *e.feedback : none;
+    if (e.tool)
+    {
+      toolEvent(*e.tool);
+      if (e.tool->kind <= ToolEvent::RELEASE)
+        pointer_stamp = e.tool->header.stamp;
+    }
+    else if (e.chosen)
       e.chosen(f);
     else if (e.slider)
       slide(f);
@@ -253,6 +262,9 @@ void InteractionNode::publishStatus(const ros::TimerEvent&)
   status.applied_stamp = applied_stamp_;
   status.apply_seconds = apply_seconds_;
   status.message = message_;
+  core::GestureStatus held = gestures;  // a fold animating holds nothing the user could let go
+  held.dragging = model_.dragging() || model_.state() == core::GestureState::Sliding;
+  status.hint = toolHint(model_.mode(), held);
   status_pub_.publish(status);
 }
 

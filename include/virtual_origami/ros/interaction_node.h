@@ -4,7 +4,8 @@
 // become paper_model's service calls, and what it shows (the snapping guides, axis and ring
 // while dragging, the marked creases, the picked layer, messages, the view turn) becomes
 // markers. The services are the only way it changes the paper: previews while dragging or
-// animating, one committed call on release.
+// animating, one committed call on release. The Fold tool's events (`tool_events`: presses,
+// drags, the wheel, keys, with the line of sight through the mouse) drive the same model.
 #pragma once
 
 #include <deque>
@@ -21,9 +22,11 @@
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
 #include <virtual_origami/PaperState.h>
+#include <virtual_origami/ToolEvent.h>
 #include <visualization_msgs/InteractiveMarkerFeedback.h>
 
 #include "virtual_origami/core/gesture_model.h"
+#include "virtual_origami/core/ray_pointer.h"
 #include "virtual_origami/ros/fold_slider.h"
 #include "virtual_origami/ros/interaction_markers.h"
 #include "virtual_origami/ros/interaction_view.h"
@@ -41,8 +44,9 @@ private:
   struct Event
   {
     Feedback::ConstPtr feedback;
-    MenuCallback chosen;  // a menu entry's; none for the sheet and the slider
-    bool slider = false;  // from the fold slider's handle, not the sheet
+    MenuCallback chosen;       // a menu entry's; none for the sheet and the slider
+    bool slider = false;       // from the fold slider's handle, not the sheet
+    ToolEvent::ConstPtr tool;  // the Fold tool's, instead of feedback
   };
   /// A right-click menu entry: its title, its submenu (empty: top level), what it does and,
   /// for a checkbox, whether it is checked.
@@ -57,6 +61,8 @@ private:
   // The server's thread: only queue (a pose replaces the pose queued before it from the same
   // marker).
   void received(const Feedback::ConstPtr& feedback, MenuCallback chosen = {}, bool slider = false);
+  /// The Fold tool's events, queued as feedback is (a move replaces the move queued before it).
+  void toolReceived(const ToolEvent::ConstPtr& event);
 
   // The node's thread (interaction_node.cpp).
   void handleEvents(const ros::TimerEvent&);
@@ -70,6 +76,24 @@ private:
   /// The right-click on the sheet (zero without a mouse point).
   core::Vec3 rightClick(const Feedback& feedback) const;
   void slide(const Feedback& feedback);
+
+  // The Fold tool (interaction_tool.cpp).
+  void toolEvent(const ToolEvent& event);
+  /// The event's line of sight in the paper frame; none when tf cannot say where it lies.
+  std::optional<core::SightRay> sightRay(const ToolEvent& event) const;
+  void toolKey(const ToolEvent& event, const core::Pointer& at);
+  /// The slider's fraction where the line of sight meets the track's plane; with `on_handle`
+  /// only there within the handle's size of it (a press takes the handle).
+  std::optional<double> sliderOnRay(const core::SightRay& ray, bool on_handle) const;
+  /// The handle where the tool's drag has it (rviz moves it only for its own drags).
+  void placeSliderHandle(double fraction);
+  bool toolHolds() const
+  {
+    return ray_pointer_.holding() || tool_sliding_;
+  }
+  /// Lets go of the tool's drag: the pointer back where it grabbed (previews put the paper
+  /// back), then the mode chosen again (nothing committed, the view turned back).
+  void cancelToolDrag(const core::Pointer& at);
 
   // The menu (interaction_menu.cpp): the entries in their order, inserted into `menu_`.
   std::vector<MenuEntry> menuEntries();
@@ -99,7 +123,7 @@ private:
   interactive_markers::InteractiveMarkerServer server_;
   interactive_markers::MenuHandler menu_;
   std::vector<std::pair<interactive_markers::MenuHandler::EntryHandle, std::function<bool()>>> checkboxes_;
-  ros::Subscriber state_sub_, strain_colours_sub_, curved_sheet_sub_;
+  ros::Subscriber state_sub_, strain_colours_sub_, curved_sheet_sub_, tool_sub_;
   ros::Publisher markers_pub_, status_pub_, view_turn_pub_, slider_pub_, curved_drag_pub_;
   ros::ServiceClient crease_, rotate_, squash_, undo_, redo_, reset_, pin_, fold_, flat_fold_, drag_vertex_,
       paper_model_reconfigure_;
@@ -108,6 +132,10 @@ private:
   std::mutex mutex_;  // guards the queue and the counters the server's thread writes
   std::deque<Event> events_;
   uint64_t received_ = 0, coalesced_ = 0;
+
+  core::RayPointer ray_pointer_;  // the Fold tool's held press
+  bool tool_sliding_ = false;     // the Fold tool holds the slider's handle
+  double tool_slide_from_ = 0.0;  // the fraction the handle was pressed at
 
   // The fold slider: drawn here, driven by the model.
   bool slider_enabled_ = true;
