@@ -580,18 +580,18 @@ JournalEvent journalEvent(const Operation& op, const Paper* state_after, const P
   JournalEvent event{ op, state_after != nullptr, "", std::nullopt, std::nullopt, 0 };
   if (!state_after)
     event.line = journalLine(json{ { "operation", operationToJson(op) } });
+  else if (op.kind == Operation::Kind::Load || op.kind == Operation::Kind::Reset)
+  {
+    // A new paper shares nothing with the one before it: whole, and made here.
+    event.line = commitLine(op, paperToJson(*state_after), "paper");
+    event.fingerprint = paperFingerprint(*state_after);
+  }
   else if (state_before)
   {
     const json delta = paperDeltaJson(*state_before, *state_after);
     event.fingerprint = delta.at("fingerprint").get<uint64_t>();
     event.base_fingerprint = paperFingerprint(*state_before);
     event.line = commitLine(op, delta, "delta");
-  }
-  else if (op.kind == Operation::Kind::Load || op.kind == Operation::Kind::Reset)
-  {
-    // A new paper shares nothing with the one before it: whole, and made here.
-    event.line = commitLine(op, paperToJson(*state_after), "paper");
-    event.fingerprint = paperFingerprint(*state_after);
   }
   else
   {
