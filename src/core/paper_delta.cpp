@@ -1,5 +1,8 @@
 #include "virtual_origami/core/paper_delta.h"
 
+#include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <stdexcept>
@@ -44,17 +47,22 @@ bool sameButAngle(const Edge& a, const Edge& b)
          same(a.target_angle, b.target_angle);
 }
 
-/// splitmix64's finaliser over the running value: every bit of a word reaches every bit.
+/// xxHash64's rounds over four lanes (words go round-robin; the lanes multiply independently,
+/// so a large paper is fingerprinted at memory speed), then its avalanche. Not for security:
+/// it tells a delta applied to the wrong state, or damaged, from the state it was made for.
 struct Fingerprint
 {
-  uint64_t value = 0x6a09e667f3bcc909ull;
+  static constexpr uint64_t k1 = 0x9e3779b185ebca87ull, k2 = 0xc2b2ae3d27d4eb4full, k3 = 0x165667b19e3779f9ull;
+  uint64_t lanes[4] = { k1 + k2, k2, 0, 0 - k1 };
+  uint64_t count = 0;
+  static uint64_t rotl(uint64_t x, int r)
+  {
+    return (x << r) | (x >> (64 - r));
+  }
   void add(uint64_t word)
   {
-    uint64_t z = value ^ word;
-    z += 0x9e3779b97f4a7c15ull;
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    value = z ^ (z >> 31);
+    uint64_t& lane = lanes[count++ & 3];
+    lane = rotl(lane + word * k2, 31) * k1;
   }
   void add(double d)
   {
@@ -63,6 +71,18 @@ struct Fingerprint
   void add(int i)
   {
     add(static_cast<uint64_t>(static_cast<int64_t>(i)));
+  }
+  uint64_t value() const
+  {
+    uint64_t h = rotl(lanes[0], 1) + rotl(lanes[1], 7) + rotl(lanes[2], 12) + rotl(lanes[3], 18);
+    for (const uint64_t lane : lanes)
+      h = (h ^ (rotl(lane * k2, 31) * k1)) * k1 + k3;
+    h += count;
+    h ^= h >> 33;
+    h *= k2;
+    h ^= h >> 29;
+    h *= k3;
+    return h ^ (h >> 32);
   }
 };
 
@@ -95,15 +115,91 @@ size_t countOf(const json& delta, const char* key)
   return static_cast<size_t>(n);
 }
 
-json edgeJson(size_t index, const Edge& e)
+/// Appends JSON text fast: a large fold's delta holds a million numbers, and building a json
+/// tree of them took several times as long as writing them (the node writes it under its lock).
+class JsonText
 {
-  json edge = { index, e.vertices[0], e.vertices[1], std::string(1, assignmentLetter(e.assignment)), e.fold_angle };
+public:
+  explicit JsonText(std::string& out) : out_(out)
+  {}
+  /// The shortest text that reads back as the same double, always with a fraction or an
+  /// exponent, so that a reader takes it as a float (-0.0 stays negative).
+  void number(double value)
+  {
+    if (!std::isfinite(value))
+    {
+      out_ += "null";  // as nlohmann writes it: the reader refuses the line
+      return;
+    }
+    char buffer[32];
+    const auto [end, error] = std::to_chars(buffer, buffer + sizeof(buffer), value);
+    out_.append(buffer, end);
+    if (std::find_if(buffer, end, [](char c) { return c == '.' || c == 'e'; }) == end)
+      out_ += ".0";
+  }
+  void number(int64_t value)
+  {
+    char buffer[24];
+    out_.append(buffer, std::to_chars(buffer, buffer + sizeof(buffer), value).ptr);
+  }
+  void number(uint64_t value)
+  {
+    char buffer[24];
+    out_.append(buffer, std::to_chars(buffer, buffer + sizeof(buffer), value).ptr);
+  }
+  void number(int value)
+  {
+    number(static_cast<int64_t>(value));
+  }
+  /// Opens `"key":[` (`,` before it unless first) the first time, `,` after.
+  void item(bool& opened, const char* key)
+  {
+    if (!opened)
+    {
+      out_ += ",\"";
+      out_ += key;
+      out_ += "\":[";
+      opened = true;
+    }
+    else
+      out_ += ',';
+  }
+  void close(bool opened)
+  {
+    if (opened)
+      out_ += ']';
+  }
+  std::string& out()
+  {
+    return out_;
+  }
+
+private:
+  std::string& out_;
+};
+
+void writeEdge(JsonText& text, size_t index, const Edge& e)
+{
+  std::string& out = text.out();
+  out += '[';
+  text.number(index);
+  out += ',';
+  text.number(e.vertices[0]);
+  out += ',';
+  text.number(e.vertices[1]);
+  out += ",\"";
+  out += assignmentLetter(e.assignment);
+  out += "\",";
+  text.number(e.fold_angle);
   // The same optional tail as a whole paper's edge: [..., split] when split or targeted.
   if (e.split || e.target_angle)
-    edge.push_back(e.split);
+    out += e.split ? ",true" : ",false";
   if (e.target_angle)
-    edge.push_back(*e.target_angle);
-  return edge;
+  {
+    out += ',';
+    text.number(*e.target_angle);
+  }
+  out += ']';
 }
 
 /// A flat list [i, a, b, …, i, a, b, …] of `stride` numbers per element.
@@ -157,78 +253,108 @@ uint64_t paperFingerprint(const Paper& paper)
     f.add(o.above);
   }
   f.add(paper.sheet_area);
-  return f.value;
+  return f.value();
 }
 
-json paperDeltaJson(const Paper& before, const Paper& after)
+std::string formatPaperDelta(const Paper& before, const Paper& after, std::optional<uint64_t> after_fingerprint)
 {
-  json delta{ { "vertices", after.vertices.size() },
-              { "edges", after.edges.size() },
-              { "faces", after.faces.size() },
-              { "face_orders", after.face_orders.size() } };
-  json crease_pattern = json::array(), folded = json::array();
+  std::string out;
+  JsonText text(out);
+  out += "{\"vertices\":";
+  text.number(after.vertices.size());
+  out += ",\"edges\":";
+  text.number(after.edges.size());
+  out += ",\"faces\":";
+  text.number(after.faces.size());
+  out += ",\"face_orders\":";
+  text.number(after.face_orders.size());
+  // Only what changed is written: most operations leave the crease pattern as it was.
+  bool opened = false;
   for (size_t i = 0; i < after.vertices.size(); ++i)
   {
-    const Vertex& v = after.vertices[i];
-    const bool known = i < before.vertices.size();
-    if (!known || !same(before.vertices[i].crease_pattern, v.crease_pattern))
-    {
-      crease_pattern.push_back(i);
-      crease_pattern.push_back(v.crease_pattern.x());
-      crease_pattern.push_back(v.crease_pattern.y());
-    }
-    if (!known || !same(before.vertices[i].folded, v.folded))
-    {
-      folded.push_back(i);
-      folded.push_back(v.folded.x());
-      folded.push_back(v.folded.y());
-      folded.push_back(v.folded.z());
-    }
+    const Vec2& p = after.vertices[i].crease_pattern;
+    if (i < before.vertices.size() && same(before.vertices[i].crease_pattern, p))
+      continue;
+    text.item(opened, "crease_pattern");
+    text.number(i);
+    out += ',';
+    text.number(p.x());
+    out += ',';
+    text.number(p.y());
   }
-  json fold_angles = json::array(), edges = json::array();
-  for (size_t i = 0; i < after.edges.size(); ++i)
+  text.close(opened);
+  opened = false;
+  for (size_t i = 0; i < after.vertices.size(); ++i)
   {
-    const Edge& e = after.edges[i];
-    if (i >= before.edges.size() || !sameButAngle(before.edges[i], e))
-      edges.push_back(edgeJson(i, e));
-    else if (!same(before.edges[i].fold_angle, e.fold_angle))
-    {
-      fold_angles.push_back(i);
-      fold_angles.push_back(e.fold_angle);
-    }
+    const Vec3& p = after.vertices[i].folded;
+    if (i < before.vertices.size() && same(before.vertices[i].folded, p))
+      continue;
+    text.item(opened, "folded");
+    text.number(i);
+    out += ',';
+    text.number(p.x());
+    out += ',';
+    text.number(p.y());
+    out += ',';
+    text.number(p.z());
   }
-  json faces = json::array();
+  text.close(opened);
+  opened = false;
+  for (size_t i = 0; i < after.edges.size() && i < before.edges.size(); ++i)
+    if (sameButAngle(before.edges[i], after.edges[i]) && !same(before.edges[i].fold_angle, after.edges[i].fold_angle))
+    {
+      text.item(opened, "fold_angles");
+      text.number(i);
+      out += ',';
+      text.number(after.edges[i].fold_angle);
+    }
+  text.close(opened);
+  opened = false;
+  for (size_t i = 0; i < after.edges.size(); ++i)
+    if (i >= before.edges.size() || !sameButAngle(before.edges[i], after.edges[i]))
+    {
+      text.item(opened, "edge_changes");
+      writeEdge(text, i, after.edges[i]);
+    }
+  text.close(opened);
+  opened = false;
   for (size_t i = 0; i < after.faces.size(); ++i)
     if (i >= before.faces.size() || before.faces[i].vertices != after.faces[i].vertices)
     {
-      json face = json::array({ i });
+      text.item(opened, "face_changes");
+      out += '[';
+      text.number(i);
       for (int v : after.faces[i].vertices)
-        face.push_back(v);
-      faces.push_back(std::move(face));
+      {
+        out += ',';
+        text.number(v);
+      }
+      out += ']';
     }
-  json orders = json::array();
+  text.close(opened);
+  opened = false;
   for (size_t i = 0; i < after.face_orders.size(); ++i)
     if (i >= before.face_orders.size() || !(before.face_orders[i] == after.face_orders[i]))
-      for (const int value :
-           { static_cast<int>(i), after.face_orders[i].face, after.face_orders[i].other, after.face_orders[i].above })
-        orders.push_back(value);
-  // Only what changed is written: most operations leave the crease pattern as it was.
-  if (!crease_pattern.empty())
-    delta["crease_pattern"] = std::move(crease_pattern);
-  if (!folded.empty())
-    delta["folded"] = std::move(folded);
-  if (!fold_angles.empty())
-    delta["fold_angles"] = std::move(fold_angles);
-  if (!edges.empty())
-    delta["edge_changes"] = std::move(edges);
-  if (!faces.empty())
-    delta["face_changes"] = std::move(faces);
-  if (!orders.empty())
-    delta["face_order_changes"] = std::move(orders);
+    {
+      const FaceOrder& o = after.face_orders[i];
+      text.item(opened, "face_order_changes");
+      text.number(i);
+      for (const int value : { o.face, o.other, o.above })
+      {
+        out += ',';
+        text.number(value);
+      }
+    }
+  text.close(opened);
   if (!same(before.sheet_area, after.sheet_area))
-    delta["sheet_area"] = after.sheet_area;
-  delta["fingerprint"] = paperFingerprint(after);
-  return delta;
+  {
+    out += ",\"sheet_area\":";
+    text.number(after.sheet_area);
+  }
+  out += ",\"fingerprint\":";
+  text.number(after_fingerprint ? *after_fingerprint : paperFingerprint(after));
+  out += '}';
+  return out;
 }
 
 Expected<Paper> applyPaperDelta(const Paper& before, const json& delta)

@@ -286,12 +286,16 @@ Status readStateChain(const json& list, const Paper& paper, std::vector<Paper>& 
   return success();
 }
 
-json stateChainJson(const std::vector<Paper>& states, const Paper& paper)
+std::string stateChainText(const std::vector<Paper>& states, const Paper& paper)
 {
-  json list = json::array();
+  std::string list = "[";
   for (size_t k = 0; k < states.size(); ++k)
-    list.push_back(paperDeltaJson(k + 1 < states.size() ? states[k + 1] : paper, states[k]));
-  return list;
+  {
+    if (k > 0)
+      list += ',';
+    list += formatPaperDelta(k + 1 < states.size() ? states[k + 1] : paper, states[k]);
+  }
+  return list + "]";
 }
 
 /// Version 1: every state whole. Version 2: undo and redo states as delta chains, commits as
@@ -500,12 +504,13 @@ Status SessionJournal::start(const std::string& path, const Session& session, co
                { "version", kJournalVersion },
                { "paper", paperToJson(h.paper) },
                { "revision", h.revision },
-               { "undo", stateChainJson(h.undo, h.paper) },
-               { "redo", stateChainJson(h.redo, h.paper) },
                { "log", log } };
   if (!run_id.empty())
     header["run_id"] = run_id;
-  const std::string line = journalLine(header);
+  // The delta chains are text already (formatPaperDelta): spliced in before the closing brace.
+  std::string line = journalLine(header);
+  line.resize(line.size() - 2);
+  line += ",\"undo\":" + stateChainText(h.undo, h.paper) + ",\"redo\":" + stateChainText(h.redo, h.paper) + "}\n";
 
   // The new journal is written beside the old one and renamed over it: a crash while the
   // header is written (it holds the whole history) must not leave a truncated journal and
@@ -569,9 +574,17 @@ Status SessionJournal::start(const std::string& path, const Session& session, co
 
 namespace
 {
-std::string commitLine(const Operation& op, const json& state, const char* key)
+std::string commitLine(const Operation& op, const json& state)
 {
-  return journalLine(json{ { "operation", operationToJson(op) }, { key, state } });
+  return journalLine(json{ { "operation", operationToJson(op) }, { "paper", state } });
+}
+
+/// A commit's line with what it changed (formatPaperDelta's text).
+std::string deltaLine(const Operation& op, const std::string& delta)
+{
+  std::string line = journalLine(json{ { "operation", operationToJson(op) } });
+  line.resize(line.size() - 2);
+  return line + ",\"delta\":" + delta + "}\n";
 }
 }  // namespace
 
@@ -583,15 +596,14 @@ JournalEvent journalEvent(const Operation& op, const Paper* state_after, const P
   else if (op.kind == Operation::Kind::Load || op.kind == Operation::Kind::Reset)
   {
     // A new paper shares nothing with the one before it: whole, and made here.
-    event.line = commitLine(op, paperToJson(*state_after), "paper");
+    event.line = commitLine(op, paperToJson(*state_after));
     event.fingerprint = paperFingerprint(*state_after);
   }
   else if (state_before)
   {
-    const json delta = paperDeltaJson(*state_before, *state_after);
-    event.fingerprint = delta.at("fingerprint").get<uint64_t>();
+    event.fingerprint = paperFingerprint(*state_after);
     event.base_fingerprint = paperFingerprint(*state_before);
-    event.line = commitLine(op, delta, "delta");
+    event.line = deltaLine(op, formatPaperDelta(*state_before, *state_after, event.fingerprint));
   }
   else
   {
@@ -607,7 +619,7 @@ Status SessionJournal::append(const Operation& op, const Paper* state_after)
   JournalEvent event{ op, state_after != nullptr, "", std::nullopt, std::nullopt, 0 };
   if (state_after)
   {
-    event.line = commitLine(op, paperToJson(*state_after), "paper");
+    event.line = commitLine(op, paperToJson(*state_after));
     event.fingerprint = paperFingerprint(*state_after);
   }
   else
@@ -638,7 +650,7 @@ Status SessionJournal::append(const JournalEvent& event)
                    " was computed from another state than the one the journal is at");
 
   const Status written =
-      writeEvent(!event.line.empty() || !event.state ? event.line : commitLine(op, paperToJson(*event.state), "paper"));
+      writeEvent(!event.line.empty() || !event.state ? event.line : commitLine(op, paperToJson(*event.state)));
   if (!written)
     return written;
   if (op.kind == Operation::Kind::Undo)
@@ -680,11 +692,12 @@ Status SessionJournal::append(const Session& before, const JournalEvent& event)
   if (event.line.empty() && event.state)
   {
     // What it changes in the session's paper, which is the state the journal is at.
-    JournalEvent made = event;
-    const json delta = paperDeltaJson(before.paper(), *event.state);
-    made.line = commitLine(event.operation, delta, "delta");
-    made.base_fingerprint = fingerprint_;
-    made.state.reset();
+    JournalEvent made{ event.operation,
+                       true,
+                       deltaLine(event.operation, formatPaperDelta(before.paper(), *event.state, event.fingerprint)),
+                       std::nullopt,
+                       fingerprint_,
+                       event.fingerprint };
     return append(made);
   }
   return append(event);

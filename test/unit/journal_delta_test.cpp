@@ -442,7 +442,7 @@ TEST(JournalDelta, APaperDeltaCarriesOnlyWhatChangedWithItsExactDoubles)
   Paper after = before;
   after.vertices[2].folded.z() = 0.1 + 0.2;  // not 0.3: the last bit must survive
   after.vertices[1].folded.x() = -0.0;
-  const json delta = paperDeltaJson(before, after);
+  const json delta = json::parse(formatPaperDelta(before, after));
   EXPECT_FALSE(delta.contains("crease_pattern"));
   EXPECT_FALSE(delta.contains("edge_changes"));
   EXPECT_FALSE(delta.contains("face_changes"));
@@ -456,7 +456,7 @@ TEST(JournalDelta, APaperDeltaCarriesOnlyWhatChangedWithItsExactDoubles)
   // A zero turned negative is a change too.
   Paper signed_zero = before;
   signed_zero.vertices[0].folded.z() = -0.0;
-  const json sign = paperDeltaJson(before, signed_zero);
+  const json sign = json::parse(formatPaperDelta(before, signed_zero));
   ASSERT_TRUE(sign.contains("folded"));
   const Expected<Paper> sign_back = applyPaperDelta(before, json::parse(sign.dump()));
   ASSERT_TRUE(sign_back.ok()) << sign_back.message();

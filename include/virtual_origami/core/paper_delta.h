@@ -4,6 +4,8 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
@@ -17,11 +19,13 @@ namespace virtual_origami::core
 /// another state than the one it was made from is noticed, never taken.
 uint64_t paperFingerprint(const Paper& paper);
 
-/// What turns `before` into `after`, as JSON: the element counts of `after`, then only the
-/// elements that differ (by bits) or are new: crease-pattern and folded positions, fold angles
-/// alone when only they changed, whole edges, faces and face orders otherwise; the sheet area
-/// when it changed; and `after`'s fingerprint.
-nlohmann::json paperDeltaJson(const Paper& before, const Paper& after);
+/// What turns `before` into `after`, as JSON text: the element counts of `after`, then only
+/// the elements that differ (by bits) or are new: crease-pattern and folded positions, fold
+/// angles alone when only they changed, whole edges, faces and face orders otherwise; the sheet
+/// area when it changed; and `after`'s fingerprint (`after_fingerprint` when known). Every
+/// double is written to read back the same bits.
+std::string formatPaperDelta(const Paper& before, const Paper& after,
+                             std::optional<uint64_t> after_fingerprint = std::nullopt);
 
 /// `before` with `delta` applied; refused (with why) when the delta is malformed or does not
 /// give the state it was made for (its fingerprint differs).

@@ -18,11 +18,11 @@ namespace virtual_origami::core
 std::string formatPaperJson(const Paper& paper);
 Expected<Paper> parsePaperJson(const std::string& text);
 
-/// One operation's journal event. A commit's line holds what it changed (paper_delta.h) when
-/// the state it was computed from is at hand: made ahead of the append (for a large model,
-/// serialising is most of its cost, and a node does it outside its lock) when `state_before`
-/// is given, else at the append from the session the journal is given, against the state the
-/// journal's last line leaves. A commit journaled with neither holds its whole state.
+/// One operation's journal event. A commit's line holds what it changed in the state before it
+/// (paper_delta.h): made here, ahead of the append, when `state_before` is given (for a large
+/// model serialising is most of an append's cost, and a node does it outside its lock); else
+/// the state is kept (copied) and the line made at `append(session, event)`, from the session's
+/// paper. A load or reset (a new paper) is always written whole, made here.
 struct JournalEvent
 {
   Operation operation;
