@@ -502,15 +502,17 @@ Status SessionJournal::start(const std::string& path, const Session& session, co
     log.push_back(operationToJson(op));
   json header{ { "journal", "virtual_origami session" },
                { "version", kJournalVersion },
-               { "paper", paperToJson(h.paper) },
                { "revision", h.revision },
                { "log", log } };
   if (!run_id.empty())
     header["run_id"] = run_id;
-  // The delta chains are text already (formatPaperDelta): spliced in before the closing brace.
+  // The paper (its size weighs the states a restart holds) and the delta chains (text already,
+  // formatPaperDelta) are spliced in before the closing brace.
+  const std::string paper = paperToJson(h.paper).dump();
   std::string line = journalLine(header);
   line.resize(line.size() - 2);
-  line += ",\"undo\":" + stateChainText(h.undo, h.paper) + ",\"redo\":" + stateChainText(h.redo, h.paper) + "}\n";
+  line += ",\"paper\":" + paper + ",\"undo\":" + stateChainText(h.undo, h.paper) +
+          ",\"redo\":" + stateChainText(h.redo, h.paper) + "}\n";
 
   // The new journal is written beside the old one and renamed over it: a crash while the
   // header is written (it holds the whole history) must not leave a truncated journal and
@@ -558,6 +560,9 @@ Status SessionJournal::start(const std::string& path, const Session& session, co
   file_ = std::move(file);
   written_ = line.size();
   header_bytes_ = line.size();
+  state_bytes_ = paper.size();
+  header_weight_ = std::max<uint64_t>(header_bytes_, state_bytes_ * (1 + h.undo.size() + h.redo.size()));
+  event_weight_ = 0;
   recorded_ = h.log.size();
   revision_ = h.revision;
   fingerprint_ = paperFingerprint(h.paper);
@@ -649,10 +654,12 @@ Status SessionJournal::append(const JournalEvent& event)
     return failure(std::string("a journaled ") + kindName(op.kind) +
                    " was computed from another state than the one the journal is at");
 
+  const uint64_t before_bytes = written_;
   const Status written =
       writeEvent(!event.line.empty() || !event.state ? event.line : commitLine(op, paperToJson(*event.state)));
   if (!written)
     return written;
+  const uint64_t written_line = written_ - before_bytes;
   if (op.kind == Operation::Kind::Undo)
   {
     redo_fingerprints_.push_back(fingerprint_);
@@ -671,6 +678,9 @@ Status SessionJournal::append(const JournalEvent& event)
     redo_fingerprints_.clear();
     fingerprint_ = event.fingerprint;
   }
+  // A restart holds a state for every commit, whatever its line's size; an undo or redo only
+  // moves one between the stacks.
+  event_weight_ += step ? written_line : std::max(written_line, state_bytes_);
   revision_ = op.revision;
   ++recorded_;
   return success();

@@ -17,6 +17,7 @@
 
 #include "test_models.h"
 #include "virtual_origami/core/paper_delta.h"
+#include "virtual_origami/core/reference_patterns.h"
 #include "virtual_origami/core/session_journal.h"
 #include "virtual_origami/core/tessellations.h"
 #include "virtual_origami/solvers/crease_driver_factory.h"
@@ -570,4 +571,65 @@ TEST(JournalDelta, AKillInTheMiddleOfASnapshotRestoresTheLastCompleteState)
   EXPECT_FALSE(std::filesystem::exists(temporary));
   expectSameHistory(recovered(path), snapshotted.history());
   removeAll(paths);
+}
+
+// Found while measuring: a crease's delta is a few kB, so by bytes alone thousands of them
+// would pass before a snapshot, and a restart would hold a state for each (at 100,000 vertices,
+// gigabytes). Every commit weighs the state a restart makes of it.
+TEST(JournalDelta, SmallDeltasStillBoundTheStatesARestartHolds)
+{
+  const std::string path = tempPath("small_deltas");
+  // A sheet of 20 × 20 squares, every inner edge a flat crease: a crease across it splits a
+  // column of them, a small part of the paper.
+  std::vector<Vec2> corners;
+  std::vector<std::vector<int>> squares;
+  for (int j = 0; j <= 20; ++j)
+    for (int i = 0; i <= 20; ++i)
+      corners.emplace_back(i / 20.0, j / 20.0);
+  for (int j = 0; j < 20; ++j)
+    for (int i = 0; i < 20; ++i)
+      squares.push_back({ j * 21 + i, j * 21 + i + 1, (j + 1) * 21 + i + 1, (j + 1) * 21 + i });
+  Expected<Paper> grid = patternPaper(corners, squares);
+  ASSERT_TRUE(grid.ok()) << grid.message();
+  for (Edge& e : grid->edges)
+    if (e.isCrease())
+      e.assignment = Assignment::Flat;
+  Session session(*grid);
+  session.setHistoryLimit(3 * approximateBytes(session.paper()) + 1);
+  SessionJournal journal;
+  ASSERT_TRUE(journal.start(path, session).ok());
+  size_t states_in_header = 1, commits_since = 0, snapshots = 0;
+  for (int i = 0; i < 40; ++i)
+  {
+    const double x = (i + 0.5) / 40.0;  // between the grid's lines
+    Expected<Computed<CreaseResult>> creased =
+        computeCrease(session.workspace(), { p3(x, -0.1), p3(x, 1.1), std::nullopt, false });
+    ASSERT_TRUE(creased) << creased.message();
+    ASSERT_TRUE(journal.append(session, journalEvent(creased->change.operation, &*creased->change.next)).ok());
+    ASSERT_TRUE(session.commit(std::move(creased->change)));
+    ++commits_since;
+    // Its line is a small part of the state it makes, yet counts as that state.
+    EXPECT_LT(readLines(path).back().size() * 4, formatPaperJson(session.paper()).size());
+    // A restart holds the header's states and one per commit after it: never more than twice
+    // the header's, and the one that tipped the balance.
+    EXPECT_LE(commits_since, 2 * states_in_header + 1) << "crease " << i;
+    if (journal.wantsSnapshot(0))
+    {
+      ASSERT_TRUE(journal.snapshot(session).ok());
+      ++snapshots;
+      commits_since = 0;
+      states_in_header = 1 + session.history().undo.size() + session.history().redo.size();
+    }
+  }
+  EXPECT_GE(snapshots, 5u);
+  // The same paper, revision and log; undo states as deep as the session's at least (the
+  // session forgets the oldest by its memory limit, the journal since its last snapshot).
+  const History read = recovered(path), &kept = session.history();
+  expectBitForBit(read.paper, kept.paper, "paper");
+  EXPECT_EQ(read.revision, kept.revision);
+  EXPECT_EQ(read.log.size(), kept.log.size());
+  ASSERT_GE(read.undo.size(), kept.undo.size());
+  for (size_t i = 1; i <= kept.undo.size(); ++i)
+    expectBitForBit(read.undo[read.undo.size() - i], kept.undo[kept.undo.size() - i], "undo");
+  std::filesystem::remove(path);
 }

@@ -672,13 +672,15 @@ TEST(SessionJournal, ASnapshotBoundsWhatARestartReads)
     // As paper_model journals: the change appended before it is committed.
     Expected<Computed<CreaseResult>> creased = computeCrease(session.workspace(), line);
     ASSERT_TRUE(creased) << creased.message();
-    const uint64_t before = journal.eventBytes();
+    const uint64_t before = journal.eventWeight();
     ASSERT_TRUE(journal.append(session, creased->change.operation, &*creased->change.next));
     ASSERT_TRUE(session.commit(std::move(creased->change)));
-    const uint64_t event = journal.eventBytes() - before;
+    const uint64_t event = journal.eventWeight() - before;
     // What a restart would read now: a header and events no heavier, but for the last one.
     EXPECT_EQ(std::filesystem::file_size(path), journal.headerBytes() + journal.eventBytes());
-    EXPECT_LE(journal.eventBytes(), journal.headerBytes() + event);
+    EXPECT_LE(journal.eventBytes(), journal.eventWeight());
+    EXPECT_LE(journal.headerBytes(), journal.headerWeight());
+    EXPECT_LE(journal.eventWeight(), journal.headerWeight() + event);
     if (journal.wantsSnapshot(0))
     {
       ASSERT_TRUE(journal.snapshot(session));

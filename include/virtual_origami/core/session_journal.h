@@ -76,10 +76,17 @@ public:
   /// Whether the events after the header outweigh it (and `min_bytes`): then a snapshot (start
   /// again from the session as it is) keeps what a restart reads within twice a header, the
   /// history the session holds (bounded by its history limit), not every state it ever made.
+  /// Weighed by what a restart makes of them, not by their bytes: every state it holds in
+  /// memory counts as that state written whole (the paper's bytes at the last start), however
+  /// small its delta, so many small deltas cannot pile up states a restart must hold.
   bool wantsSnapshot(uint64_t min_bytes = uint64_t{ 64 } << 20) const
   {
-    return healthy_ && written_ - header_bytes_ > std::max(header_bytes_, min_bytes);
+    return healthy_ && event_weight_ > std::max(header_weight_, min_bytes);
   }
+  /// Those weights: of the header (its bytes, or the states it holds, each as the paper written
+  /// whole, whichever is more) and of the events after it.
+  uint64_t headerWeight() const { return header_weight_; }
+  uint64_t eventWeight() const { return event_weight_; }
   /// Starts again at the same path from `session`, which must be the session the journal
   /// recorded (the events so far become its header).
   Status snapshot(const Session& session)
@@ -144,6 +151,8 @@ private:
   std::string failure_;       // why it is unhealthy
   uint64_t written_ = 0;      // bytes of whole lines in the file
   uint64_t header_bytes_ = 0;  // of its first line
+  uint64_t state_bytes_ = 0;   // of the header's paper, written whole
+  uint64_t header_weight_ = 0, event_weight_ = 0;  // see wantsSnapshot
   size_t recorded_ = 0;       // operations of the session's log in the journal
   uint64_t revision_ = 0;     // the revision the journal's last line leaves the session at
   /// Fingerprints of the state the last line leaves and of those undo and redo go back and
