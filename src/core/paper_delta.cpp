@@ -256,6 +256,87 @@ uint64_t paperFingerprint(const Paper& paper)
   return f.value();
 }
 
+std::string formatPaperText(const Paper& paper)
+{
+  std::string out;
+  JsonText text(out);
+  // Keys in the order nlohmann writes them (sorted), so that nothing but the numbers' spelling
+  // differs from paperToJson(...).dump().
+  out += "{\"edges\":[";
+  for (size_t i = 0; i < paper.edges.size(); ++i)
+  {
+    const Edge& e = paper.edges[i];
+    out += i > 0 ? ",[" : "[";
+    text.number(e.vertices[0]);
+    out += ',';
+    text.number(e.vertices[1]);
+    out += ",\"";
+    out += assignmentLetter(e.assignment);
+    out += "\",";
+    text.number(e.fold_angle);
+    // Optional tail, so that journals written before either field read as they were:
+    // [..., split] only for the edges that split a concave face, [..., split, target] for an
+    // edge with a target angle.
+    if (e.split || e.target_angle)
+      out += e.split ? ",true" : ",false";
+    if (e.target_angle)
+    {
+      out += ',';
+      text.number(*e.target_angle);
+    }
+    out += ']';
+  }
+  out += "],\"face_orders\":[";
+  for (size_t i = 0; i < paper.face_orders.size(); ++i)
+  {
+    const FaceOrder& o = paper.face_orders[i];
+    out += i > 0 ? ",[" : "[";
+    text.number(o.face);
+    out += ',';
+    text.number(o.other);
+    out += ',';
+    text.number(o.above);
+    out += ']';
+  }
+  out += "],\"faces\":[";
+  for (size_t i = 0; i < paper.faces.size(); ++i)
+  {
+    out += i > 0 ? ",[" : "[";
+    for (size_t k = 0; k < paper.faces[i].vertices.size(); ++k)
+    {
+      if (k > 0)
+        out += ',';
+      text.number(paper.faces[i].vertices[k]);
+    }
+    out += ']';
+  }
+  out += "],\"sheet_area\":";
+  text.number(paper.sheet_area);
+  out += ",\"vertices_crease_pattern\":[";
+  for (size_t i = 0; i < paper.vertices.size(); ++i)
+  {
+    out += i > 0 ? ",[" : "[";
+    text.number(paper.vertices[i].crease_pattern.x());
+    out += ',';
+    text.number(paper.vertices[i].crease_pattern.y());
+    out += ']';
+  }
+  out += "],\"vertices_folded\":[";
+  for (size_t i = 0; i < paper.vertices.size(); ++i)
+  {
+    const Vec3& p = paper.vertices[i].folded;
+    out += i > 0 ? ",[" : "[";
+    text.number(p.x());
+    out += ',';
+    text.number(p.y());
+    out += ',';
+    text.number(p.z());
+    out += ']';
+  }
+  out += "]}";
+  return out;
+}
+
 std::string formatPaperDelta(const Paper& before, const Paper& after, std::optional<uint64_t> after_fingerprint)
 {
   std::string out;

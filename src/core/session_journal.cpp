@@ -54,41 +54,6 @@ Integer integer(const json& value)
   throw NotAnInteger(value.dump() + " is not an integer in range");
 }
 
-json paperToJson(const Paper& paper)
-{
-  json j;
-  json cp = json::array(), folded = json::array(), edges = json::array(), faces = json::array(),
-       orders = json::array();
-  for (const Vertex& v : paper.vertices)
-  {
-    cp.push_back({ v.crease_pattern.x(), v.crease_pattern.y() });
-    folded.push_back({ v.folded.x(), v.folded.y(), v.folded.z() });
-  }
-  for (const Edge& e : paper.edges)
-  {
-    json edge = { e.vertices[0], e.vertices[1], std::string(1, assignmentLetter(e.assignment)), e.fold_angle };
-    // Optional tail, so that journals written before either field read as they were:
-    // [..., split] only for the edges that split a concave face, [..., split, target] for an
-    // edge with a target angle.
-    if (e.split || e.target_angle)
-      edge.push_back(e.split);
-    if (e.target_angle)
-      edge.push_back(*e.target_angle);
-    edges.push_back(edge);
-  }
-  for (const Face& f : paper.faces)
-    faces.push_back(f.vertices);
-  for (const FaceOrder& o : paper.face_orders)
-    orders.push_back({ o.face, o.other, o.above });
-  j["vertices_crease_pattern"] = cp;
-  j["vertices_folded"] = folded;
-  j["edges"] = edges;
-  j["faces"] = faces;
-  j["face_orders"] = orders;
-  j["sheet_area"] = paper.sheet_area;
-  return j;
-}
-
 Expected<Paper> paperFromJson(const json& j)
 {
   try
@@ -427,7 +392,10 @@ bool syncFolderOf(const std::string& path, int& error)
 }
 }  // namespace
 
-std::string formatPaperJson(const Paper& paper) { return paperToJson(paper).dump(); }
+std::string formatPaperJson(const Paper& paper)
+{
+  return formatPaperText(paper);
+}
 
 Expected<Paper> parsePaperJson(const std::string& text)
 {
@@ -508,7 +476,7 @@ Status SessionJournal::start(const std::string& path, const Session& session, co
     header["run_id"] = run_id;
   // The paper (its size weighs the states a restart holds) and the delta chains (text already,
   // formatPaperDelta) are spliced in before the closing brace.
-  const std::string paper = paperToJson(h.paper).dump();
+  const std::string paper = formatPaperText(h.paper);
   std::string line = journalLine(header);
   line.resize(line.size() - 2);
   line += ",\"paper\":" + paper + ",\"undo\":" + stateChainText(h.undo, h.paper) +
@@ -579,9 +547,12 @@ Status SessionJournal::start(const std::string& path, const Session& session, co
 
 namespace
 {
-std::string commitLine(const Operation& op, const json& state)
+/// A commit's line with the whole state it makes (formatPaperText's text).
+std::string commitLine(const Operation& op, const std::string& state)
 {
-  return journalLine(json{ { "operation", operationToJson(op) }, { "paper", state } });
+  std::string line = journalLine(json{ { "operation", operationToJson(op) } });
+  line.resize(line.size() - 2);
+  return line + ",\"paper\":" + state + "}\n";
 }
 
 /// A commit's line with what it changed (formatPaperDelta's text).
@@ -601,7 +572,7 @@ JournalEvent journalEvent(const Operation& op, const Paper* state_after, const P
   else if (op.kind == Operation::Kind::Load || op.kind == Operation::Kind::Reset)
   {
     // A new paper shares nothing with the one before it: whole, and made here.
-    event.line = commitLine(op, paperToJson(*state_after));
+    event.line = commitLine(op, formatPaperText(*state_after));
     event.fingerprint = paperFingerprint(*state_after);
   }
   else if (state_before)
@@ -624,7 +595,7 @@ Status SessionJournal::append(const Operation& op, const Paper* state_after)
   JournalEvent event{ op, state_after != nullptr, "", std::nullopt, std::nullopt, 0 };
   if (state_after)
   {
-    event.line = commitLine(op, paperToJson(*state_after));
+    event.line = commitLine(op, formatPaperText(*state_after));
     event.fingerprint = paperFingerprint(*state_after);
   }
   else
@@ -656,7 +627,7 @@ Status SessionJournal::append(const JournalEvent& event)
 
   const uint64_t before_bytes = written_;
   const Status written =
-      writeEvent(!event.line.empty() || !event.state ? event.line : commitLine(op, paperToJson(*event.state)));
+      writeEvent(!event.line.empty() || !event.state ? event.line : commitLine(op, formatPaperText(*event.state)));
   if (!written)
     return written;
   const uint64_t written_line = written_ - before_bytes;

@@ -333,6 +333,9 @@ TEST(JournalDelta, AJournalWrittenBeforeDeltasStillRestores)
   const Paper p0 = paperOf(header["undo"][0]), p1 = paperOf(header["undo"][1]), p2 = paperOf(header["paper"]),
               p3_ = paperOf(header["redo"][0]);
   const Paper squashed = paperOf(json::parse(lines[2])["paper"]), creased = paperOf(json::parse(lines[3])["paper"]);
+  // A whole paper is still written as that version wrote it, to the byte.
+  EXPECT_EQ(formatPaperJson(squashed), json::parse(lines[2])["paper"].dump());
+  EXPECT_EQ(formatPaperJson(p2), header["paper"].dump());
 
   const std::string path = tempPath("v1");
   std::filesystem::copy_file(std::string(VO_SOURCE_DIR) + "/test/data/journal_v1.jsonl", path);

