@@ -357,11 +357,11 @@ std::string readEvent(const std::string& line, bool torn, History& history)
 std::string journalLine(const json& j) { return j.dump(-1, ' ', false, json::error_handler_t::replace) + '\n'; }
 
 /// Writes all of `data`, going on after short writes and signals; false with `error` set if not.
-bool writeAll(int fd, const std::string& data, int& error)
+bool writeAll(int fd, const char* data, size_t size, int& error)
 {
-  for (size_t done = 0; done < data.size();)
+  for (size_t done = 0; done < size;)
   {
-    const ssize_t n = ::write(fd, data.data() + done, data.size() - done);
+    const ssize_t n = ::write(fd, data + done, size - done);
     if (n < 0 && errno == EINTR)
       continue;
     if (n <= 0)
@@ -509,7 +509,7 @@ Status SessionJournal::start(const std::string& path, const Session& session, co
   for (size_t done = 0; done < line.size();)
   {
     const size_t chunk = header_observer_ ? std::min(header_chunk_bytes_, line.size() - done) : line.size();
-    if (!writeAll(file.get(), line.substr(done, chunk), error))
+    if (!writeAll(file.get(), line.data() + done, chunk, error))
       return discard("writing " + temporary, error);
     done += chunk;
     if (header_observer_ && !header_observer_(done, line.size()))
@@ -765,7 +765,7 @@ bool SessionJournal::canCatchUp(const History& h) const
 Status SessionJournal::writeEvent(const std::string& line)
 {
   int error = 0;
-  if (!writeAll(file_.get(), line, error))
+  if (!writeAll(file_.get(), line.data(), line.size(), error))
     return fail("cannot write the journal " + path_ + ": " + std::strerror(error));
   if (sync_ && ::fsync(file_.get()) != 0)
     return fail("cannot sync the journal " + path_ + ": " + std::strerror(errno));
