@@ -1,6 +1,7 @@
 #include "virtual_origami/core/session_journal.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -17,6 +18,8 @@
 #include <utility>
 
 #include <nlohmann/json.hpp>
+
+#include "virtual_origami/core/paper_delta.h"
 
 namespace virtual_origami::core
 {
@@ -49,41 +52,6 @@ Integer integer(const json& value)
       return static_cast<Integer>(i);
   }
   throw NotAnInteger(value.dump() + " is not an integer in range");
-}
-
-json paperToJson(const Paper& paper)
-{
-  json j;
-  json cp = json::array(), folded = json::array(), edges = json::array(), faces = json::array(),
-       orders = json::array();
-  for (const Vertex& v : paper.vertices)
-  {
-    cp.push_back({ v.crease_pattern.x(), v.crease_pattern.y() });
-    folded.push_back({ v.folded.x(), v.folded.y(), v.folded.z() });
-  }
-  for (const Edge& e : paper.edges)
-  {
-    json edge = { e.vertices[0], e.vertices[1], std::string(1, assignmentLetter(e.assignment)), e.fold_angle };
-    // Optional tail, so that journals written before either field read as they were:
-    // [..., split] only for the edges that split a concave face, [..., split, target] for an
-    // edge with a target angle.
-    if (e.split || e.target_angle)
-      edge.push_back(e.split);
-    if (e.target_angle)
-      edge.push_back(*e.target_angle);
-    edges.push_back(edge);
-  }
-  for (const Face& f : paper.faces)
-    faces.push_back(f.vertices);
-  for (const FaceOrder& o : paper.face_orders)
-    orders.push_back({ o.face, o.other, o.above });
-  j["vertices_crease_pattern"] = cp;
-  j["vertices_folded"] = folded;
-  j["edges"] = edges;
-  j["faces"] = faces;
-  j["face_orders"] = orders;
-  j["sheet_area"] = paper.sheet_area;
-  return j;
 }
 
 Expected<Paper> paperFromJson(const json& j)
@@ -264,12 +232,51 @@ Status readPapers(const json& list, std::vector<Paper>& papers)
   return success();
 }
 
+/// The states undo (or redo) goes through, each a delta from its neighbour nearer the paper:
+/// the last from the paper, every other from the one after it.
+Status readStateChain(const json& list, const Paper& paper, std::vector<Paper>& states)
+{
+  if (!list.is_array())
+    return failure("a list of undo or redo states is not a list");
+  states.resize(list.size());
+  const Paper* next = &paper;
+  for (size_t k = list.size(); k-- > 0;)
+  {
+    Expected<Paper> state = applyPaperDelta(*next, list[k]);
+    if (!state)
+      return failure(state.message());
+    states[k] = std::move(*state);
+    next = &states[k];
+  }
+  return success();
+}
+
+std::string stateChainText(const std::vector<Paper>& states, const Paper& paper)
+{
+  std::string list = "[";
+  for (size_t k = 0; k < states.size(); ++k)
+  {
+    if (k > 0)
+      list += ',';
+    list += formatPaperDelta(k + 1 < states.size() ? states[k + 1] : paper, states[k]);
+  }
+  return list + "]";
+}
+
+/// Version 1: every state whole. Version 2: undo and redo states as delta chains, commits as
+/// deltas or whole.
+constexpr int kJournalVersion = 2;
+
 Status readHeader(const json& j, History& history)
 {
   if (!j.is_object() || j.value("journal", "") != "virtual_origami session")
     return failure("not a virtual_origami journal header");
   try
   {
+    const int version = integer<int>(j.at("version"));
+    if (version < 1 || version > kJournalVersion)
+      return failure("journal version " + std::to_string(version) + ", which this version of virtual_origami " +
+                     "does not read (it reads versions 1 to " + std::to_string(kJournalVersion) + ")");
     Expected<Paper> paper = paperFromJson(j.at("paper"));
     if (!paper)
       return failure(paper.message());
@@ -282,8 +289,13 @@ Status readHeader(const json& j, History& history)
         return failure(parsed.message());
       history.log.push_back(*parsed);
     }
-    const Status undo = readPapers(j.at("undo"), history.undo);
-    return undo ? readPapers(j.at("redo"), history.redo) : undo;
+    if (version == 1)
+    {
+      const Status undo = readPapers(j.at("undo"), history.undo);
+      return undo ? readPapers(j.at("redo"), history.redo) : undo;
+    }
+    const Status undo = readStateChain(j.at("undo"), history.paper, history.undo);
+    return undo ? readStateChain(j.at("redo"), history.paper, history.redo) : undo;
   }
   catch (const std::exception& e)  // json::exception, NotAnInteger
   {
@@ -323,9 +335,12 @@ std::string readEvent(const std::string& line, bool torn, History& history)
   }
   else
   {
-    if (!j.contains("paper"))
+    // What the commit changed, or (journals before deltas, and commits journaled without the
+    // state before them) the whole state it made.
+    if (!j.contains("paper") && !j.contains("delta"))
       return "a commit without its state";
-    Expected<Paper> paper = paperFromJson(j["paper"]);
+    Expected<Paper> paper =
+        j.contains("delta") ? applyPaperDelta(history.paper, j["delta"]) : paperFromJson(j["paper"]);
     if (!paper)
       return paper.message();
     history.undo.push_back(std::move(history.paper));
@@ -342,11 +357,11 @@ std::string readEvent(const std::string& line, bool torn, History& history)
 std::string journalLine(const json& j) { return j.dump(-1, ' ', false, json::error_handler_t::replace) + '\n'; }
 
 /// Writes all of `data`, going on after short writes and signals; false with `error` set if not.
-bool writeAll(int fd, const std::string& data, int& error)
+bool writeAll(int fd, const char* data, size_t size, int& error)
 {
-  for (size_t done = 0; done < data.size();)
+  for (size_t done = 0; done < size;)
   {
-    const ssize_t n = ::write(fd, data.data() + done, data.size() - done);
+    const ssize_t n = ::write(fd, data + done, size - done);
     if (n < 0 && errno == EINTR)
       continue;
     if (n <= 0)
@@ -377,7 +392,10 @@ bool syncFolderOf(const std::string& path, int& error)
 }
 }  // namespace
 
-std::string formatPaperJson(const Paper& paper) { return paperToJson(paper).dump(); }
+std::string formatPaperJson(const Paper& paper)
+{
+  return formatPaperText(paper);
+}
 
 Expected<Paper> parsePaperJson(const std::string& text)
 {
@@ -406,6 +424,36 @@ void SessionJournal::Descriptor::reset()
   fd_ = -1;
 }
 
+namespace
+{
+/// Removes the temporary headers (`<path>.tmp.<pid>.<n>`) that processes killed while writing
+/// one left: each holds up to a whole history, and nothing reads them. A live process's is
+/// left alone.
+void removeLeftTemporaries(const std::string& path)
+{
+  const std::filesystem::path journal(path);
+  const std::string prefix = journal.filename().string() + ".tmp.";
+  std::error_code error;
+  const std::filesystem::path folder = journal.has_parent_path() ? journal.parent_path() : ".";
+  for (std::filesystem::directory_iterator it(folder, error), end; !error && it != end; it.increment(error))
+  {
+    const std::string name = it->path().filename().string();
+    if (name.compare(0, prefix.size(), prefix) != 0)
+      continue;
+    const size_t dot = name.find('.', prefix.size());
+    const std::string digits = name.substr(prefix.size(), dot == std::string::npos ? dot : dot - prefix.size());
+    if (digits.empty() || digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos)
+      continue;
+    const pid_t pid = static_cast<pid_t>(std::stol(digits));
+    // One of this process's pid is from an earlier process (pid namespaces reuse it): a start
+    // that fails removes its own. Only files a write left: a link there is not the journal's.
+    if ((pid == ::getpid() || (::kill(pid, 0) != 0 && errno == ESRCH)) && it->is_regular_file(error) &&
+        !it->is_symlink(error))
+      ::unlink(it->path().c_str());
+  }
+}
+}  // namespace
+
 Status SessionJournal::start(const std::string& path, const Session& session, const std::string& run_id)
 {
   file_.reset();
@@ -415,29 +463,31 @@ Status SessionJournal::start(const std::string& path, const Session& session, co
   run_id_ = run_id;
   // The header holds the whole history so far; events follow it.
   const History& h = session.history();
-  json undo = json::array(), redo = json::array(), log = json::array();
-  for (const Paper& p : h.undo)
-    undo.push_back(paperToJson(p));
-  for (const Paper& p : h.redo)
-    redo.push_back(paperToJson(p));
+  // Neighbouring states differ by one operation: each undo and redo state is written as what
+  // it changes in its neighbour nearer the paper, the paper alone whole.
+  json log = json::array();
   for (const Operation& op : h.log)
     log.push_back(operationToJson(op));
   json header{ { "journal", "virtual_origami session" },
-               { "version", 1 },
-               { "paper", paperToJson(h.paper) },
+               { "version", kJournalVersion },
                { "revision", h.revision },
-               { "undo", undo },
-               { "redo", redo },
                { "log", log } };
   if (!run_id.empty())
     header["run_id"] = run_id;
-  const std::string line = journalLine(header);
+  // The paper (its size weighs the states a restart holds) and the delta chains (text already,
+  // formatPaperDelta) are spliced in before the closing brace.
+  const std::string paper = formatPaperText(h.paper);
+  std::string line = journalLine(header);
+  line.resize(line.size() - 2);
+  line += ",\"paper\":" + paper + ",\"undo\":" + stateChainText(h.undo, h.paper) +
+          ",\"redo\":" + stateChainText(h.redo, h.paper) + "}\n";
 
   // The new journal is written beside the old one and renamed over it: a crash while the
   // header is written (it holds the whole history) must not leave a truncated journal and
   // lose the session. paper_model starts one on every (re)start. Found by killing it -9.
   // The name is new each time and opened exclusively without following links, so neither
   // a stale file nor a link planted at that name is written through.
+  removeLeftTemporaries(path);
   std::string temporary;
   Descriptor file;
   int error = 0;
@@ -456,8 +506,15 @@ Status SessionJournal::start(const std::string& path, const Session& session, co
     ::unlink(temporary.c_str());
     return fail("cannot write the journal " + path + ": " + what + ": " + std::strerror(why));
   };
-  if (!writeAll(file.get(), line, error))
-    return discard("writing " + temporary, error);
+  for (size_t done = 0; done < line.size();)
+  {
+    const size_t chunk = header_observer_ ? std::min(header_chunk_bytes_, line.size() - done) : line.size();
+    if (!writeAll(file.get(), line.data() + done, chunk, error))
+      return discard("writing " + temporary, error);
+    done += chunk;
+    if (header_observer_ && !header_observer_(done, line.size()))
+      return discard("writing " + temporary, ENOSPC);
+  }
   // Synced before the rename: a rename that reaches the disk before the data would leave an
   // empty journal after a power cut.
   if (::fsync(file.get()) != 0)
@@ -471,26 +528,79 @@ Status SessionJournal::start(const std::string& path, const Session& session, co
   file_ = std::move(file);
   written_ = line.size();
   header_bytes_ = line.size();
+  state_bytes_ = paper.size();
+  header_weight_ = std::max<uint64_t>(header_bytes_, state_bytes_ * (1 + h.undo.size() + h.redo.size()));
+  event_weight_ = 0;
   recorded_ = h.log.size();
   revision_ = h.revision;
-  undo_depth_ = h.undo.size();
-  redo_depth_ = h.redo.size();
+  fingerprint_ = paperFingerprint(h.paper);
+  undo_fingerprints_.clear();
+  redo_fingerprints_.clear();
+  for (const Paper& p : h.undo)
+    undo_fingerprints_.push_back(paperFingerprint(p));
+  for (const Paper& p : h.redo)
+    redo_fingerprints_.push_back(paperFingerprint(p));
   failure_.clear();
   healthy_ = true;
   return success();
 }
 
-JournalEvent journalEvent(const Operation& op, const Paper* state_after)
+namespace
 {
-  json event{ { "operation", operationToJson(op) } };
-  if (state_after)
-    event["paper"] = paperToJson(*state_after);
-  return JournalEvent{ op, state_after != nullptr, journalLine(event) };
+/// A commit's line with the whole state it makes (formatPaperText's text).
+std::string commitLine(const Operation& op, const std::string& state)
+{
+  std::string line = journalLine(json{ { "operation", operationToJson(op) } });
+  line.resize(line.size() - 2);
+  return line + ",\"paper\":" + state + "}\n";
+}
+
+/// A commit's line with what it changed (formatPaperDelta's text).
+std::string deltaLine(const Operation& op, const std::string& delta)
+{
+  std::string line = journalLine(json{ { "operation", operationToJson(op) } });
+  line.resize(line.size() - 2);
+  return line + ",\"delta\":" + delta + "}\n";
+}
+}  // namespace
+
+JournalEvent journalEvent(const Operation& op, const Paper* state_after, const Paper* state_before)
+{
+  JournalEvent event{ op, state_after != nullptr, "", std::nullopt, std::nullopt, 0 };
+  if (!state_after)
+    event.line = journalLine(json{ { "operation", operationToJson(op) } });
+  else if (op.kind == Operation::Kind::Load || op.kind == Operation::Kind::Reset)
+  {
+    // A new paper shares nothing with the one before it: whole, and made here.
+    event.line = commitLine(op, formatPaperText(*state_after));
+    event.fingerprint = paperFingerprint(*state_after);
+  }
+  else if (state_before)
+  {
+    event.fingerprint = paperFingerprint(*state_after);
+    event.base_fingerprint = paperFingerprint(*state_before);
+    event.line = deltaLine(op, formatPaperDelta(*state_before, *state_after, event.fingerprint));
+  }
+  else
+  {
+    // The state before is the session's, which only the append sees: the line is made there.
+    event.state = *state_after;
+    event.fingerprint = paperFingerprint(*state_after);
+  }
+  return event;
 }
 
 Status SessionJournal::append(const Operation& op, const Paper* state_after)
 {
-  return append(journalEvent(op, state_after));
+  JournalEvent event{ op, state_after != nullptr, "", std::nullopt, std::nullopt, 0 };
+  if (state_after)
+  {
+    event.line = commitLine(op, formatPaperText(*state_after));
+    event.fingerprint = paperFingerprint(*state_after);
+  }
+  else
+    event.line = journalLine(json{ { "operation", operationToJson(op) } });
+  return append(event);
 }
 
 Status SessionJournal::append(const JournalEvent& event)
@@ -507,29 +617,41 @@ Status SessionJournal::append(const JournalEvent& event)
   if (op.revision != revision_ + 1 || revision_ == std::numeric_limits<uint64_t>::max())
     return failure("a journaled " + std::string(kindName(op.kind)) + " has revision " + std::to_string(op.revision) +
                    "; the journal is at revision " + std::to_string(revision_));
-  if (op.kind == Operation::Kind::Undo && undo_depth_ == 0)
+  if (op.kind == Operation::Kind::Undo && undo_fingerprints_.empty())
     return failure("the journal has nothing to undo");
-  if (op.kind == Operation::Kind::Redo && redo_depth_ == 0)
+  if (op.kind == Operation::Kind::Redo && redo_fingerprints_.empty())
     return failure("the journal has nothing to redo");
+  if (event.base_fingerprint && *event.base_fingerprint != fingerprint_)
+    return failure(std::string("a journaled ") + kindName(op.kind) +
+                   " was computed from another state than the one the journal is at");
 
-  const Status written = writeEvent(event.line);
+  const uint64_t before_bytes = written_;
+  const Status written =
+      writeEvent(!event.line.empty() || !event.state ? event.line : commitLine(op, formatPaperText(*event.state)));
   if (!written)
     return written;
+  const uint64_t written_line = written_ - before_bytes;
   if (op.kind == Operation::Kind::Undo)
   {
-    --undo_depth_;
-    ++redo_depth_;
+    redo_fingerprints_.push_back(fingerprint_);
+    fingerprint_ = undo_fingerprints_.back();
+    undo_fingerprints_.pop_back();
   }
   else if (op.kind == Operation::Kind::Redo)
   {
-    --redo_depth_;
-    ++undo_depth_;
+    undo_fingerprints_.push_back(fingerprint_);
+    fingerprint_ = redo_fingerprints_.back();
+    redo_fingerprints_.pop_back();
   }
   else
   {
-    ++undo_depth_;
-    redo_depth_ = 0;
+    undo_fingerprints_.push_back(fingerprint_);
+    redo_fingerprints_.clear();
+    fingerprint_ = event.fingerprint;
   }
+  // A restart holds a state for every commit, whatever its line's size; an undo or redo only
+  // moves one between the stacks.
+  event_weight_ += step ? written_line : std::max(written_line, state_bytes_);
   revision_ = op.revision;
   ++recorded_;
   return success();
@@ -537,21 +659,41 @@ Status SessionJournal::append(const JournalEvent& event)
 
 Status SessionJournal::append(const Session& before, const Operation& op, const Paper* state_after)
 {
-  return append(before, journalEvent(op, state_after));
+  const Status ready = startUnlessInStep(before);
+  if (!ready)
+    return ready;
+  return append(journalEvent(op, state_after, state_after ? &before.paper() : nullptr));
 }
 
 Status SessionJournal::append(const Session& before, const JournalEvent& event)
 {
-  if (path_.empty())
-    return failure("the journal was never started");
-  if (!healthy_ || !inStepWith(before))
+  const Status ready = startUnlessInStep(before);
+  if (!ready)
+    return ready;
+  if (event.line.empty() && event.state)
   {
-    // Starting again replaces the file, torn line and all, by the session as it is.
-    const Status started = start(path_, before, run_id_);
-    if (!started)
-      return started;
+    // What it changes in the session's paper, which is the state the journal is at.
+    JournalEvent made{ event.operation,
+                       true,
+                       deltaLine(event.operation, formatPaperDelta(before.paper(), *event.state, event.fingerprint)),
+                       std::nullopt,
+                       fingerprint_,
+                       event.fingerprint };
+    return append(made);
   }
   return append(event);
+}
+
+Status SessionJournal::startUnlessInStep(const Session& before)
+{
+  if (path_.empty())
+    return failure("the journal was never started");
+  // Its paper too: a delta is written from the session's paper and read back onto the
+  // journal's, which must be the same state.
+  if (healthy_ && inStepWith(before) && paperFingerprint(before.paper()) == fingerprint_)
+    return success();
+  // Starting again replaces the file, torn line and all, by the session as it is.
+  return start(path_, before, run_id_);
 }
 
 Status SessionJournal::record(const Session& session)
@@ -564,8 +706,15 @@ Status SessionJournal::record(const Session& session)
   while (recorded_ < h.log.size())
   {
     const Operation& op = h.log[recorded_];
-    // Only the newest commit's state is at hand (canCatchUp saw that any commit is the last).
-    const Status appended = append(op, stepsThroughHistory(op.kind) ? nullptr : &h.paper);
+    // Only the newest commit's state is at hand (canCatchUp saw that any commit is the last);
+    // the state before it is the newest undo state, unless the history limit dropped it.
+    Status appended = success();
+    if (stepsThroughHistory(op.kind))
+      appended = append(op, nullptr);
+    else if (!h.undo.empty() && paperFingerprint(h.undo.back()) == fingerprint_)
+      appended = append(journalEvent(op, &h.paper, &h.undo.back()));
+    else
+      appended = append(op, &h.paper);
     if (!appended)
       return appended;
   }
@@ -577,8 +726,8 @@ bool SessionJournal::inStepWith(const Session& session) const
   const History& h = session.history();
   // A session that caps its undo history by memory forgets the oldest undo states, which the
   // journal keeps: deeper, but in step.
-  return revision_ == h.revision && recorded_ == h.log.size() && undo_depth_ >= h.undo.size() &&
-         redo_depth_ == h.redo.size();
+  return revision_ == h.revision && recorded_ == h.log.size() && undo_fingerprints_.size() >= h.undo.size() &&
+         redo_fingerprints_.size() == h.redo.size();
 }
 
 bool SessionJournal::canCatchUp(const History& h) const
@@ -586,7 +735,7 @@ bool SessionJournal::canCatchUp(const History& h) const
   if (recorded_ > h.log.size())
     return false;
   uint64_t revision = revision_;
-  size_t undo = undo_depth_, redo = redo_depth_;
+  size_t undo = undo_fingerprints_.size(), redo = redo_fingerprints_.size();
   for (size_t i = recorded_; i < h.log.size(); ++i)
   {
     const Operation& op = h.log[i];
@@ -616,7 +765,7 @@ bool SessionJournal::canCatchUp(const History& h) const
 Status SessionJournal::writeEvent(const std::string& line)
 {
   int error = 0;
-  if (!writeAll(file_.get(), line, error))
+  if (!writeAll(file_.get(), line.data(), line.size(), error))
     return fail("cannot write the journal " + path_ + ": " + std::strerror(error));
   if (sync_ && ::fsync(file_.get()) != 0)
     return fail("cannot sync the journal " + path_ + ": " + std::strerror(errno));
