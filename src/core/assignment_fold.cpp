@@ -6,6 +6,7 @@
 #include <functional>
 #include <limits>
 
+#include "virtual_origami/core/compliant_faces.h"
 #include "virtual_origami/core/face_crossings.h"
 #include "virtual_origami/core/face_springs.h"
 #include "virtual_origami/core/fold_fraction.h"
@@ -271,9 +272,11 @@ Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFo
     return Failure::failure("the fold fraction must be a number from -1 to 1 (-100 % to 100 %)");
   if (!(request.max_stage_angle > 0.0))
     return Failure::failure("the stage angle must be positive");
-  const std::vector<double> targets = creaseTargets(paper);
-  if (std::none_of(targets.begin(), targets.end(), [](double t) { return std::isfinite(t); }))
-    return Failure::failure("no crease has a mountain, valley or flat assignment to fold by");
+  {
+    const std::vector<double> targets = creaseTargets(paper);
+    if (std::none_of(targets.begin(), targets.end(), [](double t) { return std::isfinite(t); }))
+      return Failure::failure("no crease has a mountain, valley or flat assignment to fold by");
+  }
   std::vector<char> fixed(paper.vertices.size(), 0);
   for (int v : held)
   {
@@ -281,13 +284,6 @@ Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFo
       return Failure::failure("held vertex " + std::to_string(v) + " is not on the paper");
     fixed[v] = 1;
   }
-  for (int v : pieceAnchors(paper))
-    fixed[v] = 1;
-  std::vector<double> goal(targets.size(), kNaN);
-  for (size_t e = 0; e < targets.size(); ++e)
-    if (std::isfinite(targets[e]))
-      goal[e] = request.fraction * targets[e];
-
   // A preview frame works on the paper itself (a copy of a 10,000-vertex paper is a tenth of a
   // frame's budget) and puts its positions back where the driver fails; a commit on a copy.
   Paper copy;
@@ -296,6 +292,16 @@ Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFo
   Paper& work = request.converge ? copy : paper;
   AssignmentFoldResult result;
   result.fraction = request.fraction;
+  // Faces that rigid faces would lock bend instead (cut into triangles once, then kept so).
+  result.compliant_faces = makeLockedFacesCompliant(work).bodies;
+  const std::vector<double> targets = creaseTargets(work);
+  for (int v : pieceAnchors(paper))
+    fixed[v] = 1;
+  std::vector<double> goal(targets.size(), kNaN);
+  for (size_t e = 0; e < targets.size(); ++e)
+    if (std::isfinite(targets[e]))
+      goal[e] = request.fraction * targets[e];
+
   if (!request.converge)
   {
     const Positions before = foldedPositions(paper);
@@ -357,6 +363,9 @@ Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFo
   result.max_strain = largest(result.face_strain);
   result.angle_error = angleError(work, goal);
   result.against_target = againstTarget(work, goal);
+  for (const Edge& e : work.edges)
+    if (isFacet(e))
+      result.largest_bend = std::max(result.largest_bend, std::abs(e.fold_angle - *e.target_angle));
   if (request.converge)
   {
     countStuck(paper, work, goal, result);

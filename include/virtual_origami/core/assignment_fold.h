@@ -93,6 +93,10 @@ struct AssignmentFoldResult
   /// cannot bend, or waiting for others, as a bird base's petal creases near flat).
   int asked_to_turn = 0;
   int stuck = 0;
+  /// Faces of the file that rigid faces would lock (curved bands) and that bend instead, cut
+  /// into triangles whose facets bend (core/compliant_faces.h), and their largest bend (rad).
+  int compliant_faces = 0;
+  double largest_bend = 0.0;
 };
 
 /// How far past flat a driven crease may lie before it counts as folded against its target.
