@@ -328,8 +328,10 @@ Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFo
     // driver meanwhile. One stage (a slide's step) stays near a balanced state: no detour
     // through softer faces needed there.
     const std::unique_ptr<CreaseDriver> fresh = driver.clone();
-    const bool soft_path =
-        stages > 1 && request.path_stiffness > 0 && request.path_stiffness < driver.faceStiffness();
+    // Faces that bend give the fold its way already; through soft faces as well, a curved pleat
+    // crept for 20 s (2,300 iterations, 50 to 100 %) where stiff ones take 1.5 s to the same end.
+    const bool soft_path = stages > 1 && request.path_stiffness > 0 &&
+                           request.path_stiffness < driver.faceStiffness() && result.compliant_faces == 0;
     std::unique_ptr<CreaseDriver> soft = soft_path ? driver.clone() : nullptr;
     if (soft)
       soft->setFaceStiffness(request.path_stiffness);

@@ -65,7 +65,8 @@ struct AssignmentFoldRequest
   /// Face stiffness on the way of a commit of more than one stage (below the driver's own): a
   /// pattern that is no rigid mechanism, like a square twist, folds only through strained
   /// faces, which stiff faces never enter. The stages run with it, then the goal is balanced
-  /// again with the driver's stiffness. A one-stage commit (a slide's step) stays stiff.
+  /// again with the driver's stiffness. A one-stage commit (a slide's step) stays stiff, and so
+  /// does a paper with compliant faces (they bend instead).
   double path_stiffness = 100.0;
 };
 
