@@ -152,6 +152,10 @@ double fromLine(const Vec2& a, const Vec2& b, const Vec2& p)
 CompliantFaces makeLockedFacesCompliant(Paper& paper)
 {
   CompliantFaces made;
+  // Two convex faces meet along one straight side: only a face of the file in pieces can lock.
+  // (Every preview frame asks: a pattern without one answers at the cost of one pass.)
+  if (std::none_of(paper.edges.begin(), paper.edges.end(), [](const Edge& e) { return e.split && e.isCrease(); }))
+    return made;
   const size_t face_count = paper.faces.size();
   // The faces of the file: pieces joined by split edges.
   std::vector<int> parent(face_count);
@@ -161,6 +165,9 @@ CompliantFaces makeLockedFacesCompliant(Paper& paper)
   for (const Edge& e : paper.edges)
     if (e.split && e.isCrease())
       parent[root(e.faces[0])] = root(e.faces[1]);
+  std::vector<int> pieces(face_count, 0);
+  for (size_t f = 0; f < face_count; ++f)
+    ++pieces[root(static_cast<int>(f))];
 
   // Two rigid bodies turn about one axis: the creases between them must lie on one line. Off it
   // by a thousandth of the sheet or less is a drawing's rounding (the straight creases of Origami
@@ -175,6 +182,8 @@ CompliantFaces makeLockedFacesCompliant(Paper& paper)
     if (!edge.isCrease() || edge.split)
       continue;
     const int a = root(edge.faces[0]), b = root(edge.faces[1]);
+    if (pieces[a] == 1 && pieces[b] == 1)
+      continue;
     if (a == b)
     {
       locked[a] = 1;
