@@ -12,9 +12,11 @@
 
 #include "virtual_origami/core/assignment_fold.h"
 #include "virtual_origami/core/compliant_faces.h"
+#include "virtual_origami/core/fold_io.h"
 #include "virtual_origami/core/model_file.h"
 #include "virtual_origami/core/session.h"
 #include "virtual_origami/core/tessellations.h"
+#include "virtual_origami/core/validity.h"
 #include "virtual_origami/solvers/crease_driver_factory.h"
 #include "virtual_origami/solvers/driven_faces.h"
 #include "virtual_origami/solvers/solver_factory.h"
@@ -248,6 +250,26 @@ TEST(CompliantFaces, ACurvedCreaseFoldsWithItsFacesBending)
   for (const Edge& e : session.paper().edges)
     if (e.isCrease() && !e.split)
       EXPECT_NEAR(e.fold_angle, M_PI / 4, 0.15);
+}
+
+/// A folded curved crease saves as the file had it (each band one face again: its facets are no
+/// creases of the file) and loads back valid; folded on, its faces bend again.
+TEST(CompliantFaces, AFoldedCurvedCreaseSavesAndLoadsBack)
+{
+  const Paper pattern = arcFold(8, 90.0);
+  Session session = foldingSession(pattern);
+  ASSERT_TRUE(session.foldByAssignment(0.5));
+  const Expected<FoldDocument> back = parseFold(formatFold(session.paper()));
+  ASSERT_TRUE(back) << back.message();
+  const Paper& read = back->frames.front();
+  EXPECT_EQ(read.faces.size(), pattern.faces.size());
+  EXPECT_TRUE(checkValidity(read).ok()) << checkValidity(read).summary();
+  Session again = foldingSession(read);
+  const Expected<AssignmentFoldResult> on = again.foldByAssignment(0.75);
+  ASSERT_TRUE(on) << on.message();
+  EXPECT_EQ(on->compliant_faces, 2);
+  EXPECT_EQ(on->stuck, 0);
+  EXPECT_LE(on->max_strain, 1e-3);
 }
 
 /// A curved pleat folds part way (its bands bending; held rigid it could not turn a crease), and
