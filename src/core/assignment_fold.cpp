@@ -190,8 +190,8 @@ bool closeByStiffening(Paper& closed, const Paper& work, const std::vector<doubl
 /// converging to a rigid state moves a hundredth as far the second time (its strain falls as
 /// 1/K), that Miura-ori a sixteenth; one that folds only through strained faces (a square twist
 /// at 50 %) a fifth to a quarter, creeping towards a distant rigid state.
-bool closeRigidly(Paper& work, double scale, const std::vector<double>& goal,
-                  const std::vector<char>& fixed, const CreaseDriver& driver, ShapeSolver& rigid)
+bool closeRigidly(Paper& work, double scale, const std::vector<double>& goal, const std::vector<char>& fixed,
+                  const CreaseDriver& driver, ShapeSolver& rigid)
 {
   const double strain = largest(faceStrains(work));
   Paper closed = work;
@@ -263,9 +263,10 @@ void recordLayerOrder(Paper& work, AssignmentFoldResult& result)
 }
 }  // namespace
 
-Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFoldRequest& request,
-                                                CreaseDriver& driver, ShapeSolver* rigid,
-                                                const std::vector<int>& held)
+namespace
+{
+Expected<AssignmentFoldResult> foldOnce(Paper& paper, const AssignmentFoldRequest& request, CreaseDriver& driver,
+                                        ShapeSolver* rigid, const std::vector<int>& held)
 {
   using Failure = Expected<AssignmentFoldResult>;
   if (!std::isfinite(request.fraction) || request.fraction < -1.0 || request.fraction > 1.0)
@@ -293,7 +294,9 @@ Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFo
   AssignmentFoldResult result;
   result.fraction = request.fraction;
   // Faces that rigid faces would lock bend instead (cut into triangles once, then kept so).
-  result.compliant_faces = makeLockedFacesCompliant(work).bodies;
+  if (makeLockedFacesCompliant(work).bodies > 0 ||
+      std::any_of(work.edges.begin(), work.edges.end(), [](const Edge& e) { return isFacet(e); }))
+    result.compliant_faces = compliantFaceCount(work);
   const std::vector<double> targets = creaseTargets(work);
   for (int v : pieceAnchors(paper))
     fixed[v] = 1;
@@ -378,6 +381,55 @@ Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFo
   return result;
 }
 
+/// The faces beside the driven creases a commit left stuck (asked to turn, turned less than a
+/// hundredth of the way), as countStuck counts them.
+std::vector<int> facesBesideStuckCreases(const Paper& before, const Paper& after, double fraction)
+{
+  const std::vector<double> targets = creaseTargets(before);
+  std::vector<int> faces;
+  for (size_t e = 0; e < targets.size(); ++e)
+  {
+    if (!std::isfinite(targets[e]))
+      continue;
+    const double asked = std::abs(fraction * targets[e] - before.edges[e].fold_angle);
+    const double turned = std::abs(after.edges[e].fold_angle - before.edges[e].fold_angle);
+    if (asked > 0.05 && turned < 0.01 * asked)
+      faces.insert(faces.end(), before.edges[e].faces.begin(), before.edges[e].faces.end());
+  }
+  return faces;
+}
+}  // namespace
+
+Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFoldRequest& request,
+                                                CreaseDriver& driver, ShapeSolver* rigid, const std::vector<int>& held)
+{
+  if (!request.converge)
+    return foldOnce(paper, request, driver, rigid, held);
+  Paper rigid_faces = paper;
+  Expected<AssignmentFoldResult> result = foldOnce(rigid_faces, request, driver, rigid, held);
+  // Most creases stuck: faces that cannot stay rigid held them (a hypar's trapezoids must twist).
+  // Those beside the stuck creases bend, and the commit is made again from the paper as it was;
+  // taken where fewer creases stick.
+  if (result && 2 * result->stuck > result->asked_to_turn)
+  {
+    Paper bending = paper;
+    const CompliantFaces made =
+        makeFacesCompliant(bending, facesBesideStuckCreases(paper, rigid_faces, request.fraction));
+    if (made.bodies > 0)
+    {
+      Expected<AssignmentFoldResult> again = foldOnce(bending, request, driver, rigid, held);
+      if (again && again->stuck < result->stuck)
+      {
+        paper = std::move(bending);
+        return again;
+      }
+    }
+  }
+  if (result)
+    paper = std::move(rigid_faces);
+  return result;
+}
+
 std::string assignmentFoldProblems(const AssignmentFoldResult& result, const AssignmentFoldAcceptance& acceptance)
 {
   if (acceptance.keep)
@@ -403,8 +455,9 @@ std::string assignmentFoldProblems(const AssignmentFoldResult& result, const Ass
   // sheet where it was). A few may wait for others on a rigid path (a bird base's, from flat).
   if (result.asked_to_turn > 0 && 2 * result.stuck > result.asked_to_turn)
   {
-    std::snprintf(text, sizeof text, "the faces could not follow: %d of %d creases could not turn (angle error %.3g rad)",
-                  result.stuck, result.asked_to_turn, result.angle_error);
+    std::snprintf(text, sizeof text,
+                  "the faces could not follow: %d of %d creases could not turn (angle error %.3g rad)", result.stuck,
+                  result.asked_to_turn, result.angle_error);
     problems.emplace_back(text);
   }
   // All the way, every crease is where it was driven: else the fold did not happen as asked.

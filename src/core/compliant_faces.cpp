@@ -147,63 +147,13 @@ double fromLine(const Vec2& a, const Vec2& b, const Vec2& p)
   const double length = axis.norm();
   return length > 0 ? std::abs(cross2(axis, p - a)) / length : (p - a).norm();
 }
-}  // namespace
-
-CompliantFaces makeLockedFacesCompliant(Paper& paper)
+/// Cuts every face marked compliant (whole faces of the file) into triangles and makes every
+/// split edge between two compliant faces a facet.
+CompliantFaces cutIntoFacets(Paper& paper, std::vector<char> compliant, const std::function<int(int)>& root)
 {
   CompliantFaces made;
-  // Two convex faces meet along one straight side: only a face of the file in pieces can lock.
-  // (Every preview frame asks: a pattern without one answers at the cost of one pass.)
-  if (std::none_of(paper.edges.begin(), paper.edges.end(), [](const Edge& e) { return e.split && e.isCrease(); }))
-    return made;
   const size_t face_count = paper.faces.size();
-  // The faces of the file: pieces joined by split edges.
-  std::vector<int> parent(face_count);
-  for (size_t f = 0; f < face_count; ++f)
-    parent[f] = static_cast<int>(f);
-  const std::function<int(int)> root = [&](int f) { return parent[f] == f ? f : parent[f] = root(parent[f]); };
-  for (const Edge& e : paper.edges)
-    if (e.split && e.isCrease())
-      parent[root(e.faces[0])] = root(e.faces[1]);
-  std::vector<int> pieces(face_count, 0);
-  for (size_t f = 0; f < face_count; ++f)
-    ++pieces[root(static_cast<int>(f))];
-
-  // Two rigid bodies turn about one axis: the creases between them must lie on one line. Off it
-  // by a thousandth of the sheet or less is a drawing's rounding (the straight creases of Origami
-  // Simulator's library lie within 8e-4 of theirs; its curves' pieces further than 1e-3 from
-  // their neighbours' lines), which costs a rigid fold little strain.
-  const double tolerance = 1e-3 * paper.scale();
-  std::vector<char> locked(face_count, 0);
-  std::map<std::pair<int, int>, int> first_crease;  // per pair of bodies, the first crease between them
-  for (size_t e = 0; e < paper.edges.size(); ++e)
-  {
-    const Edge& edge = paper.edges[e];
-    if (!edge.isCrease() || edge.split)
-      continue;
-    const int a = root(edge.faces[0]), b = root(edge.faces[1]);
-    if (pieces[a] == 1 && pieces[b] == 1)
-      continue;
-    if (a == b)
-    {
-      locked[a] = 1;
-      continue;
-    }
-    const auto [at, added] = first_crease.emplace(std::minmax(a, b), static_cast<int>(e));
-    if (added)
-      continue;
-    const Edge& first = paper.edges[at->second];
-    const Vec2 p = paper.vertices[first.vertices[0]].crease_pattern;
-    const Vec2 q = paper.vertices[first.vertices[1]].crease_pattern;
-    if (fromLine(p, q, paper.vertices[edge.vertices[0]].crease_pattern) > tolerance ||
-        fromLine(p, q, paper.vertices[edge.vertices[1]].crease_pattern) > tolerance)
-      locked[a] = locked[b] = 1;
-  }
-
   // Each compliant face cut into triangles; the new edges inside it are its diagonals.
-  std::vector<char> compliant(face_count, 0);
-  for (size_t f = 0; f < face_count; ++f)
-    compliant[f] = locked[root(static_cast<int>(f))];
   std::vector<char> counted(face_count, 0);
   bool to_cut = false;
   for (size_t f = 0; f < face_count; ++f)
@@ -292,6 +242,100 @@ CompliantFaces makeLockedFacesCompliant(Paper& paper)
   if (to_cut)
     paper = std::move(cut);
   return made;
+}
+}  // namespace
+
+CompliantFaces makeLockedFacesCompliant(Paper& paper)
+{
+  CompliantFaces made;
+  // Two convex faces meet along one straight side: only a face of the file in pieces can lock.
+  // (Every preview frame asks: a pattern without one answers at the cost of one pass.)
+  if (std::none_of(paper.edges.begin(), paper.edges.end(), [](const Edge& e) { return e.split && e.isCrease(); }))
+    return made;
+  const size_t face_count = paper.faces.size();
+  // The faces of the file: pieces joined by split edges.
+  std::vector<int> parent(face_count);
+  for (size_t f = 0; f < face_count; ++f)
+    parent[f] = static_cast<int>(f);
+  const std::function<int(int)> root = [&](int f) { return parent[f] == f ? f : parent[f] = root(parent[f]); };
+  for (const Edge& e : paper.edges)
+    if (e.split && e.isCrease())
+      parent[root(e.faces[0])] = root(e.faces[1]);
+  std::vector<int> pieces(face_count, 0);
+  for (size_t f = 0; f < face_count; ++f)
+    ++pieces[root(static_cast<int>(f))];
+
+  // Two rigid bodies turn about one axis: the creases between them must lie on one line. Off it
+  // by a thousandth of the sheet or less is a drawing's rounding (the straight creases of Origami
+  // Simulator's library lie within 8e-4 of theirs; its curves' pieces further than 1e-3 from
+  // their neighbours' lines), which costs a rigid fold little strain.
+  const double tolerance = 1e-3 * paper.scale();
+  std::vector<char> locked(face_count, 0);
+  std::map<std::pair<int, int>, int> first_crease;  // per pair of bodies, the first crease between them
+  for (size_t e = 0; e < paper.edges.size(); ++e)
+  {
+    const Edge& edge = paper.edges[e];
+    if (!edge.isCrease() || edge.split)
+      continue;
+    const int a = root(edge.faces[0]), b = root(edge.faces[1]);
+    if (pieces[a] == 1 && pieces[b] == 1)
+      continue;
+    if (a == b)
+    {
+      locked[a] = 1;
+      continue;
+    }
+    const auto [at, added] = first_crease.emplace(std::minmax(a, b), static_cast<int>(e));
+    if (added)
+      continue;
+    const Edge& first = paper.edges[at->second];
+    const Vec2 p = paper.vertices[first.vertices[0]].crease_pattern;
+    const Vec2 q = paper.vertices[first.vertices[1]].crease_pattern;
+    if (fromLine(p, q, paper.vertices[edge.vertices[0]].crease_pattern) > tolerance ||
+        fromLine(p, q, paper.vertices[edge.vertices[1]].crease_pattern) > tolerance)
+      locked[a] = locked[b] = 1;
+  }
+
+  std::vector<char> compliant(face_count, 0);
+  for (size_t f = 0; f < face_count; ++f)
+    compliant[f] = locked[root(static_cast<int>(f))];
+  return cutIntoFacets(paper, compliant, root);
+}
+
+CompliantFaces makeFacesCompliant(Paper& paper, const std::vector<int>& faces)
+{
+  const size_t face_count = paper.faces.size();
+  std::vector<int> parent(face_count);
+  for (size_t f = 0; f < face_count; ++f)
+    parent[f] = static_cast<int>(f);
+  const std::function<int(int)> root = [&](int f) { return parent[f] == f ? f : parent[f] = root(parent[f]); };
+  for (const Edge& e : paper.edges)
+    if (e.split && e.isCrease())
+      parent[root(e.faces[0])] = root(e.faces[1]);
+  std::vector<char> body(face_count, 0);
+  for (int f : faces)
+    if (f >= 0 && static_cast<size_t>(f) < face_count)
+      body[root(f)] = 1;
+  std::vector<char> compliant(face_count, 0);
+  for (size_t f = 0; f < face_count; ++f)
+    compliant[f] = body[root(static_cast<int>(f))];
+  return cutIntoFacets(paper, compliant, root);
+}
+
+int compliantFaceCount(const Paper& paper)
+{
+  std::vector<int> parent(paper.faces.size());
+  for (size_t f = 0; f < parent.size(); ++f)
+    parent[f] = static_cast<int>(f);
+  const std::function<int(int)> root = [&](int f) { return parent[f] == f ? f : parent[f] = root(parent[f]); };
+  for (const Edge& e : paper.edges)
+    if (e.split && e.isCrease())
+      parent[root(e.faces[0])] = root(e.faces[1]);
+  std::vector<char> bending(parent.size(), 0);
+  for (const Edge& e : paper.edges)
+    if (isFacet(e))
+      bending[root(e.faces[0])] = 1;
+  return static_cast<int>(std::count(bending.begin(), bending.end(), 1));
 }
 
 }  // namespace virtual_origami::core

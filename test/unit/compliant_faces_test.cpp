@@ -75,6 +75,35 @@ Paper arcFold(int segments, double degrees)
   return paper ? *paper : Paper{};
 }
 
+/// A hyperbolic paraboloid: `rings` concentric squares round the centre of a square sheet of
+/// side 2, creased valley and mountain in turn (the outermost is the border), and the two
+/// diagonals as free hinges: trapezoids between them, which no rigid fold can turn.
+Paper quadHypar(int rings)
+{
+  std::ostringstream fold;
+  fold << "{\"file_spec\": 1.1, \"vertices_coords\": [[0,0]";
+  const int sx[4] = { 1, -1, -1, 1 }, sy[4] = { 1, 1, -1, -1 };
+  for (int k = 1; k <= rings; ++k)
+    for (int j = 0; j < 4; ++j)
+      fold << ",[" << sx[j] * static_cast<double>(k) / rings << "," << sy[j] * static_cast<double>(k) / rings << "]";
+  std::ostringstream edges, assignments;
+  const auto corner = [](int k, int j) { return 1 + (k - 1) * 4 + j % 4; };
+  const char* sep = "";
+  for (int k = 1; k <= rings; ++k)
+    for (int j = 0; j < 4; ++j)
+    {
+      edges << sep << "[" << corner(k, j) << "," << corner(k, j + 1) << "]";
+      assignments << sep << (k == rings ? "\"B\"" : k % 2 ? "\"V\"" : "\"M\"");
+      sep = ",";
+      edges << ",[" << (k == 1 ? 0 : corner(k - 1, j)) << "," << corner(k, j) << "]";
+      assignments << ",\"U\"";
+    }
+  fold << "], \"edges_vertices\": [" << edges.str() << "], \"edges_assignment\": [" << assignments.str() << "]}";
+  const Expected<Paper> paper = parseModel(fold.str(), ModelFormat::Fold, 1.0);
+  EXPECT_TRUE(paper) << paper.message();
+  return paper ? *paper : Paper{};
+}
+
 double twiceArea(const Paper& paper, const Face& face)
 {
   double twice = 0;
@@ -233,8 +262,12 @@ TEST(CompliantFaces, ACurvedCreaseFoldsWithItsFacesBending)
   ASSERT_TRUE(makeCreaseDriver()->drive(rigid, goal, std::vector<char>(rigid.vertices.size(), 0)).converged);
   updateFoldAngles(rigid);
   for (const Edge& e : rigid.edges)
+  {
     if (e.isCrease() && !e.split)
+    {
       EXPECT_LT(std::abs(e.fold_angle), 0.01 * M_PI / 4);
+    }
+  }
   Session session = foldingSession(paper);
   const Expected<AssignmentFoldResult> half = session.foldByAssignment(0.5);
   ASSERT_TRUE(half) << half.message();
@@ -248,8 +281,12 @@ TEST(CompliantFaces, ACurvedCreaseFoldsWithItsFacesBending)
   EXPECT_GT(half->largest_bend, 0.02);
   EXPECT_LT(half->angle_error, 0.1);
   for (const Edge& e : session.paper().edges)
+  {
     if (e.isCrease() && !e.split)
+    {
       EXPECT_NEAR(e.fold_angle, M_PI / 4, 0.15);
+    }
+  }
 }
 
 /// A folded curved crease saves as the file had it (each band one face again: its facets are no
@@ -270,6 +307,41 @@ TEST(CompliantFaces, AFoldedCurvedCreaseSavesAndLoadsBack)
   EXPECT_EQ(on->compliant_faces, 2);
   EXPECT_EQ(on->stuck, 0);
   EXPECT_LE(on->max_strain, 1e-3);
+}
+
+/// A hypar's trapezoids must twist: rigid faces stretch, and closed rigid every crease sticks;
+/// the faces beside the stuck creases are made compliant (cut in two along a diagonal that
+/// bends) and the hypar folds half way, right for paper.
+TEST(CompliantFaces, AHyparsTrapezoidsTwist)
+{
+  const Paper pattern = quadHypar(4);
+  ASSERT_EQ(pattern.faces.size(), 16u);
+  Paper rigid = pattern;
+  std::vector<double> goal = creaseTargets(rigid);
+  for (double& g : goal)
+    g *= 0.5;
+  // Rigid faces driven there stretch instead (and closed rigid, lie flat: every crease stuck).
+  ASSERT_TRUE(makeCreaseDriver()->drive(rigid, goal, std::vector<char>(rigid.vertices.size(), 0)).converged);
+  const std::vector<double> stretched = faceStrains(rigid);
+  EXPECT_GT(*std::max_element(stretched.begin(), stretched.end()), 1e-3);
+  Session session = foldingSession(pattern);
+  const Expected<AssignmentFoldResult> half = session.foldByAssignment(0.5);
+  ASSERT_TRUE(half) << half.message();
+  EXPECT_EQ(half->stuck, 0);
+  EXPECT_EQ(half->asked_to_turn, 12);
+  EXPECT_LE(half->max_strain, 1e-3);
+  EXPECT_EQ(half->crossings, 0);
+  EXPECT_EQ(half->against_target, 0);
+  EXPECT_EQ(half->compliant_faces, 12);
+  EXPECT_GT(half->largest_bend, 0.05);
+  // Every driven crease turned, by at least a tenth of the way (a saddle: 0.22–0.33 rad of π/2).
+  for (const Edge& e : session.paper().edges)
+  {
+    if (e.isCrease() && !e.split && e.assignment != Assignment::Unassigned)
+    {
+      EXPECT_GT(std::abs(e.fold_angle), 0.1 * M_PI / 2);
+    }
+  }
 }
 
 /// A curved pleat folds part way (its bands bending; held rigid it could not turn a crease), and

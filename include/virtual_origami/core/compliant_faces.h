@@ -4,6 +4,8 @@
 // the sheet stays rigid.
 #pragma once
 
+#include <vector>
+
 #include "virtual_origami/core/paper.h"
 
 namespace virtual_origami::core
@@ -30,10 +32,17 @@ struct CompliantFaces
 
 /// Finds the faces of the file (the pieces joined by split edges) that rigid faces would lock —
 /// two that meet along creases not on one line (a curved band and the band beside it; off the
-/// line by more than 1e-3 of the sheet), or one with a crease inside it — and makes each compliant: its pieces cut into triangles
-/// by new split edges, and every split edge inside it a facet (isFacet). Faces already compliant
-/// and every other face stay as they are. The faces keep their numbers (a cut face keeps its
-/// first triangle; the others come after); no vertex is added.
+/// line by more than 1e-3 of the sheet), or one with a crease inside it — and makes each compliant: its pieces cut into
+/// triangles by new split edges, and every split edge inside it a facet (isFacet). Faces already compliant and every
+/// other face stay as they are. The faces keep their numbers (a cut face keeps its first triangle; the others come
+/// after); no vertex is added.
 CompliantFaces makeLockedFacesCompliant(Paper& paper);
+
+/// Makes the faces of the file that `faces` belong to compliant, as above: where a rigid fold
+/// left the creases stuck (a hypar's trapezoids, which must twist).
+CompliantFaces makeFacesCompliant(Paper& paper, const std::vector<int>& faces);
+
+/// How many faces of the file are compliant (have a facet).
+int compliantFaceCount(const Paper& paper);
 
 }  // namespace virtual_origami::core
