@@ -312,9 +312,13 @@ CompliantFaces makeFacesCompliant(Paper& paper, const std::vector<int>& faces)
   for (const Edge& e : paper.edges)
     if (e.split && e.isCrease())
       parent[root(e.faces[0])] = root(e.faces[1]);
-  std::vector<char> body(face_count, 0);
+  // Faces of the file already compliant stay as they are: only the others are new.
+  std::vector<char> bending(face_count, 0), body(face_count, 0);
+  for (const Edge& e : paper.edges)
+    if (isFacet(e))
+      bending[root(e.faces[0])] = 1;
   for (int f : faces)
-    if (f >= 0 && static_cast<size_t>(f) < face_count)
+    if (f >= 0 && static_cast<size_t>(f) < face_count && !bending[root(f)])
       body[root(f)] = 1;
   std::vector<char> compliant(face_count, 0);
   for (size_t f = 0; f < face_count; ++f)

@@ -39,7 +39,8 @@ struct CompliantFaces
 CompliantFaces makeLockedFacesCompliant(Paper& paper);
 
 /// Makes the faces of the file that `faces` belong to compliant, as above: where a rigid fold
-/// left the creases stuck (a hypar's trapezoids, which must twist).
+/// left the creases stuck (a hypar's trapezoids, which must twist). `bodies` counts those that
+/// were not compliant already.
 CompliantFaces makeFacesCompliant(Paper& paper, const std::vector<int>& faces);
 
 /// How many faces of the file are compliant (have a facet).
