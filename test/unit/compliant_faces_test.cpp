@@ -290,7 +290,8 @@ TEST(CompliantFaces, ACurvedCreaseFoldsWithItsFacesBending)
 }
 
 /// A folded curved crease saves as the file had it (each band one face again: its facets are no
-/// creases of the file) and loads back valid; folded on, its faces bend again.
+/// creases of the file), its folded-form frame the bent shape, and loads back valid; folded on,
+/// its faces bend again.
 TEST(CompliantFaces, AFoldedCurvedCreaseSavesAndLoadsBack)
 {
   const Paper pattern = arcFold(8, 90.0);
@@ -301,6 +302,17 @@ TEST(CompliantFaces, AFoldedCurvedCreaseSavesAndLoadsBack)
   const Paper& read = back->frames.front();
   EXPECT_EQ(read.faces.size(), pattern.faces.size());
   EXPECT_TRUE(checkValidity(read).ok()) << checkValidity(read).summary();
+  // The folded form's frame keeps the bent shape: every distance between two vertices.
+  ASSERT_EQ(back->frames.size(), 2u);
+  const Paper& form = back->frames.back();
+  const Paper& folded = session.paper();
+  ASSERT_EQ(form.vertices.size(), folded.vertices.size());
+  double largest = 0;
+  for (size_t v = 0; v < form.vertices.size(); ++v)
+    for (size_t w = v + 1; w < form.vertices.size(); ++w)
+      largest = std::max(largest, std::abs((form.vertices[v].folded - form.vertices[w].folded).norm() -
+                                           (folded.vertices[v].folded - folded.vertices[w].folded).norm()));
+  EXPECT_LT(largest, 1e-9);
   Session again = foldingSession(read);
   const Expected<AssignmentFoldResult> on = again.foldByAssignment(0.75);
   ASSERT_TRUE(on) << on.message();
