@@ -32,10 +32,11 @@ struct CompliantFaces
 
 /// Finds the faces of the file (the pieces joined by split edges) that rigid faces would lock —
 /// two that meet along creases not on one line (a curved band and the band beside it; off the
-/// line by more than 1e-3 of the sheet), or one with a crease inside it — and makes each compliant: its pieces cut into
-/// triangles by new split edges, and every split edge inside it a facet (isFacet). Faces already compliant and every
-/// other face stay as they are. The faces keep their numbers (a cut face keeps its first triangle; the others come
-/// after); no vertex is added.
+/// line by more than 1e-3 of the sheet), or one with a crease inside it — and makes each
+/// compliant: its pieces cut into triangles by new split edges, and every split edge inside it a
+/// facet (isFacet). Faces already compliant and every other face stay as they are. The faces
+/// keep their numbers (a cut face keeps its first triangle; the others come after); no vertex is
+/// added.
 CompliantFaces makeLockedFacesCompliant(Paper& paper);
 
 /// Makes the faces of the file that `faces` belong to compliant, as above: where a rigid fold
