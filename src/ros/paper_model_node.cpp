@@ -361,11 +361,13 @@ core::Expected<core::Computed<Result>> PaperModelNode::computeAndCommit(
     const uint64_t pins_seen = pins_changes_;
     if (!last)
       lock.unlock();
+    // The state it starts from, for the journal's delta (made outside the lock too).
+    const core::Paper base = commit_it && !last ? workspace.paper : core::Paper();
     Answer computed = compute(std::move(workspace));
     // The journal line of a large model takes longer to write out than to append: outside too.
     std::optional<core::JournalEvent> event;
     if (computed && commit_it && !last)
-      event = core::journalEvent(computed->change.operation, &*computed->change.next);
+      event = core::journalEvent(computed->change.operation, &*computed->change.next, &base);
     if (!last)
       lock.lock();
     revision = session_.revision();  // answered with the revision this call made or found
@@ -758,6 +760,8 @@ bool PaperModelNode::foldByAssignment(FoldByAssignment::Request& req, FoldByAssi
   res.crossings = folded.crossings;
   res.ordered_pairs = folded.ordered_pairs;
   res.layer_problem = folded.layer_problem;
+  res.compliant_faces = folded.compliant_faces;
+  res.largest_bend = folded.largest_bend;
   if (!result)
   {
     res.message = result.message();

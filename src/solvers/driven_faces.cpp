@@ -7,6 +7,8 @@
 #include <Eigen/Geometry>
 #include <Eigen/SVD>
 
+#include "virtual_origami/core/compliant_faces.h"
+
 namespace virtual_origami::core
 {
 namespace
@@ -180,7 +182,10 @@ DrivenFaces::DrivenFaces(const Paper& paper, double face_stiffness)
   for (size_t e = 0; e < paper.edges.size(); ++e)
   {
     const Edge& edge = paper.edges[e];
-    if (!edge.isCrease() || edge.split)
+    // A facet of a compliant face bends too, far softer than a crease (kFacetBending), held
+    // at its own target (flat) whatever the creases are driven to.
+    const bool facet = isFacet(edge);
+    if (!edge.isCrease() || (edge.split && !facet))
       continue;
     Hinge h;
     h.edge = static_cast<int>(e);
@@ -193,10 +198,11 @@ DrivenFaces::DrivenFaces(const Paper& paper, double face_stiffness)
     const double length = (paper.vertices[h.b].crease_pattern - paper.vertices[h.a].crease_pattern).norm() / scale_;
     const int fl = rigid_of_face[edge.faces[0]], fr = rigid_of_face[edge.faces[1]];
     const double size = 0.5 * (std::sqrt(size2[fl >= 0 ? fl : 0]) + std::sqrt(size2[fr >= 0 ? fr : 0]));
-    h.weight = length / size;
+    h.weight = (facet ? kFacetBending : 1.0) * length / size;
     hinges_.push_back(h);
+    facet_target_.push_back(facet ? *edge.target_angle : kNaN);
   }
-  target_.assign(hinges_.size(), kNaN);
+  target_ = facet_target_;
   reference_.assign(paper.edges.size(), kNaN);
   for (size_t e = 0; e < paper.edges.size(); ++e)
     reference_[e] = paper.edges[e].fold_angle;
@@ -210,7 +216,7 @@ void DrivenFaces::setTargets(const std::vector<double>& targets)
   for (size_t h = 0; h < hinges_.size(); ++h)
   {
     const size_t e = static_cast<size_t>(hinges_[h].edge);
-    target_[h] = e < targets.size() ? targets[e] : kNaN;
+    target_[h] = std::isfinite(facet_target_[h]) ? facet_target_[h] : e < targets.size() ? targets[e] : kNaN;
   }
 }
 

@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
 
+#include "virtual_origami/core/compliant_faces.h"
 #include "virtual_origami/core/face_springs.h"
 #include "virtual_origami/numerics/spd_factorization.h"
 #include "virtual_origami/solvers/rigid_faces.h"
@@ -240,6 +241,7 @@ struct NewtonSolver::Setup
   std::vector<std::vector<int>> face_vertices;
   std::vector<Vec2> crease_pattern;
   std::vector<char> fixed;
+  std::vector<char> facets;  // the split edges that bend (core/compliant_faces.h): not joined
   std::vector<RigidFace> faces;
   std::vector<Spring> springs;
   std::vector<int> free_index;
@@ -247,7 +249,11 @@ struct NewtonSolver::Setup
   std::unique_ptr<ReducedSystem> system;
 
   Setup(const Paper& paper, const std::vector<char>& held)
-    : crease_pattern(creasePattern(paper)), fixed(held), faces(rigidFaces(paper)), springs(faceSprings(paper))
+    : crease_pattern(creasePattern(paper))
+    , fixed(held)
+    , facets(facetsOf(paper))
+    , faces(rigidFaces(paper))
+    , springs(faceSprings(paper))
   {
     for (const Face& face : paper.faces)
       face_vertices.push_back(face.vertices);
@@ -257,12 +263,22 @@ struct NewtonSolver::Setup
 
   bool matches(const Paper& paper, const std::vector<char>& held) const
   {
-    if (held != fixed || paper.faces.size() != face_vertices.size() || creasePattern(paper) != crease_pattern)
+    if (held != fixed || paper.faces.size() != face_vertices.size() || creasePattern(paper) != crease_pattern ||
+        facetsOf(paper) != facets)
       return false;
     for (size_t f = 0; f < paper.faces.size(); ++f)
       if (paper.faces[f].vertices != face_vertices[f])
         return false;
     return true;
+  }
+
+  static std::vector<char> facetsOf(const Paper& paper)
+  {
+    std::vector<char> out;
+    out.reserve(paper.edges.size());
+    for (const Edge& e : paper.edges)
+      out.push_back(isFacet(e) ? 1 : 0);
+    return out;
   }
 
   static std::vector<Vec2> creasePattern(const Paper& paper)

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "virtual_origami/core/compliant_faces.h"
 #include "virtual_origami/core/positions.h"
 
 namespace virtual_origami::core
@@ -110,9 +111,11 @@ std::vector<Vec2> QuasiNewtonDriver::Setup::creasePattern(const Paper& paper)
 
 std::vector<char> QuasiNewtonDriver::Setup::drivenEdges(const Paper& paper, const std::vector<double>& target)
 {
+  // A facet (always driven, at its own target) counts apart: turning split edges into facets
+  // changes the energy's faces.
   std::vector<char> out(paper.edges.size(), 0);
-  for (size_t e = 0; e < out.size() && e < target.size(); ++e)
-    out[e] = driven(target[e]) ? 1 : 0;
+  for (size_t e = 0; e < out.size(); ++e)
+    out[e] = isFacet(paper.edges[e]) ? 2 : e < target.size() && driven(target[e]) ? 1 : 0;
   return out;
 }
 

@@ -8,18 +8,20 @@
 #include <Eigen/Geometry>
 #include <Eigen/SVD>
 
+#include "virtual_origami/core/compliant_faces.h"
+
 namespace virtual_origami::core
 {
 std::vector<RigidFace> rigidFaces(const Paper& paper)
 {
   // The convex pieces of a concave face of a loaded file (joined by split edges) are one rigid
-  // body: the split edges are no hinges.
+  // body: the split edges are no hinges, unless the face is compliant (its facets bend).
   std::vector<int> group(paper.faces.size());
   for (size_t f = 0; f < group.size(); ++f)
     group[f] = static_cast<int>(f);
   const std::function<int(int)> root = [&](int f) { return group[f] == f ? f : group[f] = root(group[f]); };
   for (const Edge& e : paper.edges)
-    if (e.split && e.isCrease())
+    if (e.split && e.isCrease() && !isFacet(e))
       group[root(e.faces[0])] = root(e.faces[1]);
   std::vector<std::vector<int>> members(paper.faces.size());
   for (size_t f = 0; f < group.size(); ++f)

@@ -66,7 +66,8 @@ struct AssignmentFoldRequest
   /// Face stiffness on the way of a commit of more than one stage (below the driver's own): a
   /// pattern that is no rigid mechanism, like a square twist, folds only through strained
   /// faces, which stiff faces never enter. The stages run with it, then the goal is balanced
-  /// again with the driver's stiffness. A one-stage commit (a slide's step) stays stiff.
+  /// again with the driver's stiffness. A one-stage commit (a slide's step) stays stiff, and so
+  /// does a paper with compliant faces (they bend instead).
   double path_stiffness = 100.0;
   /// A recorded commit's result (a replay): the folded positions to take instead of driving
   /// anything, one column per vertex. Its figures are measured as a solve's are, so a replay
@@ -104,6 +105,10 @@ struct AssignmentFoldResult
   /// cannot bend, or waiting for others, as a bird base's petal creases near flat).
   int asked_to_turn = 0;
   int stuck = 0;
+  /// Faces of the file that rigid faces would lock (curved bands) and that bend instead, cut
+  /// into triangles whose facets bend (core/compliant_faces.h), and their largest bend (rad).
+  int compliant_faces = 0;
+  double largest_bend = 0.0;
 };
 
 /// How far past flat a driven crease may lie before it counts as folded against its target.

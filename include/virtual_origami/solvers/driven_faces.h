@@ -36,14 +36,16 @@ Eigen::Matrix<double, 3, 4> hingeAngleGradientChange(const Hinge& hinge, const P
 /// The faces and hinges of a paper, and the energy
 ///   E = ½ K Σ_f Σ_{v∈f} |(x_v − x̄_f) − R_f p̃_v|² / s_f² + ½ Σ_c w_c (θ_c − θ*_c)²
 /// with R_f fitted per face, s_f² the face's mean squared radius, and only the hinges with a
-/// finite target in the second sum. Positions are in units of the sheet's scale inside.
+/// finite target in the second sum. The facets of compliant faces (core/compliant_faces.h) are
+/// hinges too, w_c scaled by kFacetBending, always driven to their own target. Positions are in
+/// units of the sheet's scale inside.
 class DrivenFaces
 {
 public:
   DrivenFaces(const Paper& paper, double face_stiffness);
 
-  /// Targets per edge (NaN: free). Angles are unwrapped against `reference` (per edge, the
-  /// branch nearest it), so a crease at ±π stays on the side it is on.
+  /// Targets per edge (NaN: free); a facet keeps its own. Angles are unwrapped against
+  /// `reference` (per edge, the branch nearest it), so a crease at ±π stays on the side it is on.
   void setTargets(const std::vector<double>& targets);
   void setReference(const std::vector<double>& reference) { reference_ = reference; }
 
@@ -133,6 +135,7 @@ private:
   std::vector<double> face_weight_;  // K / s_f²
   std::vector<Hinge> hinges_;
   std::vector<double> target_;       // per hinge, NaN when free
+  std::vector<double> facet_target_;  // per hinge, a facet's own target (NaN for a crease)
   std::vector<double> reference_;    // per edge
   double scale_ = 1.0;
   double stiffness_ = 1.0;

@@ -20,7 +20,8 @@ struct RigidFace
   Eigen::Matrix2Xd rest;  // crease-pattern positions minus their mean, one column per vertex
 };
 
-/// One per face; the convex pieces of a concave face a file gave (joined by split edges) make one.
+/// One per face; the convex pieces of a concave face a file gave (joined by split edges) make one,
+/// unless they are compliant (joined by facets, which bend: core/compliant_faces.h).
 std::vector<RigidFace> rigidFaces(const Paper& paper);
 
 /// The rotation that best turns the face's rest shape onto the centred folded vertices. The
