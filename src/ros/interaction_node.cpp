@@ -94,8 +94,11 @@ void InteractionNode::received(const Feedback::ConstPtr& feedback, MenuCallback 
 {
   std::lock_guard<std::mutex> lock(mutex_);
   ++received_;
-  const auto isPose = [](const Event& e) { return !e.chosen && e.feedback->event_type == Feedback::POSE_UPDATE; };
-  const Event event{ feedback, std::move(chosen), slider };
+  // A Fold tool's event in the queue has no feedback: never a pose to merge with.
+  const auto isPose = [](const Event& e) {
+    return !e.chosen && e.feedback && e.feedback->event_type == Feedback::POSE_UPDATE;
+  };
+  const Event event{ feedback, std::move(chosen), slider, nullptr };
   if (isPose(event) && !events_.empty() && isPose(events_.back()) && events_.back().slider == slider)
   {
     events_.back().feedback = feedback;  // only the latest pose matters

@@ -205,6 +205,9 @@ void InteractionNode::toolKey(const ToolEvent& event, const core::Pointer& at)
     case ToolAction::DragMode:
       model_.chooseMode(core::GestureMode::Drag, at);
       break;
+    case ToolAction::FlapMode:
+      model_.chooseMode(core::GestureMode::Flap, at);
+      break;
     default:
       break;
   }

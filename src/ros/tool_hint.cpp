@@ -19,6 +19,8 @@ std::string whatAClickDoes(core::GestureMode mode, const core::GestureStatus& st
       return "Rotate mode: drag a face to turn it; click a crease for the axis.";
     case core::GestureMode::Drag:
       return "Drag mode: drag a vertex.";
+    case core::GestureMode::Flap:
+      return "Flap mode: drag a flap where it should lie; it folds flat on release.";
     case core::GestureMode::Fold:
       if (status.marked_edges.empty())
         return "Fold mode: click a crease to mark it valley, again mountain, again none.";
@@ -40,7 +42,7 @@ std::string toolHint(core::GestureMode mode, const core::GestureStatus& status)
   if (status.layers > 1)
     return hint + " Layer " + std::to_string(status.picked_layer) + " of " + std::to_string(status.layers) +
            ": the wheel or Tab for the next.";
-  return hint + " Keys: 1-4 mode, Ctrl+Z undo, Ctrl+Y redo.";
+  return hint + " Keys: 1-5 mode, Ctrl+Z undo, Ctrl+Y redo.";
 }
 
 }  // namespace virtual_origami

@@ -39,6 +39,8 @@ ToolAction toolKeyAction(const std::string& key, uint8_t modifiers)
     return ToolAction::FoldMode;
   if (k == "4")
     return ToolAction::DragMode;
+  if (k == "5")
+    return ToolAction::FlapMode;
   return ToolAction::None;
 }
 

@@ -182,7 +182,7 @@ protected:
 TEST_F(ToolEvents, NumberKeysChooseTheModeAndTheHintSaysWhatAClickDoes)
 {
   const std::vector<std::pair<std::string, std::string>> modes{
-    { "3", "fold" }, { "4", "drag" }, { "2", "rotate" }, { "1", "crease" }
+    { "3", "fold" }, { "4", "drag" }, { "5", "flap" }, { "2", "rotate" }, { "1", "crease" }
   };
   for (const auto& [k, mode] : modes)
   {

@@ -19,6 +19,7 @@ enum class ToolAction
   RotateMode,  // 2
   FoldMode,    // 3
   DragMode,    // 4
+  FlapMode,    // 5
 };
 
 /// `key` as Qt's QKeySequence names it ("Tab", "Return", "Z", "1"); `modifiers` as ToolEvent's
