@@ -149,7 +149,7 @@ double fromLine(const Vec2& a, const Vec2& b, const Vec2& p)
 }
 /// Cuts every face marked compliant (whole faces of the file) into triangles and makes every
 /// split edge between two compliant faces a facet.
-CompliantFaces cutIntoFacets(Paper& paper, std::vector<char> compliant, const std::function<int(int)>& root)
+CompliantFaces cutIntoFacets(Paper& paper, std::vector<char> compliant, const std::vector<int>& file_face)
 {
   CompliantFaces made;
   const size_t face_count = paper.faces.size();
@@ -159,7 +159,7 @@ CompliantFaces cutIntoFacets(Paper& paper, std::vector<char> compliant, const st
   for (size_t f = 0; f < face_count; ++f)
     if (compliant[f])
     {
-      const int body = root(static_cast<int>(f));
+      const int body = file_face[f];
       made.bodies += counted[body] ? 0 : 1;
       counted[body] = 1;
       to_cut = to_cut || paper.faces[f].vertices.size() > 3;
@@ -243,6 +243,20 @@ CompliantFaces cutIntoFacets(Paper& paper, std::vector<char> compliant, const st
     paper = std::move(cut);
   return made;
 }
+/// For each face, the one that stands for its face of the file (pieces joined by split edges).
+std::vector<int> fileFaces(const Paper& paper)
+{
+  std::vector<int> parent(paper.faces.size());
+  for (size_t f = 0; f < parent.size(); ++f)
+    parent[f] = static_cast<int>(f);
+  const std::function<int(int)> root = [&](int f) { return parent[f] == f ? f : parent[f] = root(parent[f]); };
+  for (const Edge& e : paper.edges)
+    if (e.split && e.isCrease())
+      parent[root(e.faces[0])] = root(e.faces[1]);
+  for (size_t f = 0; f < parent.size(); ++f)
+    root(static_cast<int>(f));
+  return parent;
+}
 }  // namespace
 
 CompliantFaces makeLockedFacesCompliant(Paper& paper)
@@ -254,13 +268,8 @@ CompliantFaces makeLockedFacesCompliant(Paper& paper)
     return made;
   const size_t face_count = paper.faces.size();
   // The faces of the file: pieces joined by split edges.
-  std::vector<int> parent(face_count);
-  for (size_t f = 0; f < face_count; ++f)
-    parent[f] = static_cast<int>(f);
-  const std::function<int(int)> root = [&](int f) { return parent[f] == f ? f : parent[f] = root(parent[f]); };
-  for (const Edge& e : paper.edges)
-    if (e.split && e.isCrease())
-      parent[root(e.faces[0])] = root(e.faces[1]);
+  const std::vector<int> file_face = fileFaces(paper);
+  const auto root = [&](int f) { return file_face[f]; };
   std::vector<int> pieces(face_count, 0);
   for (size_t f = 0; f < face_count; ++f)
     ++pieces[root(static_cast<int>(f))];
@@ -299,19 +308,14 @@ CompliantFaces makeLockedFacesCompliant(Paper& paper)
   std::vector<char> compliant(face_count, 0);
   for (size_t f = 0; f < face_count; ++f)
     compliant[f] = locked[root(static_cast<int>(f))];
-  return cutIntoFacets(paper, compliant, root);
+  return cutIntoFacets(paper, compliant, file_face);
 }
 
 CompliantFaces makeFacesCompliant(Paper& paper, const std::vector<int>& faces)
 {
   const size_t face_count = paper.faces.size();
-  std::vector<int> parent(face_count);
-  for (size_t f = 0; f < face_count; ++f)
-    parent[f] = static_cast<int>(f);
-  const std::function<int(int)> root = [&](int f) { return parent[f] == f ? f : parent[f] = root(parent[f]); };
-  for (const Edge& e : paper.edges)
-    if (e.split && e.isCrease())
-      parent[root(e.faces[0])] = root(e.faces[1]);
+  const std::vector<int> file_face = fileFaces(paper);
+  const auto root = [&](int f) { return file_face[f]; };
   // Faces of the file already compliant stay as they are: only the others are new.
   std::vector<char> bending(face_count, 0), body(face_count, 0);
   for (const Edge& e : paper.edges)
@@ -323,22 +327,16 @@ CompliantFaces makeFacesCompliant(Paper& paper, const std::vector<int>& faces)
   std::vector<char> compliant(face_count, 0);
   for (size_t f = 0; f < face_count; ++f)
     compliant[f] = body[root(static_cast<int>(f))];
-  return cutIntoFacets(paper, compliant, root);
+  return cutIntoFacets(paper, compliant, file_face);
 }
 
 int compliantFaceCount(const Paper& paper)
 {
-  std::vector<int> parent(paper.faces.size());
-  for (size_t f = 0; f < parent.size(); ++f)
-    parent[f] = static_cast<int>(f);
-  const std::function<int(int)> root = [&](int f) { return parent[f] == f ? f : parent[f] = root(parent[f]); };
-  for (const Edge& e : paper.edges)
-    if (e.split && e.isCrease())
-      parent[root(e.faces[0])] = root(e.faces[1]);
-  std::vector<char> bending(parent.size(), 0);
+  const std::vector<int> file_face = fileFaces(paper);
+  std::vector<char> bending(file_face.size(), 0);
   for (const Edge& e : paper.edges)
     if (isFacet(e))
-      bending[root(e.faces[0])] = 1;
+      bending[file_face[e.faces[0]]] = 1;
   return static_cast<int>(std::count(bending.begin(), bending.end(), 1));
 }
 

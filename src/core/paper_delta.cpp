@@ -178,12 +178,12 @@ private:
   std::string& out_;
 };
 
-void writeEdge(JsonText& text, size_t index, const Edge& e)
+/// An edge's fields as a whole paper writes them: a, b, "M", angle, then the optional tail
+/// [..., split] only for the edges that split a concave face, [..., split, target] for an edge
+/// with a target angle (so that journals written before either field read as they were).
+void writeEdgeFields(JsonText& text, const Edge& e)
 {
   std::string& out = text.out();
-  out += '[';
-  text.number(index);
-  out += ',';
   text.number(e.vertices[0]);
   out += ',';
   text.number(e.vertices[1]);
@@ -191,7 +191,6 @@ void writeEdge(JsonText& text, size_t index, const Edge& e)
   out += assignmentLetter(e.assignment);
   out += "\",";
   text.number(e.fold_angle);
-  // The same optional tail as a whole paper's edge: [..., split] when split or targeted.
   if (e.split || e.target_angle)
     out += e.split ? ",true" : ",false";
   if (e.target_angle)
@@ -199,6 +198,16 @@ void writeEdge(JsonText& text, size_t index, const Edge& e)
     out += ',';
     text.number(*e.target_angle);
   }
+}
+
+/// [index, a, b, "M", angle, …]: an edge of a delta.
+void writeEdge(JsonText& text, size_t index, const Edge& e)
+{
+  std::string& out = text.out();
+  out += '[';
+  text.number(index);
+  out += ',';
+  writeEdgeFields(text, e);
   out += ']';
 }
 
@@ -265,25 +274,8 @@ std::string formatPaperText(const Paper& paper)
   out += "{\"edges\":[";
   for (size_t i = 0; i < paper.edges.size(); ++i)
   {
-    const Edge& e = paper.edges[i];
     out += i > 0 ? ",[" : "[";
-    text.number(e.vertices[0]);
-    out += ',';
-    text.number(e.vertices[1]);
-    out += ",\"";
-    out += assignmentLetter(e.assignment);
-    out += "\",";
-    text.number(e.fold_angle);
-    // Optional tail, so that journals written before either field read as they were:
-    // [..., split] only for the edges that split a concave face, [..., split, target] for an
-    // edge with a target angle.
-    if (e.split || e.target_angle)
-      out += e.split ? ",true" : ",false";
-    if (e.target_angle)
-    {
-      out += ',';
-      text.number(*e.target_angle);
-    }
+    writeEdgeFields(text, paper.edges[i]);
     out += ']';
   }
   out += "],\"face_orders\":[";
