@@ -1,28 +1,39 @@
 #!/usr/bin/env python3
-"""End-to-end: the crane from the flat square to the bird base by mouse in real rviz.
+"""End-to-end: the whole crane by mouse and keyboard in real rviz, as docs/INTERACTION.md's
+walkthrough ("Fold a crane") says.
 
 Like interaction_e2e.py (whose helpers it uses: Xvfb on a free display, origami.launch with rviz
 on a free master port, screen pixels from the camera rviz broadcasts as the tf frame
-rviz_camera, the mouse driven by xdotool, menu entries picked with the keyboard), it folds the
-first 13 steps of test/data/crane_reference.json as a person would, planning each gesture from
-the paper it sees (`state`) and the highlight the interaction shows (`interaction_status`), as
+rviz_camera, the mouse and keys driven by xdotool), it folds the 21 steps of
+test/data/crane_reference.json as a person would, with the Fold tool (key F) and, where only the
+menu has an entry, the Interact tool's menu; each gesture is planned from the paper it sees
+(`state`) and the highlight the interaction shows (`interaction_status`), as
 test/ros/crane_by_mouse_rostest.cpp does with synthesized feedback:
-  - crease (steps 1-4, 9-11): a drag along the line, its ends on the paper; the line snaps;
-  - half turn (steps 5-6): rotate mode, a press on the flap and a drag over its axis to past the
-    pressed point's mirror image;
-  - squash (7-8) and petal folds (12-13): fold mode, clicks just beside each crease of the fold
-    (a click picks the top crease, "Next layer down" picks the one below, clicks cycle valley,
-    mountain, unfold), "Keep the face here" (and "Next layer down") on the face that stays,
-    "Fold flat".
+  - crease (steps 1-4, 9-11, 14, 16): key 1, a drag along the line, its ends on the paper; the
+    line snaps. The head's line (18) is on no snapping guide: "Snap the line" off in the menu for
+    that drag and on again;
+  - half turn (5-6): key 2, a press on the flap and a drag over its axis past the pressed point's
+    mirror image;
+  - the squash (7-8), petal (12-13) and reverse folds (15, 17, 19): key 5 (flap mode), Tab for a
+    lower layer as the table says, and one drag of the flap from the point the table names to
+    where the reference folding puts it;
+  - the wings (20-21): key 3 (fold mode), clicks beside each hinge crease (Tab for the layer
+    below: a click picks the top crease, clicks cycle valley, mountain, unfold), then under the
+    Interact tool "Keep the face here" (and "Next layer down") and "Fold to a right angle".
 Each step is checked on `state`: exactly one new revision, the crease pattern the reference
 folding has after that step (fold_sequence runs the same steps in core), and every folded vertex
-where that folding puts it, within 1e-6 m after a rigid fit (proper rotation and translation); the
-creases a step folds carry the angle it asks for. Screenshots of every step in the output folder.
+where that folding puts it, within 1e-6 m after a rigid fit (proper rotation and translation);
+the creases a marked fold folds carry the angle it asks for. The head's line is drawn freely, so
+from step 18 on the vertices of the head (within 0.14 of its corner on the sheet) are held to
+where the reference puts them within HEAD_OFF (a pixel's reach), every other vertex to 1e-6. The
+gestures of each row of the walkthrough's table are counted (key presses and the tool switches
+included) and printed beside the table's number. Screenshots of every step in the output folder.
 
 Usage: crane_e2e.py OUTPUT_DIR   (with the devel space's environment, e.g. devel/env.sh)
 """
 import json
 import math
+import re
 import os
 import subprocess
 import sys
@@ -35,23 +46,35 @@ from interaction_e2e import Failure, add, dot, mul, norm, sub, wait_for, xdotool
 import rosbag  # noqa: E402
 import roslib.packages  # noqa: E402
 import rospy  # noqa: E402
+from virtual_origami.msg import ToolEvent  # noqa: E402
 from visualization_msgs.msg import InteractiveMarkerFeedback, MarkerArray  # noqa: E402
 
-REFERENCE = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'data', 'crane_reference.json')
-STEPS = 13           # the square base after step 8, the bird base after step 13
-TIME_LIMIT = 220     # seconds for the whole test (about 110 on two cores)
+HERE = os.path.dirname(os.path.abspath(__file__))
+REFERENCE = os.path.join(HERE, '..', 'data', 'crane_reference.json')
+WALKTHROUGH = os.path.join(HERE, '..', '..', 'docs', 'INTERACTION.md')
+TIME_LIMIT = 400     # seconds for the whole test
 EXACT = 1e-6         # metres: the mouse's paper against the reference folding, after a rigid fit
+HEAD_CORNER, HEAD_REACH = (1.0, 0.0), 0.14  # the head's part of the sheet (its line lies 0.12 from the corner)
+HEAD_OFF = 0.01      # metres: the head's vertices from the reference's, its line drawn by the pixel
 SNAP_RADIUS = 0.03   # the interaction node's snap radius on a 1 m sheet (core::SnapSettings)
 SHEET = 'paper'       # the interaction's interactive marker of the sheet (InteractionStyle::marker_name)
 DOUBLE_CLICK = 0.5    # seconds: Qt's double-click interval (400 ms) and a little
 MESSAGE_LIFETIME = 4.3  # seconds the interaction's message shows (its marker's lifetime, 4 s)
+MOST_GESTURES = 100   # issue 39's target for the crane
 
-# The interaction node's menu as rviz shows it (InteractionNode's constructor), from 1.
-CREASE_MODE, ROTATE_MODE, FOLD_MODE = 1, 2, 11
+
+class NoSnap(Failure):
+    """A line no press and release snap onto."""
+
+
+# The interaction node's menu as rviz shows it (interaction_menu.cpp), from 1.
+CREASE_MODE, ROTATE_MODE, FOLD_MODE, FLAP_MODE = 1, 2, 11, 18
 FOLD_ON_MARKED = 13  # a submenu: Fold flat, Fold to a right angle, Keep the face here, Clear the marks
-FOLD_FLAT, KEEP_FACE = 1, 3
+FOLD_FLAT, RIGHT_ANGLE, KEEP_FACE = 1, 2, 3
 NEXT_LAYER = 14
-MODES = {'crease': CREASE_MODE, 'rotate': ROTATE_MODE, 'fold': FOLD_MODE}
+SNAP_THE_LINE = 16
+MODES = {'crease': CREASE_MODE, 'rotate': ROTATE_MODE, 'fold': FOLD_MODE, 'flap': FLAP_MODE}
+MODE_KEYS = {'crease': '1', 'rotate': '2', 'fold': '3', 'flap': '5'}  # the Fold tool's keys (tool_keys.cpp)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -95,6 +118,25 @@ class Paper:
                    for a, b in zip(pts, pts[1:] + pts[:1])):
                 return f
         return -1
+
+    def point_at(self, f, q):
+        """Where face f puts the crease-pattern point q on the folded model (faces stay flat): the
+        affine map of its widest corner triangle."""
+        vs = self.faces[f]
+        best, corners = -1.0, None
+        for i in range(len(vs)):
+            for j in range(i + 1, len(vs)):
+                for k in range(j + 1, len(vs)):
+                    a, b, c = (self.cp[vs[i]], self.cp[vs[j]], self.cp[vs[k]])
+                    area = abs((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
+                    if area > best:
+                        best, corners = area, (vs[i], vs[j], vs[k])
+        a, b, c = [self.cp[v] for v in corners]
+        det = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+        s = ((q[0] - a[0]) * (c[1] - a[1]) - (q[1] - a[1]) * (c[0] - a[0])) / det
+        t = ((b[0] - a[0]) * (q[1] - a[1]) - (b[1] - a[1]) * (q[0] - a[0])) / det
+        pa, pb, pc = [self.at[v] for v in corners]
+        return add(pa, add(mul(s, sub(pb, pa)), mul(t, sub(pc, pa))))
 
     def creases_on(self, start, end):
         """The crease edges lying on a crease-pattern segment (as flat_fold names them)."""
@@ -203,13 +245,32 @@ def rigid_fit(src, dst):
     return motion, max(norm(sub(motion(p), q)) for p, q in zip(src, dst))
 
 
-def compare(paper, reference):
+def compare(paper, reference, head=False):
     """How far the paper's folded vertices lie from the reference's after the best rigid fit
-    (infinity when their crease patterns differ), and that fit (reference -> paper)."""
-    matched = pairs(reference, paper)
-    if matched is None:
-        return float('inf'), None
-    return rigid_fit([reference.at[i] for i, _ in matched], [paper.at[j] for _, j in matched])[::-1]
+    (infinity when their crease patterns differ), and that fit (reference -> paper). With `head`
+    (the head's line drawn freely), the vertices of the head's part of the sheet are matched to the
+    nearest (within 0.01) and left out of the fit; then also how far the farthest of them lies."""
+    if not head:
+        matched = pairs(reference, paper)
+        if matched is None:
+            return float('inf'), None
+        return rigid_fit([reference.at[i] for i, _ in matched], [paper.at[j] for _, j in matched])[::-1]
+    if len(reference.cp) != len(paper.cp):
+        return float('inf'), None, float('inf')
+    body, tip = [], []
+    for i, p in enumerate(reference.cp):
+        if math.hypot(p[0] - HEAD_CORNER[0], p[1] - HEAD_CORNER[1]) < HEAD_REACH:
+            j = min(range(len(paper.cp)), key=lambda k: math.hypot(paper.cp[k][0] - p[0], paper.cp[k][1] - p[1]))
+            if math.hypot(paper.cp[j][0] - p[0], paper.cp[j][1] - p[1]) > 0.01:
+                return float('inf'), None, float('inf')
+            tip.append((i, j))
+        else:
+            match = [j for j, q in enumerate(paper.cp) if math.hypot(p[0] - q[0], p[1] - q[1]) < 1e-7]
+            if len(match) != 1:
+                return float('inf'), None, float('inf')
+            body.append((i, match[0]))
+    fit, off = rigid_fit([reference.at[i] for i, _ in body], [paper.at[j] for _, j in body])
+    return off, fit, max(norm(sub(fit(reference.at[i]), paper.at[j])) for i, j in tip)
 
 
 # Snapping as the interaction node does it (core/snap.cpp), to plan lines that snap exactly.
@@ -309,7 +370,7 @@ def plan_line(paper, a, b):
         if start and (not presses or norm(sub(start[0], presses[0][1][0])) < 1e-9):
             presses.append((add(a, mul(f, d)), start))  # the same start whichever is pressed
     if not presses:
-        raise Failure('no press point snaps the line (%.4f, %.4f)-(%.4f, %.4f) onto itself' % (a[:2] + b[:2]))
+        raise NoSnap('no press point snaps the line (%.4f, %.4f)-(%.4f, %.4f) onto itself' % (a[:2] + b[:2]))
     # Where the layers' corners coincide, the press snaps to any of their vertices; the angle
     # divisions at it are those of its own faces. The release is planned for one of them; the
     # drag checks its guide (Folder.crease).
@@ -319,7 +380,7 @@ def plan_line(paper, a, b):
         release = add(b, mul(-f, d))
         if any(steady(release, lambda t, off: t >= 1 - 1e-9 and off < 1e-9, (v,)) for v in sorted(vertices)):
             return presses, release
-    raise Failure('no release point snaps the line (%.4f, %.4f)-(%.4f, %.4f) onto itself' % (a[:2] + b[:2]))
+    raise NoSnap('no release point snaps the line (%.4f, %.4f)-(%.4f, %.4f) onto itself' % (a[:2] + b[:2]))
 
 
 def on_paper(paper, start, end):
@@ -351,22 +412,52 @@ def on_paper(paper, start, end):
 # The reference folding: fold_sequence runs the same steps in core.
 
 def reference_states(out):
-    """The reference's paper before its first step and after each step (Paper objects)."""
+    """The reference's steps, and its paper before its first step and after each step (Paper objects)."""
     folder = os.path.join(out, 'reference')
     os.makedirs(folder, exist_ok=True)
-    with open(REFERENCE) as f:
-        sequence = json.load(f)
-    sequence['steps'] = sequence['steps'][:STEPS]
-    path = os.path.join(folder, 'crane_to_bird_base.json')
-    with open(path, 'w') as f:
-        json.dump(sequence, f)
     tools = roslib.packages.find_node('virtual_origami', 'fold_sequence')
     if not tools:
         raise Failure('fold_sequence is not built (the reference folding)')
-    subprocess.run([tools[0], path, '--out', folder], check=True, capture_output=True)
-    with rosbag.Bag(os.path.join(folder, 'crane_to_bird_base.bag')) as bag:
+    subprocess.run([tools[0], REFERENCE, '--out', folder], check=True, capture_output=True)
+    with open(REFERENCE) as f:
+        steps = json.load(f)['steps']
+    with rosbag.Bag(os.path.join(folder, 'crane_reference.bag')) as bag:
         states = [Paper(m) for _, m, _ in bag.read_messages(topics=['/origami/state'])]
-    return sequence['steps'], states[-(STEPS + 1):]
+    return steps, states[-(len(steps) + 1):]
+
+
+class Row:
+    """A row of the walkthrough's table: its steps, its gestures, and for each fold step made by a
+    drag the point pressed, the layers down (Next layer down) and the fold it names."""
+
+    def __init__(self, first, last, gestures, how):
+        self.first, self.last, self.gestures, self.how = first, last, gestures, how
+        self.drags = {}
+        numbers = list(re.finditer(r'\*\*([0-9]+)\*\*', how))
+        for i, n in enumerate(numbers):
+            said = how[n.end():numbers[i + 1].start() if i + 1 < len(numbers) else len(how)]
+            press = re.search(r'press at \(([-0-9.]+), ([-0-9.]+)\)', said)
+            kind = re.search(r'\*((?:squash|petal|inside reverse|outside reverse|reverse) fold)\*', said)
+            if press and kind:
+                down = re.search(r'\*Next layer down\* (once|twice|([0-9]+) times)', said)
+                layers = 0 if not down else 1 if down.group(1) == 'once' else 2 if down.group(1) == 'twice' \
+                    else int(down.group(2))
+                self.drags[int(n.group(1))] = ((float(press.group(1)), float(press.group(2))), layers, kind.group(1))
+
+
+def walkthrough():
+    """docs/INTERACTION.md's crane walkthrough (as test/unit/crane_walkthrough.h reads it): its rows,
+    and the total gestures it gives."""
+    with open(WALKTHROUGH) as f:
+        text = f.read()
+    text = text[text.index('\n## Fold a crane'):]
+    text = text[:text.index('\n## ', 1)]
+    total = re.search(r'([0-9]+) steps,\s*\*\*([0-9]+) gestures\*\*', text)
+    rows = [Row(int(m.group(1)), int(m.group(2) or m.group(1)), int(m.group(3)), m.group(4))
+            for m in re.finditer(r'\n\|\s*([0-9]+)(?:–([0-9]+))?\s*\|[^|]*\|\s*([0-9]+)\s*\|([^\n]*)\|', text)]
+    if not rows or not total:
+        raise Failure('%s: no crane walkthrough table' % WALKTHROUGH)
+    return rows, int(total.group(2))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -398,6 +489,11 @@ class Folder:
         rospy.Subscriber('/origami/interaction/feedback', InteractiveMarkerFeedback, self._feedback)
         self.guide = None  # the crease drag's line as the interaction draws it (snapped)
         rospy.Subscriber('/origami/interaction_markers', MarkerArray, self._guides)
+        self.tool = False  # the Fold tool is rviz's current tool (else the Interact tool)
+        self.tool_events = []  # the kinds of the Fold tool's events, in order
+        self.switches = 0  # tool switches (key F), among the gestures
+        rospy.Subscriber('/origami/tool_events', ToolEvent, lambda e: self.tool_events.append(e.kind))
+        self.unseen = 0  # events the node received before these subscriptions (calibrate())
 
     def _feedback(self, msg):
         if msg.event_type == InteractiveMarkerFeedback.MOUSE_DOWN and msg.marker_name == SHEET:
@@ -442,17 +538,67 @@ class Folder:
         return [self.on_table((pm[0] + u * t[0] + v * n[0], pm[1] + u * t[1] + v * n[1]), at[2]) for u, v in offsets]
 
     # --- gestures
-    def settle(self, before, last_event, what):
-        """The gesture's last event went out, and the interaction node handled all rviz sent."""
-        try:
-            wait_for(lambda: last_event in self.events[before:], 10, '')
-        except Failure:
-            raise Failure('%s: rviz sent no event %d (it sent %s)' % (what, last_event, self.events[before:]))
-        count = len(self.events)
+    def sent(self):
+        """The events rviz sent the interaction node (the sheet marker's feedback, the Fold tool's)."""
+        return len(self.events) + len(self.tool_events)
+
+    def calibrate(self):
+        """Counts what the node received before this listened (it says once a second)."""
+        time.sleep(1.2)
+        self.unseen = self.status.feedback_received - self.sent()
+
+    def handled(self, what):
+        """The interaction node handled all rviz sent."""
+        count = self.sent() + self.unseen
         wait_for(lambda: self.status.feedback_received >= count and self.status.pending == 0 and
                  not self.status.dragging, 30, what + ': the interaction node did not handle it')
+
+    def settle(self, before, last_event, what):
+        """The gesture's last event went out, and the interaction node handled all rviz sent.
+        `before`: the events before the gesture, the sheet marker's (Interact) or the tool's."""
+        sent = self.tool_events if self.tool else self.events
+        try:
+            wait_for(lambda: last_event in sent[before:], 10, '')
+        except Failure:
+            raise Failure('%s: rviz sent no event %d (it sent %s)' % (what, last_event, sent[before:]))
+        self.handled(what)
         self.gestures += 1
         self.told = time.time()  # the node's message about it shows for MESSAGE_LIFETIME
+
+    def key(self, name, at, what):
+        """A key of the Fold tool with the pointer at `at` (Tab, Enter and the number keys act
+        where the pointer is)."""
+        if not self.tool:
+            raise Failure('%s: the key %s without the Fold tool' % (what, name))
+        self.mouse.move(self.mouse.pixel(at))
+        time.sleep(0.1)
+        before = len(self.tool_events)
+        xdotool('key', name)
+        self.settle(before, ToolEvent.KEY, what)
+
+    def use_tool(self, fold_tool):
+        """Key F over the view: the Fold tool, or back to the Interact tool. Another key (x, which
+        no tool and no action has) tells which is current: only the Fold tool sends it."""
+        if self.tool == fold_tool:
+            return
+        self.mouse.away()
+        time.sleep(0.1)
+        xdotool('key', 'f')
+        self.gestures += 1
+        self.switches += 1
+        time.sleep(0.2)
+        before = len(self.tool_events)
+        xdotool('key', 'x')
+        sent = False
+        try:
+            wait_for(lambda: ToolEvent.KEY in self.tool_events[before:], 0.6 if not fold_tool else 5, '')
+            sent = True
+        except Failure:
+            pass
+        if sent != fold_tool:
+            raise Failure('key F did not %s' % ('select the Fold tool' if fold_tool else 'put the Fold tool away'))
+        self.tool = fold_tool
+        self.handled('the key x')
 
     def attempts(self, points, wait=True):
         """Each point, then the first once more after the message went (when one may be shown)."""
@@ -477,7 +623,21 @@ class Folder:
                 time.sleep(left)
         self.last_click = (time.time(), pixel)
 
-    def pressed(self, before, sheet_presses, what, patience=1.0):
+    def before(self):
+        return (len(self.tool_events) if self.tool else len(self.events)), self.sheet_presses
+
+    def pressed(self, before, sheet_presses, what, patience=1.0, hold=False):
+        """rviz gave the press to the sheet marker (Interact) or the Fold tool sent it (the tool:
+        and, for a drag, the node holds something there)."""
+        if self.tool:
+            try:
+                wait_for(lambda: ToolEvent.PRESS in self.tool_events[before:], patience, '')
+                if hold:
+                    wait_for(lambda: self.status.dragging, patience, '')
+            except Failure:
+                self.miss(what)
+                return False
+            return True
         try:
             wait_for(lambda: InteractiveMarkerFeedback.MOUSE_DOWN in self.events[before:], patience, '')
         except Failure:
@@ -487,17 +647,21 @@ class Folder:
             raise Failure('a press meant for the sheet went to another interactive marker (the fold slider?)')
         return True
 
+    @property
+    def up(self):
+        return ToolEvent.RELEASE if self.tool else InteractiveMarkerFeedback.MOUSE_UP
+
     def click(self, points, what, must=True):
         """A click at the first of `points` where rviz gives it to the sheet; that point (None,
         unless it `must`, when rviz gave it to none)."""
-        for p in self.attempts(points):
-            before, sheet_presses = len(self.events), self.sheet_presses
+        for p in self.attempts(points, wait=not self.tool):
             self.mouse.move(self.mouse.pixel(p))
             time.sleep(0.12)
             self.not_a_double_click(self.mouse.pixel(p))
+            before, sheet_presses = self.before()
             xdotool('click', 1)
             if self.pressed(before, sheet_presses, what):
-                self.settle(before, InteractiveMarkerFeedback.MOUSE_UP, what)
+                self.settle(before, self.up, what)
                 return p
         if must:
             raise Failure('%s: rviz gave no click to the sheet at (%.3f, %.3f, %.3f) or %d places beside it' %
@@ -507,15 +671,18 @@ class Folder:
     def press(self, points, what, must=True, wait=True, patience=1.0):
         """Holds the button down at the first of `points` where rviz gives the press to the sheet:
         (the events before it, the point); None, unless it `must`, where rviz gave it to none."""
-        for p in self.attempts(points, wait):
-            before, sheet_presses = len(self.events), self.sheet_presses
+        for p in self.attempts(points, wait and not self.tool):
             self.mouse.move(self.mouse.pixel(p))
             time.sleep(0.12)
+            self.not_a_double_click(self.mouse.pixel(p))
+            before, sheet_presses = self.before()
             xdotool('mousedown', 1)
-            if self.pressed(before, sheet_presses, what, patience):
+            if self.pressed(before, sheet_presses, what, patience, hold=True):
                 return before, p
             xdotool('mouseup', 1)  # the view took it: a press without a drag leaves it as it is
             time.sleep(0.1)
+            if self.tool:
+                self.handled(what + ' let go')  # a click: in crease and flap mode nothing
         if not must:
             return None
         raise Failure('%s: rviz gave no press to the sheet at (%.3f, %.3f, %.3f) or %d places beside it' %
@@ -529,7 +696,7 @@ class Folder:
     def release(self, before, what):
         time.sleep(0.15)
         xdotool('mouseup', 1)
-        self.settle(before, InteractiveMarkerFeedback.MOUSE_UP, what)
+        self.settle(before, self.up, what)
 
     @staticmethod
     def popups():
@@ -582,9 +749,13 @@ class Folder:
         return [p for p in corners if seen(p)]
 
     def mode(self, name):
+        """The mode: its number key with the Fold tool, its menu entry with the Interact tool."""
         if self.status.mode != name:
-            self.menu(self.off_paper(), MODES[name], what=name + ' mode')
-            wait_for(lambda: self.status.mode == name, 5, 'the menu did not switch to %s mode' % name)
+            if self.tool:
+                self.key(MODE_KEYS[name], self.off_paper()[0], name + ' mode')
+            else:
+                self.menu(self.off_paper(), MODES[name], what=name + ' mode')
+            wait_for(lambda: self.status.mode == name, 5, 'no switch to %s mode' % name)
 
     def committed(self, revision, what):
         state = self.check.wait_revision(revision, what)
@@ -668,7 +839,11 @@ class Folder:
         """'Next layer down' at the first of `spots` where the menu opens, until `picked()` or the
         bottom; False when the menu opened at none."""
         while not picked() and self.status.picked_layer < self.status.layers:
-            if not self.menu(spots, NEXT_LAYER, what='Next layer down (%s)' % what, must=False):
+            if self.tool:
+                layer = self.status.picked_layer
+                self.key('Tab', spots[0], 'Tab (%s)' % what)
+                wait_for(lambda: self.status.picked_layer != layer, 2, 'Tab (%s) picked no layer below' % what)
+            elif not self.menu(spots, NEXT_LAYER, what='Next layer down (%s)' % what, must=False):
                 return False
         return True
 
@@ -736,26 +911,95 @@ class Folder:
         raise Failure('the face that stays (%d) was never picked: %s' % (face, self.status.message))
 
     def flat_fold(self, request, before, after, revision, shot=None):
-        """Marks the fold's creases, picks the face that stays, and folds (crane_by_mouse's flatFold)."""
+        """Marks the fold's creases with the Fold tool (clicks, Tab), then under the Interact tool
+        picks the face that stays and folds from the menu (crane_by_mouse's flatFold): "Fold to a
+        right angle" is the menu's alone."""
+        self.use_tool(True)
         self.mode('fold')
+        right_angle = False
         for line in request['creases']:
             edges = self.paper().creases_on(line['start'], line['end'])
             if not edges:
                 raise Failure('no crease on (%.3f, %.3f)-(%.3f, %.3f)' % tuple(line['start'] + line['end']))
+            right_angle = abs(abs(line['angle_deg']) - 90) < 1e-9
             for e in edges:
                 self.mark(e, math.radians(line['angle_deg']))
         now = self.paper()
         face = face_that_stays(now, request, before, after)
         if face < 0:
             raise Failure('no face seen from above stays in this fold')
+        self.use_tool(False)
         at = self.keep(now, face)
         self.pick = None
         if shot:
             self.mouse.away()
             time.sleep(0.3)
             shot()
-        self.menu([at] + self.off_paper(), FOLD_ON_MARKED, FOLD_FLAT, what='Fold flat')
+        self.menu([at] + self.off_paper(), FOLD_ON_MARKED, RIGHT_ANGLE if right_angle else FOLD_FLAT,
+                  what='Fold to a right angle' if right_angle else 'Fold flat')
         return self.committed(revision, 'the fold on the marked creases')
+
+    def flap(self, drag, now, after, revision, shot=None):
+        """Flap mode (key 5): Tab at the point the walkthrough names as often as it says (and on
+        until that point's face is picked), then one drag of the flap from there to where the
+        reference folding puts that point, the face the interaction keeps (compound_fold's
+        farthest face) where it lies now (crane_by_mouse's flapFold)."""
+        (x, y), layers, kind = drag
+        self.use_tool(True)
+        self.mode('flap')
+        face = now.face_containing((x, y))
+        if face < 0:
+            raise Failure('no face at (%.2f, %.2f)' % (x, y))
+        at = now.point_at(face, (x, y))
+        for _ in range(layers):
+            self.key('Tab', at, 'Tab (the flap below)')
+        if layers:
+            self.down_to(lambda: self.status.picked_face == face, [at], 'the flap below')
+            if self.status.picked_face != face:
+                raise Failure('the layer of (%.2f, %.2f) was never picked: %s' % (x, y, self.status.message))
+
+        def centre(f):
+            return mul(1.0 / len(now.faces[f]), sum_points([now.cp[v] + (0.0,) for v in now.faces[f]]))
+        pressed = centre(face)
+        fixed = max(range(len(now.faces)), key=lambda f: (norm(sub(centre(f), pressed)), -f))
+        corners = now.faces[fixed]
+        moved = rigid_fit([after.at[after.vertex_at(now.cp[v])] for v in corners], [now.at[v] for v in corners])[0]
+        target = moved(after.point_at(after.face_containing((x, y)), (x, y)))
+        target = (target[0], target[1], at[2])  # the pointer's sight line meets the paper's plane there
+        held = self.press([at], 'the ' + kind)
+        if not held:
+            raise Failure('the %s: no press on the flap at (%.2f, %.2f)' % (kind, x, y))
+        before, _ = held
+        self.glide([self.mouse.pixel(add(at, mul(i / 10.0, sub(target, at)))) for i in range(1, 11)], pause=0.05)
+        if shot:
+            time.sleep(0.3)
+            shot()
+        self.release(before, 'the ' + kind)
+        paper = self.committed(revision, 'the ' + kind)
+        said = kind[0].upper() + kind[1:] + '.'
+        if self.status.message != said:
+            raise Failure('the drag made "%s", the walkthrough says "%s"' % (self.status.message, said))
+        return paper
+
+    def free_crease(self, start, end, revision):
+        """A line on no snapping guide (the head's), with the Interact tool: its menu's "Crease mode"
+        and "Snap the line" (off), a drag along the line from just before to just past the paper
+        (the line is creased where it crosses the paper), and snapping on again."""
+        a, b = on_paper(self.paper(), start, end)
+        d = sub(b, a)
+        self.use_tool(False)
+        self.mode('crease')
+        self.menu(self.off_paper(), SNAP_THE_LINE, what='Snap the line (off)')
+        held = self.press([add(a, mul(-0.3, d))], 'the free line')
+        if not held:
+            raise Failure('no press at the free line\'s start')
+        before, pressed = held
+        release = add(b, mul(0.3, d))
+        self.glide([self.mouse.pixel(add(pressed, mul(i / 8.0, sub(release, pressed)))) for i in range(1, 9)])
+        self.release(before, 'the free line')
+        paper = self.committed(revision, 'the free line')
+        self.menu(self.off_paper(), SNAP_THE_LINE, what='Snap the line (on)')
+        return paper
 
 
 def face_that_stays(now, request, before, after):
@@ -853,37 +1097,64 @@ def run_steps(out, check, window, shot, view_shot, steps, reference, started):
     print('ready after %.0f s' % (time.time() - started))
 
     to_paper = compare(first, reference[0])[1]  # reference -> the mouse's paper
+    rows, total = walkthrough()
+    folder.calibrate()
+    head = False  # the head's line drawn freely (from step 18 on)
+    counts = []
     for i, step in enumerate(steps):
         number = i + 1
+        row = next((r for r in rows if r.first <= number <= r.last), None)
+        if row is None:
+            raise Failure('the walkthrough has no row for step %d' % number)
+        if number == row.first:
+            row_began, row_gestures, row_switches = time.time(), folder.gestures, folder.switches
         began, gestures = time.time(), folder.gestures
         before, after = reference[i], reference[i + 1]
         revision += 1
         if 'crease' in step:
             start, end = [to_paper(tuple(step['crease'][k]) + (0.0,)) for k in ('start', 'end')]
-            paper = folder.crease(start, end, revision)
+            try:
+                folder.use_tool(True)
+                paper = folder.crease(start, end, revision)
+            except NoSnap:  # on no snapping guide: drawn freely
+                paper = folder.free_crease(start, end, revision)
+                head = True
             kind = 'crease'
         elif 'rotate' in step:
             if abs(abs(step['rotate']['angle_deg']) - 180) > 1e-9:
                 raise Failure('step %d: the crane turns by half turns' % number)
+            folder.use_tool(True)
             click = tuple(step['rotate']['click']) + (0.0,)
             paper = folder.half_turn(to_paper(click), to_paper(mirror_foot(before, after, click)), revision,
                                      shot=(lambda: view_shot('half_turn_drag.png')) if number == 5 else None)
             kind = 'half turn'
+        elif number in row.drags:
+            drag = row.drags[number]
+            kind = drag[2]
+            paper = folder.flap(drag, folder.paper(), after, revision,
+                                shot=(lambda: view_shot('%02d_%s_drag.png' % (number, kind.replace(' ', '_')))))
         else:
             request = step['flat_fold']
-            marks = {7: lambda: view_shot('squash_marks.png'), 12: lambda: view_shot('petal_marks.png')}
-            paper = folder.flat_fold(request, before, after, revision, shot=marks.get(number))
-            kind = 'squash' if number in (7, 8) else 'petal fold' if number in (12, 13) else 'flat fold'
+            paper = folder.flat_fold(request, before, after, revision,
+                                     shot=lambda: view_shot('%02d_marks.png' % number))
+            kind = 'wing' if number in (20, 21) else 'flat fold'
         # The step's state: one new revision, the reference's crease pattern and folded form.
         if check.revision() != revision:
             raise Failure('step %d made revision %s, expected %d' % (number, check.revision(), revision))
-        off, fit = compare(paper, after)
+        compared = compare(paper, after, head)
+        off, fit = compared[:2]
         if fit is None:
             raise Failure('step %d (%s): the crease pattern differs from the reference\'s (%d vertices, %d expected)'
-                      % (number, step['note'], len(paper.cp), len(after.cp)))
+                          % (number, step['note'], len(paper.cp), len(after.cp)))
         if off > EXACT:
             raise Failure('step %d (%s): a vertex lies %.2g m from where the reference folding puts it'
                           % (number, step['note'], off))
+        head_off = ''
+        if head:
+            if compared[2] > HEAD_OFF:
+                raise Failure('step %d (%s): a vertex of the head lies %.3f m from where the reference puts it'
+                              % (number, step['note'], compared[2]))
+            head_off = ', the head\'s vertices %.4f m' % compared[2]
         to_paper = fit
         folded = ''
         if 'flat_fold' in step:
@@ -894,21 +1165,28 @@ def run_steps(out, check, window, shot, view_shot, steps, reference, started):
             if worst > 1e-6:
                 raise Failure('step %d: a crease of the fold is %.2g rad off the angle asked for' % (number, worst))
             flat = max(abs(p[2] - paper.at[0][2]) for p in paper.at)
-            if flat > 1e-6:
+            if flat > 1e-6 and number not in (20, 21):
                 raise Failure('step %d: the folded paper is not flat (%.2g m)' % (number, flat))
-            folded = ', its creases at the angles asked, flat'
-        mouse.away()
+            folded = ', flat' if number not in (20, 21) else ''
+        folder.mouse.away()
         time.sleep(0.2)
         view_shot('%02d_%s.png' % (number, kind.replace(' ', '_')))
-        print('step %2d %-10s %3d gestures %5.1f s: revision %d, %d vertices, %.1g m from the reference%s  (%s)' %
-              (number, kind, folder.gestures - gestures, time.time() - began, revision, len(paper.cp), off, folded,
-               step['note']))
-        if number == 8:
-            view_shot('square_base.png')
-    view_shot('bird_base.png')
-    print('the bird base by mouse: %d steps, %d gestures, %.0f s' % (STEPS, folder.gestures, time.time() - started))
-    print('made again beside a guide or message rviz gave the press to, or after the message went (%.0f s waited): %s'
+        print('step %2d %-20s %3d gestures %5.1f s: revision %d, %d vertices, %.1g m from the reference%s%s  (%s)' %
+              (number, kind, folder.gestures - gestures, time.time() - began, revision, len(paper.cp), off, head_off,
+               folded, step['note']))
+        if number == row.last:
+            made = folder.gestures - row_gestures
+            counts.append((row, made, folder.switches - row_switches, time.time() - row_began))
+    print('\nthe walkthrough\'s rows: gestures in rviz (of them tool switches, key F) / the table\'s')
+    for row, made, switches, seconds in counts:
+        print('  steps %2d-%2d: %3d (%d) / %3d  %5.1f s' % (row.first, row.last, made, switches, row.gestures, seconds))
+    print('the crane by mouse and keys: %d steps, %d gestures (%d tool switches; the table: %d), %.0f s' %
+          (len(steps), folder.gestures, folder.switches, total, time.time() - started))
+    print('made again where the press went to the view or to a guide, or after the message went (%.0f s waited): %s'
           % (folder.waited, ', '.join('%s %d' % m for m in sorted(folder.missed.items())) or 'none'))
+    view_shot('crane.png')
+    if folder.gestures > MOST_GESTURES:
+        raise Failure('the crane took %d gestures, more than %d' % (folder.gestures, MOST_GESTURES))
 
 
 def main():
