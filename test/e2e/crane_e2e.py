@@ -55,7 +55,7 @@ WALKTHROUGH = os.path.join(HERE, '..', '..', 'docs', 'INTERACTION.md')
 TIME_LIMIT = 400     # seconds for the whole test
 EXACT = 1e-6         # metres: the mouse's paper against the reference folding, after a rigid fit
 HEAD_CORNER, HEAD_REACH = (1.0, 0.0), 0.14  # the head's part of the sheet (its line lies 0.12 from the corner)
-HEAD_OFF = 0.01      # metres: the head's vertices from the reference's, its line drawn by the pixel
+HEAD_OFF = 0.005     # metres: the head's vertices from the reference's, its line drawn by the pixel
 SNAP_RADIUS = 0.03   # the interaction node's snap radius on a 1 m sheet (core::SnapSettings)
 SHEET = 'paper'       # the interaction's interactive marker of the sheet (InteractionStyle::marker_name)
 DOUBLE_CLICK = 0.5    # seconds: Qt's double-click interval (400 ms) and a little
@@ -87,6 +87,7 @@ class Paper:
         self.at = [(p.x, p.y, p.z) for p in msg.vertices_folded]
         self.edges = [(e.v0, e.v1, e.face_left, e.face_right, e.fold_angle) for e in msg.edges]
         self.faces = [list(f.vertices) for f in msg.faces]
+        self.orders = [(o.face, o.other, o.above) for o in msg.face_orders]
 
     def is_crease(self, e):
         return self.edges[e][2] >= 0 and self.edges[e][3] >= 0
@@ -118,6 +119,22 @@ class Paper:
                    for a, b in zip(pts, pts[1:] + pts[:1])):
                 return f
         return -1
+
+    def holds(self, f, p):
+        """Whether face f covers the point p seen from above (inside, not on its outline)."""
+        pts = [self.at[v] for v in self.faces[f]]
+        sides = [(b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]) for a, b in zip(pts, pts[1:] + pts[:1])]
+        return all(x > 1e-9 for x in sides) or all(x < -1e-9 for x in sides)
+
+    def layers_over(self, f, p):
+        """How many faces lie over face f at p, seen from above (the stacking order `state` holds)."""
+        over = 0
+        for a, b, above in self.orders:
+            if a == f and self.holds(b, p) and above * self.normal(a)[2] > 0:
+                over += 1  # b on f's side towards the eye
+            elif b == f and self.holds(a, p) and above * self.normal(a)[2] < 0:
+                over += 1  # f on a's side away from the eye
+        return over
 
     def point_at(self, f, q):
         """Where face f puts the crease-pattern point q on the folded model (faces stay flat): the
@@ -494,6 +511,7 @@ class Folder:
         self.switches = 0  # tool switches (key F), among the gestures
         rospy.Subscriber('/origami/tool_events', ToolEvent, lambda e: self.tool_events.append(e.kind))
         self.unseen = 0  # events the node received before these subscriptions (calibrate())
+        self.trace = []  # what each gesture was, in order
 
     def _feedback(self, msg):
         if msg.event_type == InteractiveMarkerFeedback.MOUSE_DOWN and msg.marker_name == SHEET:
@@ -563,6 +581,7 @@ class Folder:
             raise Failure('%s: rviz sent no event %d (it sent %s)' % (what, last_event, sent[before:]))
         self.handled(what)
         self.gestures += 1
+        self.trace.append(what)
         self.told = time.time()  # the node's message about it shows for MESSAGE_LIFETIME
 
     def key(self, name, at, what):
@@ -585,6 +604,7 @@ class Folder:
         time.sleep(0.1)
         xdotool('key', 'f')
         self.gestures += 1
+        self.trace.append('key F: the %s tool' % ('Fold' if fold_tool else 'Interact'))
         self.switches += 1
         time.sleep(0.2)
         before = len(self.tool_events)
@@ -866,7 +886,7 @@ class Folder:
             if not (self.pick is not None and self.pick == spot[0] and self.status.picked_edge >= 0):
                 # A click near the pick would mark the crease picked there: let go of it first.
                 if self.pick is not None and self.status.picked_edge >= 0 and \
-                        norm(sub(spot[0], self.pick)) <= 1.5 * SNAP_RADIUS:
+                        norm(sub(spot[0], self.pick)) <= SNAP_RADIUS + 0.005:
                     self.let_go()
                 if not self.click(spot, 'a click beside crease %d' % edge, must=False):
                     return False
@@ -888,7 +908,7 @@ class Folder:
                     return False
             return self.marked(edge) == wanted
 
-        spots = []
+        spots = [mul(0.5, add(a, b))] if self.tool else []  # the Fold tool: on it (its highlight takes no press)
         for f in (0.5, 0.35, 0.65, 0.2, 0.8):
             spots += self.beside(a, b, add(a, mul(f, sub(b, a))), [(0, 8), (0, -8)])
         if self.pick is not None and self.status.picked_edge == edge:
@@ -899,9 +919,16 @@ class Folder:
         raise Failure('crease %d does not carry the mark %.2f after clicks all along it: %s' %
                       (edge, wanted, self.status.message))
 
-    def keep(self, now, face):
+    def keep(self, now, face, staying=()):
         """'Keep the face here' inside the face (its centroid, or towards its corners), and
-        'Next layer down' there until the face is the one picked."""
+        'Next layer down' there until the face is the one picked. Where another face the fold
+        leaves in place (`staying`) lies on top at its centre, there instead: the same fold."""
+        on_top = [f for f in staying if now.layers_over(f, now.centroid(f)) == 0]
+        if face not in on_top and on_top and now.layers_over(face, now.centroid(face)) > 0:
+            c = now.centroid(on_top[0])
+            if self.menu([c], FOLD_ON_MARKED, KEEP_FACE, what='Keep the face here', must=False) and \
+                    self.status.picked_face in staying:
+                return c
         c = now.centroid(face)
         for spot in [c] + [add(c, mul(0.4, sub(now.at[v], c))) for v in now.faces[face]]:
             if self.menu([spot], FOLD_ON_MARKED, KEEP_FACE, what='Keep the face here', must=False) and \
@@ -929,7 +956,7 @@ class Folder:
         if face < 0:
             raise Failure('no face seen from above stays in this fold')
         self.use_tool(False)
-        at = self.keep(now, face)
+        at = self.keep(now, face, faces_that_stay(now, before, after))
         self.pick = None
         if shot:
             self.mouse.away()
@@ -982,14 +1009,15 @@ class Folder:
         return paper
 
     def free_crease(self, start, end, revision):
-        """A line on no snapping guide (the head's), with the Interact tool: its menu's "Crease mode"
-        and "Snap the line" (off), a drag along the line from just before to just past the paper
-        (the line is creased where it crosses the paper), and snapping on again."""
+        """A line on no snapping guide (the head's): "Snap the line" off in the Interact tool's menu,
+        a drag along the line with the Fold tool from just before to just past the paper (the line
+        is creased where it crosses the paper), and snapping on again in the menu."""
         a, b = on_paper(self.paper(), start, end)
         d = sub(b, a)
         self.use_tool(False)
-        self.mode('crease')
         self.menu(self.off_paper(), SNAP_THE_LINE, what='Snap the line (off)')
+        self.use_tool(True)
+        self.mode('crease')
         held = self.press([add(a, mul(-0.3, d))], 'the free line')
         if not held:
             raise Failure('no press at the free line\'s start')
@@ -998,8 +1026,20 @@ class Folder:
         self.glide([self.mouse.pixel(add(pressed, mul(i / 8.0, sub(release, pressed)))) for i in range(1, 9)])
         self.release(before, 'the free line')
         paper = self.committed(revision, 'the free line')
+        self.use_tool(False)
         self.menu(self.off_paper(), SNAP_THE_LINE, what='Snap the line (on)')
         return paper
+
+
+def faces_that_stay(now, before, after):
+    """The faces seen from above that the reference's fold leaves in place."""
+    def stays(f):
+        for v in now.faces[f]:
+            r = before.vertex_at(now.cp[v])
+            if r < 0 or norm(sub(before.at[r], after.at[after.vertex_at(now.cp[v])])) > 1e-9:
+                return False
+        return True
+    return [f for f in range(len(now.faces)) if abs(now.normal(f)[2]) > 0.5 and stays(f)]
 
 
 def face_that_stays(now, request, before, after):
@@ -1063,15 +1103,19 @@ def run(out):
         return False
 
     wait_for(find_window, 60, 'no rviz window')
+    trace = []
     try:
-        run_steps(out, check, window, shot, view_shot, steps, reference, started)
+        run_steps(out, check, window, shot, view_shot, steps, reference, started, trace)
     except Failure:
         shot('failure.png')
         raise
+    finally:
+        with open(os.path.join(out, 'gestures.txt'), 'w') as f:
+            f.write(''.join('%3d %s\n' % (i + 1, what) for i, what in enumerate(trace)))
     print('screenshots:\n  ' + '\n  '.join(shots))
 
 
-def run_steps(out, check, window, shot, view_shot, steps, reference, started):
+def run_steps(out, check, window, shot, view_shot, steps, reference, started, trace):
     revision = check.revision()
     mouse = e2e.Mouse(window, check)
     try:
@@ -1079,6 +1123,7 @@ def run_steps(out, check, window, shot, view_shot, steps, reference, started):
     except Exception as e:
         raise Failure('rviz does not broadcast its camera (the ViewCamera display): %s' % e)
     folder = Folder(check, mouse)
+    folder.trace = trace
     # rviz draws the sheet and takes the interactive marker: a click on it reaches the node.
     for _ in range(15):
         mouse.click((0.5, 0.5, 0.0))  # in crease mode a click creases nothing
