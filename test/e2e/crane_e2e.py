@@ -869,8 +869,10 @@ class Folder:
 
     def mark(self, edge, angle):
         """Picks the crease and clicks it until it carries the angle's mark (crane_by_mouse's
-        mark): 8 pixels beside it (its highlight lies on it), at its middle, or where the
-        interaction's message does not hide it, further along."""
+        mark): with the Fold tool on its middle (where the layers' creases lie on each other, so
+        Tab walks down from the pick), else 8 pixels beside it (the Interact tool gives a press on
+        its highlight to the view), at its middle, or where the interaction's message does not
+        hide it, further along."""
         now = self.paper()
         a, b = [now.at[v] for v in now.edges[edge][:2]]
         wanted = math.pi if angle > 0 else -math.pi if angle < 0 else 0.0
