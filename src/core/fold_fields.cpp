@@ -241,6 +241,21 @@ std::optional<std::vector<std::optional<double>>> readTargetAngles(const json& f
   return angles;
 }
 
+std::optional<std::vector<char>> readFacets(const json& frame, const std::optional<size_t>& edge_count)
+{
+  const json* field = edgeField(frame, kFacetKey, edge_count);
+  if (!field)
+    return std::nullopt;
+  std::vector<char> facets;
+  for (size_t e = 0; e < field->size(); ++e)
+  {
+    if (!(*field)[e].is_boolean())
+      fail(indexed(kFacetKey, e) + " is " + kindOf((*field)[e]) + ", not true or false");
+    facets.push_back((*field)[e].get<bool>() ? 1 : 0);
+  }
+  return facets;
+}
+
 std::optional<std::vector<std::vector<int>>> readFaces(const json& frame, size_t vertex_count)
 {
   const json* field = findField(frame, "faces_vertices");
@@ -325,6 +340,7 @@ FrameData readFrame(const json& frame)
   data.assignments = readAssignments(frame, edge_count);
   data.fold_angles = readFoldAngles(frame, edge_count);
   data.target_angles = readTargetAngles(frame, edge_count);
+  data.facets = readFacets(frame, edge_count);
   data.faces = readFaces(frame, vertex_count);
   if (!data.edges && !data.faces)
     fail("edges_vertices and faces_vertices are both missing");

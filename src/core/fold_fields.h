@@ -23,6 +23,7 @@ struct FrameData
   /// Per edge; an entry is empty where the file says null (FOLD: no value).
   std::optional<std::vector<std::optional<double>>> fold_angles;
   std::optional<std::vector<std::optional<double>>> target_angles;
+  std::optional<std::vector<char>> facets;  // our own: which edges are facets (kFacetKey)
   std::optional<std::vector<std::vector<int>>> faces;
   std::vector<std::array<int, 3>> face_orders;  // [f, g, s] as in the file
   std::optional<std::vector<Vec2>> crease_pattern;

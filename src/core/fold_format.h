@@ -11,6 +11,9 @@ inline constexpr const char* kCreasePatternKey = "virtual_origami:vertices_creas
 // Where each crease is meant to go (Edge::target_angle), degrees or null: kept apart from
 // edges_foldAngle, which says where the creases are in the frame written.
 inline constexpr const char* kTargetAngleKey = "virtual_origami:edges_targetFoldAngle";
+// Which edges are facets (compliant_faces.h: inside a face of the paper, bending without being
+// creases; a kept bend's mesh), true or false: written only when a facet is in the file.
+inline constexpr const char* kFacetKey = "virtual_origami:edges_facet";
 
 inline double toRadians(double degrees)
 {

@@ -564,6 +564,8 @@ TracedFrame traceFrame(const FrameData& data, const std::vector<Vec2>& crease_pa
     out.fold_angles.emplace();
   if (data.target_angles)
     out.target_angles.emplace();
+  if (data.facets)
+    out.facets.emplace();
   for (const int source : traced->edge_sources)
   {
     // A joint (no source) lies flat and has no target.
@@ -572,6 +574,8 @@ TracedFrame traceFrame(const FrameData& data, const std::vector<Vec2>& crease_pa
       out.fold_angles->push_back(source >= 0 ? (*data.fold_angles)[source] : std::optional<double>(0.0));
     if (out.target_angles)
       out.target_angles->push_back(source >= 0 ? (*data.target_angles)[source] : std::nullopt);
+    if (out.facets)
+      out.facets->push_back(source >= 0 ? (*data.facets)[source] : 0);
   }
   out.faces = traced->faces;
   out.crease_pattern.reset();
@@ -680,6 +684,8 @@ void openCutsBetweenFaces(FrameData& data, std::optional<std::vector<Vec2>>& cre
         data.fold_angles->push_back((*data.fold_angles)[e]);
       if (data.target_angles)
         data.target_angles->push_back((*data.target_angles)[e]);
+      if (data.facets)
+        data.facets->push_back((*data.facets)[e]);
     }
   }
 }
@@ -758,6 +764,9 @@ BuiltFrame buildFrame(const json& frame, const BuiltFrame* parent)
     else if (built.crease_pattern && fold_angles && (*fold_angles)[e] &&
              (*(*fold_angles)[e] != 0.0 || edge.assignment == Assignment::Flat))
       edge.target_angle = (*fold_angles)[e];
+    // A facet bends inside a face of the paper: with its target, it is one again (isFacet).
+    if (data.facets && (*data.facets)[e] && edge.target_angle)
+      edge.split = true;
   }
   if (built.crease_pattern)
     foldCreasePattern(paper, fold_angles);

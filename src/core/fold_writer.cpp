@@ -19,6 +19,7 @@
 
 #include "fold_format.h"
 #include "virtual_origami/core/atomic_write.h"
+#include "virtual_origami/core/compliant_faces.h"
 
 namespace virtual_origami::core
 {
@@ -102,7 +103,9 @@ FileTopology fileTopology(const Paper& paper)
   for (size_t e = 0; e < paper.edges.size(); ++e)
   {
     const Edge& edge = paper.edges[e];
-    if (!edge.split || !edge.isCrease() || edge.assignment != Assignment::Flat)
+    // A facet that bends (a kept bend) stays in the file, with its mesh.
+    const bool bends = isFacet(edge) && (edge.fold_angle != 0.0 || *edge.target_angle != 0.0);
+    if (!edge.split || !edge.isCrease() || edge.assignment != Assignment::Flat || bends)
       continue;
     inside[e] = 1;
     const int a = find(edge.faces[0]), b = find(edge.faces[1]);
@@ -174,6 +177,13 @@ void addTopology(ordered_json& frame, const Paper& paper)
       targets.push_back(target ? ordered_json(toDegrees(*target)) : ordered_json(nullptr));
     }
     frame[kTargetAngleKey] = targets;
+  }
+  if (std::any_of(file.edges.begin(), file.edges.end(), [&](int e) { return isFacet(paper.edges[e]); }))
+  {
+    ordered_json facets = ordered_json::array();
+    for (int e : file.edges)
+      facets.push_back(isFacet(paper.edges[e]));
+    frame[kFacetKey] = facets;
   }
   frame["faces_vertices"] = faces;
   // Pieces of one face share its orders: each pair once, none of a face with itself.

@@ -6,6 +6,7 @@
 
 #include <Eigen/Geometry>
 
+#include "virtual_origami/core/compliant_faces.h"
 #include "virtual_origami/core/planar_geometry.h"
 
 namespace virtual_origami::core
@@ -262,7 +263,8 @@ void updateFoldAngles(Paper& paper, double assign_threshold)
     while (edge.fold_angle - angle > M_PI)
       angle += 2 * M_PI;
     edge.fold_angle = std::max(-M_PI, std::min(M_PI, angle));
-    if (edge.assignment != Assignment::Cut)
+    // A facet (a compliant face's or a kept bend's) bends without becoming a crease.
+    if (edge.assignment != Assignment::Cut && !isFacet(edge))
     {
       if (edge.fold_angle > assign_threshold)
         edge.assignment = Assignment::Valley;

@@ -34,6 +34,8 @@ const char* kindName(Operation::Kind kind)
       return "flat_fold";
     case Operation::Kind::DragVertex:
       return "drag_vertex";
+    case Operation::Kind::KeepBend:
+      return "keep_bend";
   }
   return "unknown";
 }
@@ -62,9 +64,17 @@ Change makeChange(uint64_t base_revision, Operation::Kind kind, std::optional<Pa
 
 Expected<Computed<CreaseResult>> computeCrease(Workspace workspace, const CreaseRequest& request)
 {
+  const std::vector<char> kept_bend = keptBendFaces(workspace.paper);
   Expected<CreaseResult> result = core::crease(workspace.paper, request, workspace.snap);
   if (!result)
     return Expected<Computed<CreaseResult>>::failure(result.message());
+  // A crease through a kept bend would fold a curved face along a line that is not in it:
+  // refused, the bend kept (undo the bend to crease there).
+  for (int f : result->split_faces)
+    if (f < static_cast<int>(kept_bend.size()) && kept_bend[f])
+      return Expected<Computed<CreaseResult>>::failure(
+          "the crease crosses a kept bend (face " + std::to_string(f) +
+          "): paper that is bent cannot take a straight crease there; undo the bend to crease it flat");
   Change change = makeChange(workspace.revision, Operation::Kind::Crease, std::move(workspace.paper));
   change.operation.crease = request;
   return Computed<CreaseResult>{ std::move(*result), std::move(change) };
@@ -300,6 +310,22 @@ Expected<Computed<PullResult>> computeDragVertex(Workspace workspace, const Pull
   Change change = makeChange(workspace.revision, Operation::Kind::DragVertex, std::move(workspace.paper));
   change.operation.drag = target;
   return Computed<PullResult>{ std::move(*result), std::move(change) };
+}
+
+Expected<Computed<KeptBend>> computeKeepBend(Workspace workspace, const BentSheet& sheet)
+{
+  using Answer = Expected<Computed<KeptBend>>;
+  const Paper before = workspace.paper;
+  Expected<KeptBend> result = keepBend(workspace.paper, sheet);
+  if (!result)
+    return Answer::failure("the bend is not kept: " + result.message());
+  const int pinned = movedHeldVertex(before, workspace.paper, workspace.held);
+  if (pinned >= 0)
+    return Answer::failure("the bend is not kept: vertex " + std::to_string(pinned) +
+                           " is pinned and the bent sheet moved it");
+  Change change = makeChange(workspace.revision, Operation::Kind::KeepBend, std::move(workspace.paper));
+  change.operation.bend = sheet;
+  return Computed<KeptBend>{ std::move(*result), std::move(change) };
 }
 
 Expected<Change> computeReset(uint64_t base_revision, double size)
@@ -543,6 +569,15 @@ Expected<PullResult> Session::dragVertex(const PullTarget& target, bool commit_i
   return std::move(computed->result);
 }
 
+Expected<KeptBend> Session::keepBend(const BentSheet& sheet)
+{
+  auto computed = computeKeepBend(workspace(), sheet);
+  if (!computed)
+    return Expected<KeptBend>::failure(computed.message());
+  commit(std::move(computed->change));
+  return std::move(computed->result);
+}
+
 Status Session::apply(const Operation& operation)
 {
   switch (operation.kind)
@@ -592,6 +627,11 @@ Status Session::apply(const Operation& operation)
     case Operation::Kind::DragVertex:
     {
       const auto r = dragVertex(operation.drag, true);
+      return r ? success() : failure(r.message());
+    }
+    case Operation::Kind::KeepBend:
+    {
+      const auto r = keepBend(operation.bend);
       return r ? success() : failure(r.message());
     }
   }

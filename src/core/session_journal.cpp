@@ -146,6 +146,20 @@ json operationToJson(const Operation& op)
     case Operation::Kind::AssignmentFold:
       j["fraction"] = op.fraction;
       break;
+    case Operation::Kind::KeepBend:
+    {
+      json points = json::array(), triangles = json::array(), positions = json::array();
+      for (const Vec2& p : op.bend.points)
+        points.push_back({ p.x(), p.y() });
+      for (const std::array<int, 3>& t : op.bend.triangles)
+        triangles.push_back({ t[0], t[1], t[2] });
+      for (const Vec3& p : op.bend.positions)
+        positions.push_back(point(p));
+      j["points"] = std::move(points);
+      j["triangles"] = std::move(triangles);
+      j["positions"] = std::move(positions);
+      break;
+    }
     case Operation::Kind::Pull:
       j["pull"] = json::array();
       for (const PullTarget& target : op.pull)
@@ -169,7 +183,7 @@ Expected<Operation> operationFromJson(const json& j)
     for (Operation::Kind k : { Operation::Kind::Crease, Operation::Kind::Rotate, Operation::Kind::Squash,
                                Operation::Kind::Undo, Operation::Kind::Redo, Operation::Kind::Reset,
                                Operation::Kind::Load, Operation::Kind::Pull, Operation::Kind::AssignmentFold,
-                               Operation::Kind::FlatFold, Operation::Kind::DragVertex })
+                               Operation::Kind::FlatFold, Operation::Kind::DragVertex, Operation::Kind::KeepBend })
       if (kind == kindName(k))
       {
         op.kind = k;
@@ -209,6 +223,15 @@ Expected<Operation> operationFromJson(const json& j)
       op.path = j.at("path").get<std::string>();
     else if (op.kind == Operation::Kind::AssignmentFold)
       op.fraction = j.at("fraction").get<double>();
+    else if (op.kind == Operation::Kind::KeepBend)
+    {
+      for (const json& p : j.at("points"))
+        op.bend.points.push_back(point2(p));
+      for (const json& t : j.at("triangles"))
+        op.bend.triangles.push_back({ integer<int>(t.at(0)), integer<int>(t.at(1)), integer<int>(t.at(2)) });
+      for (const json& p : j.at("positions"))
+        op.bend.positions.push_back(point(p));
+    }
     else if (op.kind == Operation::Kind::Pull)
       for (const json& target : j.at("pull"))
         op.pull.push_back({ integer<int>(target.at("vertex")), point(target.at("position")) });

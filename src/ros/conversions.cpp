@@ -181,6 +181,14 @@ Operation toMessage(const core::Operation& op, const core::Paper* after)
         msg.positions.push_back(toPoint(target.position));
       }
       break;
+    case core::Operation::Kind::KeepBend:
+      for (const core::Vec2& p : op.bend.points)
+        msg.bend_points.push_back(toPoint(core::Vec3(p.x(), p.y(), 0.0)));
+      for (const std::array<int, 3>& t : op.bend.triangles)
+        msg.bend_triangles.insert(msg.bend_triangles.end(), t.begin(), t.end());
+      for (const core::Vec3& p : op.bend.positions)
+        msg.bend_positions.push_back(toPoint(p));
+      break;
     default:
       break;
   }
@@ -216,7 +224,7 @@ core::Expected<core::Operation> fromMessage(const Operation& msg)
        { core::Operation::Kind::Crease, core::Operation::Kind::Rotate, core::Operation::Kind::Squash,
          core::Operation::Kind::Undo, core::Operation::Kind::Redo, core::Operation::Kind::Reset,
          core::Operation::Kind::Load, core::Operation::Kind::Pull, core::Operation::Kind::AssignmentFold,
-         core::Operation::Kind::FlatFold, core::Operation::Kind::DragVertex })
+         core::Operation::Kind::FlatFold, core::Operation::Kind::DragVertex, core::Operation::Kind::KeepBend })
     if (msg.type == core::kindName(kind))
     {
       op.kind = kind;
@@ -269,10 +277,35 @@ core::Expected<core::Operation> fromMessage(const Operation& msg)
     case core::Operation::Kind::DragVertex:
       op.drag = { msg.vertex, toVec3(msg.position) };
       break;
+    case core::Operation::Kind::KeepBend:
+    {
+      core::Expected<core::BentSheet> sheet = bentSheet(msg.bend_points, msg.bend_triangles, msg.bend_positions);
+      if (!sheet)
+        return Failure::failure(sheet.message());
+      op.bend = std::move(*sheet);
+      break;
+    }
     default:
       break;
   }
   return op;
+}
+
+core::Expected<core::BentSheet> bentSheet(const std::vector<geometry_msgs::Point>& points,
+                                          const std::vector<int>& triangles,
+                                          const std::vector<geometry_msgs::Point>& positions)
+{
+  if (triangles.size() % 3 != 0)
+    return core::Expected<core::BentSheet>::failure("a bent sheet needs three node indices per triangle (" +
+                                                    std::to_string(triangles.size()) + " given)");
+  core::BentSheet sheet;
+  for (const geometry_msgs::Point& p : points)
+    sheet.points.emplace_back(p.x, p.y);
+  for (size_t i = 0; i < triangles.size(); i += 3)
+    sheet.triangles.push_back({ triangles[i], triangles[i + 1], triangles[i + 2] });
+  for (const geometry_msgs::Point& p : positions)
+    sheet.positions.push_back(toVec3(p));
+  return sheet;
 }
 
 }  // namespace virtual_origami

@@ -4,6 +4,9 @@
 
 #include <visualization_msgs/MarkerArray.h>
 
+#include <virtual_origami/KeepBend.h>
+
+#include "virtual_origami/curved/bent_sheet.h"
 #include "virtual_origami/curved/bubble_mesh.h"
 #include "virtual_origami/curved/cgal_mesh.h"
 #include "virtual_origami/curved/paper_material.h"
@@ -165,6 +168,8 @@ CurvedMeshSolverNode::CurvedMeshSolverNode(ros::NodeHandle nh, ros::NodeHandle p
   // Only the newest state matters: a slow solve skips the states that came meanwhile.
   state_sub_ = nh.subscribe<PaperState>("state", 1, [this](const PaperState::ConstPtr& s) { onState(s); });
   drag_sub_ = nh.subscribe<VertexTarget>("curved_drag", 1, [this](const VertexTarget::ConstPtr& d) { onDrag(d); });
+  keep_bend_client_ = nh.serviceClient<KeepBend>("keep_bend");
+  keep_bend_server_ = private_nh.advertiseService("keep_bend", &CurvedMeshSolverNode::keepBend, this);
   const double pin_rate = private_nh.param("pin_rate", 30.0);
   if (pin_rate > 0)
     follow_timer_ = nh.createTimer(ros::Duration(1.0 / pin_rate), &CurvedMeshSolverNode::followFrames, this);
@@ -354,6 +359,34 @@ void CurvedMeshSolverNode::followFrames(const ros::TimerEvent&)
   if (!report->converged && resumed_ < kResumes)
     return;
   publish(stamp, *report, drag_ ? "mouse" : "frames");
+}
+
+bool CurvedMeshSolverNode::keepBend(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res)
+{
+  res.success = false;
+  if (!follower_ || !follower_->hasSheet() || !last_state_)
+  {
+    res.message = "no bent sheet is shown: nothing to keep";
+    return true;
+  }
+  const core::BentSheet sheet = core::bentSheetOf(follower_->mesh(), follower_->positions());
+  KeepBend srv;
+  for (const core::Vec2& p : sheet.points)
+    srv.request.points.push_back(toPoint(core::Vec3(p.x(), p.y(), 0.0)));
+  for (const std::array<int, 3>& t : sheet.triangles)
+    srv.request.triangles.insert(srv.request.triangles.end(), t.begin(), t.end());
+  for (const core::Vec3& p : sheet.positions)
+    srv.request.positions.push_back(toPoint(p));
+  if (!keep_bend_client_.call(srv))
+  {
+    res.message = "the service " + keep_bend_client_.getService() + " did not answer: nothing kept";
+    return true;
+  }
+  res.success = srv.response.success;
+  res.message = srv.response.message;
+  if (res.success)
+    drag_.reset();  // the model holds the bend now: nothing springs back
+  return true;
 }
 
 void CurvedMeshSolverNode::publish(const ros::Time& stamp, const core::CurvedReport& report, const char* what)

@@ -6,6 +6,7 @@
 #include <virtual_origami/DragVertex.h>
 #include <virtual_origami/FlatFold.h>
 #include <virtual_origami/FoldByAssignment.h>
+#include <virtual_origami/KeepBend.h>
 #include <virtual_origami/Load.h>
 #include <virtual_origami/PinVertex.h>
 #include <virtual_origami/Pull.h>
@@ -32,7 +33,7 @@ OperationClient::OperationClient(const std::string& ns) : nh_(ns) {}
 bool OperationClient::waitForServices(double seconds)
 {
   for (const char* name : { "crease", "rotate", "squash", "undo", "redo", "reset", "pin", "pull", "load",
-                            "fold_by_assignment", "flat_fold", "drag_vertex" })
+                            "fold_by_assignment", "flat_fold", "drag_vertex", "keep_bend" })
     if (!ros::service::waitForService(nh_.resolveName(name), ros::Duration(seconds)))
       return false;
   return true;
@@ -143,6 +144,14 @@ core::Status OperationClient::apply(const Operation& op, int animation_steps, do
     srv.request.position = op.position;
     srv.request.commit = true;
     return call(nh_, "drag_vertex", srv);
+  }
+  if (op.type == "keep_bend")
+  {
+    KeepBend srv;
+    srv.request.points = op.bend_points;
+    srv.request.triangles = op.bend_triangles;
+    srv.request.positions = op.bend_positions;
+    return call(nh_, "keep_bend", srv);
   }
   if (op.type == "load")
     return load(op.path);

@@ -175,6 +175,7 @@ PaperModelNode::PaperModelNode(ros::NodeHandle nh, ros::NodeHandle private_nh) :
   services_.push_back(nh_.advertiseService("fold_by_assignment", &PaperModelNode::foldByAssignment, this));
   services_.push_back(nh_.advertiseService("flat_fold", &PaperModelNode::flatFold, this));
   services_.push_back(nh_.advertiseService("drag_vertex", &PaperModelNode::dragVertex, this));
+  services_.push_back(nh_.advertiseService("keep_bend", &PaperModelNode::keepBend, this));
   services_.push_back(nh_.advertiseService("load", &PaperModelNode::load, this));
   services_.push_back(nh_.advertiseService("save", &PaperModelNode::save, this));
   // Calls reconfigure() at once with the parameters (or their defaults).
@@ -849,6 +850,41 @@ bool PaperModelNode::dragVertex(DragVertex::Request& req, DragVertex::Response& 
   res.max_strain = result->result.solve.max_strain;
   res.message = (commit_it ? "dragged vertex " : "preview: vertex ") + std::to_string(req.vertex) +
                 (commit_it ? "" : " dragged");
+  return true;
+}
+
+bool PaperModelNode::keepBend(KeepBend::Request& req, KeepBend::Response& res)
+{
+  if (refuseWhileResuming(res))
+    return true;
+  res.success = false;
+  core::Expected<core::BentSheet> sheet = bentSheet(req.points, req.triangles, req.positions);
+  if (!sheet)
+  {
+    res.message = "the bend is not kept: " + sheet.message();
+    std::lock_guard<std::mutex> lock(mutex_);
+    res.revision = session_.revision();
+    return true;
+  }
+  const auto result = computeAndCommit<core::KeptBend>(
+      [&](core::Workspace workspace) { return core::computeKeepBend(std::move(workspace), *sheet); }, true,
+      "kept a bend", res.revision);
+  res.success = result.ok();
+  if (!result)
+  {
+    res.message = result.message();
+    return true;
+  }
+  const core::KeptBend& kept = result->result;
+  res.bent_faces.assign(kept.bent_faces.begin(), kept.bent_faces.end());
+  res.triangles_kept = kept.triangles;
+  res.facets = kept.facets;
+  res.largest_bend = kept.largest_bend;
+  res.max_strain = kept.max_strain;
+  char text[200];
+  std::snprintf(text, sizeof text, "kept the bend: %zu faces bent into %d triangles, the largest bend %.1f°",
+                kept.bent_faces.size(), kept.triangles, kept.largest_bend * 180.0 / M_PI);
+  res.message = text;
   return true;
 }
 

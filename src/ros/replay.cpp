@@ -73,7 +73,7 @@ core::Status checkReplayable(const Recording& recording)
 {
   static const std::set<std::string> known{ "crease",    "rotate",     "squash", "undo", "redo",
                                             "reset",     "pin",        "pull",   "load", "fold_by_assignment",
-                                            "flat_fold", "drag_vertex" };
+                                            "flat_fold", "drag_vertex", "keep_bend" };
   for (size_t i = 0; i < recording.operations.size(); ++i)
   {
     const Operation& op = recording.operations[i];

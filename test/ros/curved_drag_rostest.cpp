@@ -8,7 +8,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include <virtual_origami/KeepBend.h>
+
 #include "interaction_fixture.h"
+#include "virtual_origami/core/compliant_faces.h"
+#include "virtual_origami/core/metrics.h"
+#include "virtual_origami/ros/operation_client.h"
 
 using namespace virtual_origami;
 using namespace virtual_origami::test;
@@ -219,6 +224,88 @@ TEST_F(CurvedDrag, WherePaperWouldHaveToStretchTheDragIsRefusedAndNothingBends)
   expectUnchanged();
   EXPECT_NE(status_.message.find("even bent"), std::string::npos) << status_.message;
   EXPECT_FALSE(bent_shown_);
+}
+
+// Issue 38 item 1 through the nodes: the bent sheet kept while the mouse holds it
+// (curved_mesh_solver's `keep_bend`) is the paper's state: one revision whose faces carry the
+// bend, published on `state` and `operations`; undo returns the flat faces exactly, and the
+// recorded operation applied again (as replay applies a bag's) lands on the same state.
+TEST_F(CurvedDrag, ABendKeptIsThePapersStateUndoneFlatAndReplayedExactly)
+{
+  pinCorners({ { 1, 0 }, { 1, 1 }, { 0, 1 } });
+  const PaperState flat = client_.state();
+  const int corner = vertexAt(flat, 0, 0);
+  const core::Vec3 from = folded(flat, corner);
+  const core::Vec3 inward = core::Vec3(1, 1, 0).normalized(), n = facing(from);
+  const double s = 0.4;
+  const core::Vec3 to = from + s * inward + core::Vec3(0, 0, -s * inward.dot(n) / n.z());
+  operations_.clear();
+  std_srvs::Trigger keep;
+  drag(from, to, 12, [&] {
+    ASSERT_TRUE(waitFor([&] { return status_.bending && bent_shown_ && nearest(bent_, to) < 1e-6; }, 60))
+        << "the bent sheet does not reach the pointer; " << status_.message;
+    keep = client_.trigger("curved_mesh_solver/keep_bend");
+    EXPECT_TRUE(keep.response.success) << keep.response.message;
+  });
+  ASSERT_TRUE(keep.response.success) << keep.response.message;
+  EXPECT_NE(keep.response.message.find("kept the bend"), std::string::npos) << keep.response.message;
+  // One revision: the paper where the sheet was, its bent face in triangles joined by facets.
+  const PaperState kept = client_.stateAt(base_ + 1);
+  ros::WallDuration(0.5).sleep();
+  ros::spinOnce();
+  EXPECT_EQ(client_.state().revision, base_ + 1) << "the release committed or sprang back something more";
+  const core::Expected<core::Paper> paper = fromMessage(kept);
+  ASSERT_TRUE(paper) << paper.message();
+  EXPECT_GT(paper->faces.size(), 10u);
+  int facets = 0;
+  double largest = 0.0;
+  for (const core::Edge& e : paper->edges)
+    if (core::isFacet(e))
+    {
+      ++facets;
+      largest = std::max(largest, std::abs(*e.target_angle));
+      EXPECT_EQ(*e.target_angle, e.fold_angle);
+    }
+  EXPECT_GT(facets, 0);
+  EXPECT_GT(largest, 0.01) << "no facet holds a bend";
+  EXPECT_LT((folded(kept, corner) - to).norm(), 1e-6) << "the corner is not where the mouse held it";
+  for (const auto& [x, y] : { std::pair{ 1.0, 0.0 }, { 1.0, 1.0 }, { 0.0, 1.0 } })
+    EXPECT_EQ(folded(kept, vertexAt(kept, x, y)), folded(flat, vertexAt(flat, x, y))) << "a pin moved";
+  EXPECT_LT(core::edgeStrain(*paper).max, 1e-2);
+  // Recorded: the sheet the model took.
+  ASSERT_TRUE(waitFor([&] { return !operations_.empty(); }, 5));
+  const Operation recorded = operations_.back();
+  EXPECT_EQ(recorded.type, "keep_bend");
+  EXPECT_EQ(recorded.bend_points.size(), recorded.bend_positions.size());
+  EXPECT_EQ(recorded.bend_triangles.size() % 3, 0u);
+  // Undo: the flat faces, exactly.
+  ASSERT_TRUE(client_.trigger("undo").response.success);
+  const PaperState undone = client_.stateAt(base_ + 2);
+  EXPECT_EQ(undone.faces.size(), flat.faces.size());
+  EXPECT_EQ(undone.vertices_folded, flat.vertices_folded);
+  // The recorded operation again, as replay applies it: the kept state, bit for bit.
+  OperationClient replay("/origami");
+  const core::Status applied = replay.apply(recorded);
+  ASSERT_TRUE(applied.ok()) << applied.message();
+  const PaperState again = client_.stateAt(base_ + 3);
+  EXPECT_EQ(again.vertices_folded, kept.vertices_folded);
+  EXPECT_EQ(again.faces.size(), kept.faces.size());
+  ASSERT_EQ(again.edges.size(), kept.edges.size());
+  for (size_t e = 0; e < again.edges.size(); ++e)
+  {
+    EXPECT_EQ(again.edges[e].fold_angle, kept.edges[e].fold_angle) << "edge " << e;
+    EXPECT_EQ(again.edges[e].target_angle, kept.edges[e].target_angle) << "edge " << e;
+  }
+  // A sheet that does not fit is refused and changes nothing.
+  KeepBend::Request bad;
+  bad.points = recorded.bend_points;
+  bad.triangles = recorded.bend_triangles;
+  bad.positions = recorded.bend_positions;
+  bad.positions[0].x = NAN;
+  const KeepBend refused = client_.call<KeepBend>("keep_bend", bad);
+  EXPECT_FALSE(refused.response.success);
+  EXPECT_NE(refused.response.message.find("not a finite point"), std::string::npos) << refused.response.message;
+  EXPECT_EQ(refused.response.revision, base_ + 3);
 }
 
 int main(int argc, char** argv)

@@ -12,6 +12,7 @@
 #include "virtual_origami/core/flat_fold.h"
 #include "virtual_origami/core/paper.h"
 #include "virtual_origami/core/pull.h"
+#include "virtual_origami/core/kept_bend.h"
 #include "virtual_origami/core/rotate.h"
 #include "virtual_origami/core/snap.h"
 #include "virtual_origami/core/squash.h"
@@ -35,6 +36,7 @@ struct Operation
     AssignmentFold,
     FlatFold,    // fold on chosen creases (flat_fold.h)
     DragVertex,  // one vertex dragged to a point, the faces following (pull.h)
+    KeepBend,    // the curved model's bent sheet kept as the paper's state (kept_bend.h)
   };
   Kind kind = Kind::Crease;
   CreaseRequest crease;   // Crease: the request as given (before snapping)
@@ -49,6 +51,7 @@ struct Operation
   std::vector<Vec3> folded;
   FlatFoldRequest flat_fold;  // FlatFold: the creases, their angles and the face that stays
   PullTarget drag;            // DragVertex: the vertex and where it was dragged to
+  BentSheet bend;             // KeepBend: the sheet as it was let go
   uint64_t revision = 0;  // the revision it produced
 };
 
@@ -136,6 +139,9 @@ Expected<Computed<FlatFoldResult>> computeFlatFold(Workspace workspace, const Fl
 /// fold, the change's state the frame (for Session::setPreview; never to commit).
 Expected<Computed<FlatFoldResult>> computeFlatFoldPreview(Workspace workspace, const FlatFoldRequest& request,
                                                           double fraction);
+/// Keeps the curved model's bent sheet as the paper's state (keepBend). Refused as keepBend
+/// refuses, and when the sheet would move a held vertex (a pin).
+Expected<Computed<KeptBend>> computeKeepBend(Workspace workspace, const BentSheet& sheet);
 /// Drags one vertex to a point: the solver restores the faces around it, the held vertices
 /// (pins) hold (pull.h). Refused on an unknown vertex, a point that is not finite, a pinned
 /// vertex, no solver, or when no shape of rigid faces follows. Previews and commits both start
@@ -196,6 +202,8 @@ public:
   Expected<FlatFoldResult> flatFold(const FlatFoldRequest& request, bool commit = true, double fraction = 1.0);
   /// Drags a vertex to a point; with commit false a preview, as for rotate.
   Expected<PullResult> dragVertex(const PullTarget& target, bool commit = true);
+  /// Keeps a bent sheet (computeKeepBend); always a commit.
+  Expected<KeptBend> keepBend(const BentSheet& sheet);
 
   /// Applies a logged operation again (its parameters as logged).
   Status apply(const Operation& operation);

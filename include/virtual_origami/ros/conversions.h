@@ -38,6 +38,12 @@ Operation toMessage(const core::Operation& operation, const core::Paper* after =
 /// not in a session's history (pin) or unknown, and on arrays of different lengths.
 core::Expected<core::Operation> fromMessage(const Operation& operation);
 
+/// A bent sheet from its message fields (KeepBend.srv, Operation.msg): the nodes' crease-pattern
+/// points, three node indices per triangle, the nodes' positions.
+core::Expected<core::BentSheet> bentSheet(const std::vector<geometry_msgs::Point>& points,
+                                          const std::vector<int>& triangles,
+                                          const std::vector<geometry_msgs::Point>& positions);
+
 /// A fold on chosen creases from the arrays of FlatFold.srv / Operation.msg (z ignored): fails
 /// on arrays of different lengths or none.
 core::Expected<core::FlatFoldRequest> flatFoldRequest(const std::vector<geometry_msgs::Point>& starts,

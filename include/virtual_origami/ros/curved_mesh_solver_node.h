@@ -5,7 +5,8 @@
 // where the rigid faces of the model cannot (one face does not bend); so does a vertex the
 // mouse drags where the rigid faces cannot follow (`curved_drag`). It never writes back into
 // the model: the rigid faces stay the committed state, the mesh shows how real paper would
-// bend between them.
+// bend between them, until a client keeps the sheet shown (`keep_bend`): then the model takes it
+// (paper_model's `keep_bend`).
 #pragma once
 
 #include <optional>
@@ -13,6 +14,7 @@
 
 #include <dynamic_reconfigure/server.h>
 #include <ros/ros.h>
+#include <std_srvs/Trigger.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
 #include <virtual_origami/CurvedMeshSolverConfig.h>
@@ -59,6 +61,8 @@ private:
   bool currentPins(std::vector<core::PullTarget>& pins, ros::Time& stamp, std::string& error,
                    const ros::Duration& wait = ros::Duration(0));
   void publish(const ros::Time& stamp, const core::CurvedReport& report, const char* what);
+  /// Sends the sheet shown now to paper_model's `keep_bend` and answers what it did.
+  bool keepBend(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
 
   CurvedMeshSolverConfig config_;
   dynamic_reconfigure::Server<CurvedMeshSolverConfig> reconfigure_server_;
@@ -70,6 +74,8 @@ private:
   std::optional<core::PullTarget> drag_;  // the vertex the mouse holds where rigid faces cannot follow
   ros::Time drag_stamp_;
   ros::Publisher mesh_pub_;
+  ros::ServiceServer keep_bend_server_;
+  ros::ServiceClient keep_bend_client_;
   ros::Timer follow_timer_;
   int resumed_ = 0;  // solves resumed on frames standing still since the sheet last balanced
 };

@@ -22,6 +22,7 @@
 #include <tf2_ros/transform_listener.h>
 #include <virtual_origami/Crease.h>
 #include <virtual_origami/DragVertex.h>
+#include <virtual_origami/KeepBend.h>
 #include <virtual_origami/FlatFold.h>
 #include <virtual_origami/FoldByAssignment.h>
 #include <virtual_origami/Load.h>
@@ -68,6 +69,7 @@ private:
   bool flatFold(FlatFold::Request& req, FlatFold::Response& res);
   /// Drag a vertex (SPEC §3.6): the faces follow through the solver, the pins hold.
   bool dragVertex(DragVertex::Request& req, DragVertex::Response& res);
+  bool keepBend(KeepBend::Request& req, KeepBend::Response& res);
   /// Strain colours and the preview budget, live (cfg/PaperModel.cfg).
   void reconfigure(PaperModelConfig& config, uint32_t level);
   bool load(Load::Request& req, Load::Response& res);
