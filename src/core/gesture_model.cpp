@@ -1,6 +1,7 @@
 #include "virtual_origami/core/gesture_model.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 
 #include "virtual_origami/core/axis.h"
@@ -331,6 +332,19 @@ bool GestureModel::previewRotation(double angle)
   return true;
 }
 
+namespace
+{
+/// paper_model's answer as a sentence of its own.
+std::string sentence(std::string text)
+{
+  if (!text.empty())
+    text[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(text[0])));
+  if (!text.empty() && text.back() != '.')
+    text += '.';
+  return text;
+}
+}  // namespace
+
 void GestureModel::release(const Pointer& pointer)
 {
   if (!dragging())
@@ -339,6 +353,10 @@ void GestureModel::release(const Pointer& pointer)
   if (move_pending_)
     updateDrag();
   const GestureState was = state_;
+  // Kept before the curved model is let go (entering Idle lets it go, and it springs back).
+  std::optional<PaperReply> kept;
+  if (was == GestureState::Bending && keep_bend_)
+    kept = send(CommandCall{ PaperCommand::KeepBend });
   enter(GestureState::Idle);
   showGuides(Guides{});
   std::string message;
@@ -351,7 +369,16 @@ void GestureModel::release(const Pointer& pointer)
       break;
     case GestureState::HoldingVertex:
     case GestureState::Bending:
-      message = releaseVertex(was == GestureState::Bending);
+      if (kept && kept->success)
+      {
+        dragged_vertex_ = -1;
+        pick_ = Pick{};
+        showPicks();
+        message = sentence(kept->message);
+      }
+      else
+        message = releaseVertex(was == GestureState::Bending) +
+                  (kept ? " " + sentence(kept->message) : "");
       break;
     case GestureState::TurningFace:
     case GestureState::TurningNothing:
@@ -540,6 +567,15 @@ void GestureModel::toggleKeepRefusedFolds(const Pointer& at)
   showSheet();  // the menu's check mark
   tell(keep_refused_folds_ ? "Folds by assignment are kept even when strained or crossing, their figures said." :
                              "Folds by assignment that strain or cross the paper are refused.",
+       rightClick(at));
+}
+
+void GestureModel::toggleKeepBend(const Pointer& at)
+{
+  keep_bend_ = !keep_bend_;
+  showSheet();  // the menu's check mark
+  tell(keep_bend_ ? "A bent drag let go keeps the bend: the paper stays where the curved model bent it." :
+                    "A bent drag let go springs back.",
        rightClick(at));
 }
 

@@ -71,6 +71,8 @@ std::vector<InteractionNode::MenuEntry> InteractionNode::menuEntries()
     titled(mode(GestureMode::Flap), "Flap mode: drag a flap"),
     { "Reverse folds go round the layers", "", [this](const Feedback& f) { model_.toggleOutsideReverse(pointer(f)); },
       [this] { return model_.outsideReverse(); } },
+    { "Keep the bend", "", [this](const Feedback& f) { model_.toggleKeepBend(pointer(f)); },
+      [this] { return model_.keepBend(); } },
   };
 }
 

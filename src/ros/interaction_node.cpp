@@ -64,6 +64,7 @@ InteractionNode::InteractionNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   rotate_ = nh_.serviceClient<Rotate>("rotate");
   squash_ = nh_.serviceClient<std_srvs::Trigger>("squash");
   undo_ = nh_.serviceClient<std_srvs::Trigger>("undo");
+  keep_bend_ = nh_.serviceClient<std_srvs::Trigger>("curved_mesh_solver/keep_bend");
   redo_ = nh_.serviceClient<std_srvs::Trigger>("redo");
   reset_ = nh_.serviceClient<std_srvs::Trigger>("reset");
   pin_ = nh_.serviceClient<PinVertex>("pin");

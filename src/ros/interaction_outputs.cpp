@@ -189,10 +189,11 @@ core::PaperReply InteractionNode::send(const core::PaperRequest& request)
                         },
                         [&](const core::CommandCall& c) {
                           std_srvs::Trigger srv;
-                          ros::ServiceClient& client = c.command == core::PaperCommand::Squash ? squash_ :
-                                                       c.command == core::PaperCommand::Undo   ? undo_ :
-                                                       c.command == core::PaperCommand::Redo   ? redo_ :
-                                                                                                 reset_;
+                          ros::ServiceClient& client = c.command == core::PaperCommand::Squash   ? squash_ :
+                                                       c.command == core::PaperCommand::Undo     ? undo_ :
+                                                       c.command == core::PaperCommand::Redo     ? redo_ :
+                                                       c.command == core::PaperCommand::KeepBend ? keep_bend_ :
+                                                                                                   reset_;
                           return reply(client, srv);
                         },
                         [&](const core::PinCall& c) {

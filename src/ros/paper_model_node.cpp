@@ -882,8 +882,9 @@ bool PaperModelNode::keepBend(KeepBend::Request& req, KeepBend::Response& res)
   res.largest_bend = kept.largest_bend;
   res.max_strain = kept.max_strain;
   char text[200];
-  std::snprintf(text, sizeof text, "kept the bend: %zu faces bent into %d triangles, the largest bend %.1f°",
-                kept.bent_faces.size(), kept.triangles, kept.largest_bend * 180.0 / M_PI);
+  std::snprintf(text, sizeof text, "kept the bend: %zu face%s bent into %d triangles, the largest bend %.1f°",
+                kept.bent_faces.size(), kept.bent_faces.size() == 1 ? "" : "s", kept.triangles,
+                kept.largest_bend * 180.0 / M_PI);
   res.message = text;
   return true;
 }

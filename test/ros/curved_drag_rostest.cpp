@@ -226,10 +226,11 @@ TEST_F(CurvedDrag, WherePaperWouldHaveToStretchTheDragIsRefusedAndNothingBends)
   EXPECT_FALSE(bent_shown_);
 }
 
-// Issue 38 item 1 through the nodes: the bent sheet kept while the mouse holds it
-// (curved_mesh_solver's `keep_bend`) is the paper's state: one revision whose faces carry the
-// bend, published on `state` and `operations`; undo returns the flat faces exactly, and the
-// recorded operation applied again (as replay applies a bag's) lands on the same state.
+// Issue 38 item 1 through the nodes: a bent drag let go with *Keep the bend* checked keeps the
+// sheet (the interaction asks curved_mesh_solver's `keep_bend`, which sends the sheet it shows to
+// paper_model's): one revision whose faces carry the bend, published on `state` and
+// `operations`; undo returns the flat faces exactly, and the recorded operation applied again
+// (as replay applies a bag's) lands on the same state.
 TEST_F(CurvedDrag, ABendKeptIsThePapersStateUndoneFlatAndReplayedExactly)
 {
   pinCorners({ { 1, 0 }, { 1, 1 }, { 0, 1 } });
@@ -239,16 +240,15 @@ TEST_F(CurvedDrag, ABendKeptIsThePapersStateUndoneFlatAndReplayedExactly)
   const core::Vec3 inward = core::Vec3(1, 1, 0).normalized(), n = facing(from);
   const double s = 0.4;
   const core::Vec3 to = from + s * inward + core::Vec3(0, 0, -s * inward.dot(n) / n.z());
+  menu("Keep the bend");
+  EXPECT_NE(status_.message.find("keeps the bend"), std::string::npos) << status_.message;
   operations_.clear();
-  std_srvs::Trigger keep;
   drag(from, to, 12, [&] {
     ASSERT_TRUE(waitFor([&] { return status_.bending && bent_shown_ && nearest(bent_, to) < 1e-6; }, 60))
         << "the bent sheet does not reach the pointer; " << status_.message;
-    keep = client_.trigger("curved_mesh_solver/keep_bend");
-    EXPECT_TRUE(keep.response.success) << keep.response.message;
   });
-  ASSERT_TRUE(keep.response.success) << keep.response.message;
-  EXPECT_NE(keep.response.message.find("kept the bend"), std::string::npos) << keep.response.message;
+  EXPECT_NE(status_.message.find("Kept the bend"), std::string::npos) << status_.message;
+  EXPECT_FALSE(status_.bending);
   // One revision: the paper where the sheet was, its bent face in triangles joined by facets.
   const PaperState kept = client_.stateAt(base_ + 1);
   ros::WallDuration(0.5).sleep();
@@ -306,6 +306,9 @@ TEST_F(CurvedDrag, ABendKeptIsThePapersStateUndoneFlatAndReplayedExactly)
   EXPECT_FALSE(refused.response.success);
   EXPECT_NE(refused.response.message.find("not a finite point"), std::string::npos) << refused.response.message;
   EXPECT_EQ(refused.response.revision, base_ + 3);
+  // Unchecked again: a bent drag springs back as before.
+  menu("Keep the bend");
+  EXPECT_NE(status_.message.find("springs back"), std::string::npos) << status_.message;
 }
 
 int main(int argc, char** argv)

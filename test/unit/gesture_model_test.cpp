@@ -726,3 +726,68 @@ TEST_F(GestureModelTest, NextLayerDownWalksAStacksCreasesTopFirstFromEitherSideO
   EXPECT_EQ(walked[0].size(), static_cast<size_t>(most));
   EXPECT_EQ(walked[0], walked[1]);
 }
+
+TEST_F(GestureModelTest, WithKeepTheBendABentDragLetGoKeepsTheSheetBeforeTheCurvedModelLetsGo)
+{
+  load(Paper::square(1.0));
+  model.chooseMode(GestureMode::Drag, at(p3(0.5, 0.5)));
+  model.toggleKeepBend(at(p3(0.5, 0.5)));
+  EXPECT_TRUE(model.keepBend());
+  out.forget();
+  int holds_when_kept = -1;
+  bool last_held_when_kept = false;
+  out.reply = [&](const PaperRequest& r) {
+    if (const CommandCall* c = std::get_if<CommandCall>(&r))
+    {
+      EXPECT_EQ(c->command, PaperCommand::KeepBend);
+      const std::vector<CurvedHold> holds = out.drawn<CurvedHold>();
+      holds_when_kept = static_cast<int>(holds.size());
+      last_held_when_kept = !holds.empty() && holds.back().vertex >= 0;
+      return PaperReply{ true, true, "kept the bend: 1 face bent into 40 triangles", 0, false };
+    }
+    const DragVertexCall& call = std::get<DragVertexCall>(r);
+    const bool at_rest = call.position.isApprox(p3(1, 0));
+    return PaperReply{ true, at_rest, at_rest ? "" : "the faces cannot follow", 0, !at_rest };
+  };
+  model.press(at(p3(1.0, 0.0)));
+  model.move(dragged(p3(1.0, 0.0), p3(1.0, 0.0, 0.2)));
+  model.update();
+  ASSERT_EQ(model.state(), GestureState::Bending);
+  model.release(dragged(p3(1.0, 0.0), p3(1.0, 0.0, 0.2)));
+  // Kept while the curved model still held the sheet, then let go; no drag committed.
+  ASSERT_EQ(out.sent<CommandCall>().size(), 1u);
+  EXPECT_GE(holds_when_kept, 1);
+  EXPECT_TRUE(last_held_when_kept) << "the curved model was let go before the bend was kept";
+  EXPECT_EQ(out.drawn<CurvedHold>().back().vertex, -1);
+  EXPECT_EQ(out.lastSaid(), "Kept the bend: 1 face bent into 40 triangles.");
+  for (const DragVertexCall& c : out.sent<DragVertexCall>())
+    EXPECT_FALSE(c.commit);
+  EXPECT_EQ(model.state(), GestureState::Idle);
+
+  // Refused: said, and the paper springs back as without the entry.
+  out.forget();
+  out.reply = [&](const PaperRequest& r) {
+    if (std::holds_alternative<CommandCall>(r))
+      return PaperReply{ true, false, "the bend is not kept: nothing bent", 0, false };
+    const DragVertexCall& call = std::get<DragVertexCall>(r);
+    const bool at_rest = call.position.isApprox(p3(1, 0));
+    return PaperReply{ true, at_rest, at_rest ? "" : "the faces cannot follow", 0, !at_rest };
+  };
+  model.press(at(p3(1.0, 0.0)));
+  model.move(dragged(p3(1.0, 0.0), p3(1.0, 0.0, 0.2)));
+  model.update();
+  model.release(dragged(p3(1.0, 0.0), p3(1.0, 0.0, 0.2)));
+  EXPECT_EQ(out.lastSaid(),
+            "Let go: the bent paper springs back, as it was. The bend is not kept: nothing bent.");
+
+  // Unchecked: no keeping asked.
+  model.toggleKeepBend(at(p3(0.5, 0.5)));
+  EXPECT_FALSE(model.keepBend());
+  out.forget();
+  model.press(at(p3(1.0, 0.0)));
+  model.move(dragged(p3(1.0, 0.0), p3(1.0, 0.0, 0.2)));
+  model.update();
+  model.release(dragged(p3(1.0, 0.0), p3(1.0, 0.0, 0.2)));
+  EXPECT_TRUE(out.sent<CommandCall>().empty());
+  EXPECT_EQ(out.lastSaid(), "Let go: the bent paper springs back, as it was.");
+}

@@ -130,6 +130,9 @@ public:
   /// A flap dragged over a line makes the outside reverse fold (the tip wrapped round the
   /// layers) instead of the inside one (turned in between them).
   void toggleOutsideReverse(const Pointer& at);
+  /// A bent drag let go keeps the bend (the curved model's sheet becomes the paper's state)
+  /// instead of springing back.
+  void toggleKeepBend(const Pointer& at);
   /// The sheet marker changed for another reason (strain colours): sent now or after the drag.
   void refreshSheet();
 
@@ -154,6 +157,10 @@ public:
   bool outsideReverse() const
   {
     return outside_reverse_;
+  }
+  bool keepBend() const
+  {
+    return keep_bend_;
   }
   bool pickedLayersOnly() const
   {
@@ -306,6 +313,7 @@ private:
   double entered_ = 0.0;  // when the state was entered (clock seconds)
   GestureMode mode_ = GestureMode::Crease;
   bool snapping_ = true;             // a drawn line snaps (Fig. 6); off: exactly as drawn
+  bool keep_bend_ = false;           // a bent drag let go keeps the bend
   bool keep_refused_folds_ = false;  // fold-by-assignment commits keep what the service would refuse
   bool picked_layers_only_ = false;  // a rotation turns the picked face's own layers only
   bool outside_reverse_ = false;     // a flap drag's reverse fold wraps the tip round the layers

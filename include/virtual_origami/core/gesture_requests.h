@@ -62,6 +62,7 @@ enum class PaperCommand
   Undo,
   Redo,
   Reset,
+  KeepBend,  // the bent sheet the curved model shows becomes the paper's state (kept_bend.h)
 };
 struct CommandCall
 {

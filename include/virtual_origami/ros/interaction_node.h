@@ -125,7 +125,7 @@ private:
   std::vector<std::pair<interactive_markers::MenuHandler::EntryHandle, std::function<bool()>>> checkboxes_;
   ros::Subscriber state_sub_, strain_colours_sub_, curved_sheet_sub_, tool_sub_;
   ros::Publisher markers_pub_, status_pub_, view_turn_pub_, slider_pub_, curved_drag_pub_;
-  ros::ServiceClient crease_, rotate_, squash_, undo_, redo_, reset_, pin_, fold_, flat_fold_, drag_vertex_,
+  ros::ServiceClient crease_, rotate_, squash_, undo_, redo_, reset_, keep_bend_, pin_, fold_, flat_fold_, drag_vertex_,
       paper_model_reconfigure_;
   ros::Timer timer_, status_timer_;
 
