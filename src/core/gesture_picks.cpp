@@ -121,8 +121,8 @@ std::string GestureModel::walkLayers(const Vec3& at, bool down)
   const Vec3 view = sight(press_camera_, at);
   if (!pickedHere(pick_.kind, at) || pick_.kind == Pick::Kind::None)
   {
-    // Nothing picked here yet: the layers under the pointer, top first; the top one is where a
-    // click picks, so up from it there is nothing.
+    // Nothing picked here yet: the layers under the pointer, top first. The top one is where a
+    // click picks: down goes on from it, up starts from the bottom (one notch to the bottom layer).
     const std::vector<int> creases =
         mode_ == GestureMode::Fold ? creasesUnder(*paper_, at, view, settings_.snap.radius) : std::vector<int>{};
     Pick under;
@@ -138,9 +138,9 @@ std::string GestureModel::walkLayers(const Vec3& at, bool down)
       showPicks();
       return "Nothing here to pick.";
     }
-    if (!down)
-      return "No layer above this one: a click here picks the top layer.";
     pick_ = std::move(under);
+    if (!down)
+      pick_.index = pick_.candidates.size();  // one below the bottom: the step up picks the bottom
   }
   if (down && pick_.index + 1 >= pick_.candidates.size())
     return "No layer below this one.";

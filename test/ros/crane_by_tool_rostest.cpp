@@ -28,6 +28,13 @@ TEST_F(CraneByTool, TheCraneFoldsThroughTheFoldToolInAtMostAHundredGesturesAsThe
   if (HasFatalFailure())
     return;
   EXPECT_LE(gestures(), 100) << "issue 39: the crane in at most 100 gestures";
+  // The menu only for what the tool has no key for.
+  for (const auto& [title, times] : menuChoices())
+  {
+    std::printf("menu: %s %d times\n", title.c_str(), times);
+    EXPECT_TRUE(title == "Snap the line" || title == "Keep the face here" || title == "Fold to a right angle")
+        << title << " has a key or a gesture of the Fold tool";
+  }
   // The tool makes the same operations as the sheet marker: the shipped crane's.
   const std::vector<core::Operation> issued = issuedOperations();
   const core::Expected<core::FoldSequence> shipped = core::parseFoldSequence(test::readFile(shipped_path));

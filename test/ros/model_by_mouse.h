@@ -24,7 +24,7 @@
 // gestures are counted against the row's number (`gestures` for the markers, the `tool` column
 // for the Fold tool) and the total against "**N gestures**" (the markers) or "**N gestures with
 // the Fold tool**" in the text before the table. Afterwards `gestures()`, `issuedOperations()`
-// (what the gestures made paper_model do) and `longestFlapUpdate()` tell more.
+// (what the gestures made paper_model do), `menuChoices()` and `longestFlapUpdate()` tell more.
 //
 // The driver: MouseDriver::Markers sends what rviz's Interact tool sends (InteractiveMarkerFeedback
 // on `interaction/feedback`: presses, drags, releases, menu selections); MouseDriver::Tool sends
@@ -326,6 +326,11 @@ protected:
   {
     return longest_flap_update_;
   }
+  /// How often each menu entry was chosen.
+  const std::map<std::string, int>& menuChoices() const
+  {
+    return menu_choices_;
+  }
   /// The script folded (after foldAsTheWalkthroughSays).
   const core::FoldSequence& reference() const
   {
@@ -496,6 +501,7 @@ protected:
       if (t.size() >= title.size() && t.compare(t.size() - title.size(), title.size(), title) == 0)
         id = i;
     ASSERT_GE(id, 0) << "no menu entry " << title;
+    ++menu_choices_[title];
     gesture_.lift = lift();
     send(gesture_.menu(id, at, ros::Time::now()));
     ++gestures_;
@@ -581,12 +587,17 @@ protected:
     committed("the half turn");
   }
 
+  /// The creases the node picks from under `at` (seen from above), top first.
+  static std::vector<int> creasesUnderAt(const core::Paper& now, const core::Vec3& at)
+  {
+    return core::creasesUnder(now, core::onSurface(now, at, kFromAbove), kFromAbove, kSnapRadius * now.scale());
+  }
+
   /// Where the crease `edge` lies in the list of layers the node walks under `at` (seen from
   /// above): 0 the top; -1 when it is not in the list.
   int layerOfCrease(const core::Paper& now, int edge, const core::Vec3& at) const
   {
-    const core::Vec3 on = core::onSurface(now, at, kFromAbove);
-    const std::vector<int> under = core::creasesUnder(now, on, kFromAbove, kSnapRadius * now.scale());
+    const std::vector<int> under = creasesUnderAt(now, at);
     const auto it = std::find(under.begin(), under.end(), edge);
     return it == under.end() ? -1 : static_cast<int>(it - under.begin());
   }
@@ -647,10 +658,26 @@ protected:
     {
       if (here)
         click(besideThePaper(now));
-      click(at);
+      // Picked afresh: a click picks the top layer, and down from it; with the Fold tool the
+      // wheel turned towards the user picks the bottom one, and up from it, where that is shorter
+      // (and no pick nearby would be walked instead).
+      const std::vector<int> under = creasesUnderAt(now, at);
+      const auto it = std::find(under.begin(), under.end(), edge);
+      const int target = it == under.end() ? -1 : static_cast<int>(it - under.begin());
+      const bool pick_near = !here && (at - last_pick_).norm() <= kSnapRadius * now.scale();
+      if (driver_ == MouseDriver::Tool && target >= 0 && !pick_near &&
+          static_cast<int>(under.size()) - target < 1 + target)
+      {
+        for (int up = 0; walking(up) && (up == 0 || status_.picked_layer > 1); ++up)
+          layerUp(at);
+      }
+      else
+      {
+        click(at);
+        for (int down = 0; walking(down); ++down)
+          layerDown(at);
+      }
       last_pick_ = at;
-      for (int down = 0; walking(down); ++down)
-        layerDown(at);
     }
     ASSERT_EQ(status_.picked_edge, edge) << "the crease was never picked under " << at.transpose();
     for (int i = 0; marked() != wanted && i < 4 && !HasFatalFailure(); ++i)
@@ -682,14 +709,47 @@ protected:
     return -1;
   }
 
-  /// Picks `face` to stay, at `at` (its centroid): *Keep the face here*, or with the Fold tool a
-  /// click where no crease is near; then down to its layer.
-  void keepFace(const core::Paper& now, int face, const core::Vec3& at)
+  /// Picks `face` to stay: *Keep the face here* at its centroid and down to its layer. With the
+  /// Fold tool, where it takes fewer gestures, at a point of the face with no crease near (the
+  /// centroid, or towards a corner): a click there and down, or the wheel turned towards the user
+  /// there (from the bottom layer up).
+  void keepFace(const core::Paper& now, int face)
   {
     const double radius = kSnapRadius * now.scale();
-    const bool crease_near = !core::creasesUnder(now, core::onSurface(now, at, kFromAbove), kFromAbove, radius).empty();
-    const bool pick_near = status_.picked_edge >= 0 && (at - last_pick_).norm() <= radius;
-    if (driver_ == MouseDriver::Tool && !crease_near && !pick_near)
+    core::Vec3 at = now.faceCentroid(face);
+    enum class Way
+    {
+      Menu,
+      Click,
+      Wheel,
+    } way = Way::Menu;
+    if (driver_ == MouseDriver::Tool)
+    {
+      int fewest = 1 + 32;  // the menu, and down as far as it may take
+      std::vector<core::Vec3> places{ at };
+      for (int v : now.faces[face].vertices)
+        for (double t : { 0.3, 0.6 })
+          places.push_back(at + t * (now.vertices[v].folded - at));
+      for (const core::Vec3& place : places)
+      {
+        const core::Vec3 on = core::onSurface(now, place, kFromAbove);
+        const std::vector<int> under = core::facesUnder(now, on, kFromAbove);
+        const auto it = std::find(under.begin(), under.end(), face);
+        // A pick alive nearby would be walked on; a crease near is picked before the faces.
+        if (it == under.end() || !core::creasesUnder(now, on, kFromAbove, radius).empty() ||
+            (place - last_pick_).norm() <= radius)
+          continue;
+        const int target = static_cast<int>(it - under.begin()), n = static_cast<int>(under.size());
+        if (1 + target < fewest)
+          fewest = 1 + target, at = place, way = Way::Click;
+        if (n - target < fewest)
+          fewest = n - target, at = place, way = Way::Wheel;
+      }
+    }
+    if (way == Way::Wheel)
+      for (int up = 0; (up == 0 || status_.picked_face != face) && up < 32 && !HasFatalFailure(); ++up)
+        layerUp(at);
+    else if (way == Way::Click)
       click(at);
     else
       menu("Keep the face here", at);
@@ -723,14 +783,13 @@ protected:
     const core::Paper now = paper();
     const int face = faceThatStays(now, request, before, after);
     ASSERT_GE(face, 0);
-    const core::Vec3 at = now.faceCentroid(face);
-    keepFace(now, face, at);
+    keepFace(now, face);
     if (HasFatalFailure())
       return;
     if (right_angle)
       menu("Fold to a right angle");
     else if (driver_ == MouseDriver::Tool)
-      key("Return", 0, at);
+      key("Return", 0, now.faceCentroid(face));
     else
       menu("Fold flat");
     committed("the fold on the marked creases");
@@ -797,6 +856,7 @@ protected:
   int statuses_ = 0;
   double longest_flap_update_ = 0.0;  // the longest update of a flap drag, its preview included (s)
   std::map<std::string, int> menu_;
+  std::map<std::string, int> menu_choices_;
   MouseGesture gesture_;
   core::FoldSequence reference_;
   uint64_t revision_ = 0;

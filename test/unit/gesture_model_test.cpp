@@ -296,21 +296,16 @@ TEST_F(GestureModelTest, NextLayerDownPicksTheLayerUnderTheTopOneAndTheRingTakes
 
 TEST_F(GestureModelTest, TheLayersUnderAPointAreWalkedDownToTheBottomAndUpToTheTop)
 {
-  load(stackOfLayers(2));  // four layers over [0, .5] × [0, .5]
+  load(stackOfLayers(2));  // four layers over [0, .5] × [0, .5], each a face over all of it
   model.chooseMode(GestureMode::Rotate, at(p3(0.25, 0.25)));
   const Pointer here = at(p3(0.2, 0.3));
-  // Up from nothing picked: the top is where a click picks; nothing changes.
-  model.previousLayer(here);
-  EXPECT_EQ(out.lastSaid(), "No layer above this one: a click here picks the top layer.");
-  EXPECT_EQ(model.status().picked_layer, 0u);
-  EXPECT_EQ(model.status().picked_face, -1);
-  std::vector<int> down{ -1 };  // the face of each layer, from the top (the top one not picked)
+  std::vector<int> face_of{ -1, -1 };  // the face of each layer from the top (the top not picked yet)
   for (uint32_t layer = 2; layer <= 4; ++layer)
   {
     model.nextLayer(here);
     EXPECT_EQ(out.lastSaid(), "Picked layer " + std::to_string(layer) + " of 4.");
     EXPECT_EQ(model.status().picked_layer, layer);
-    down.push_back(model.status().picked_face);
+    face_of.push_back(model.status().picked_face);
   }
   model.nextLayer(here);
   EXPECT_EQ(out.lastSaid(), "No layer below this one.");
@@ -321,15 +316,15 @@ TEST_F(GestureModelTest, TheLayersUnderAPointAreWalkedDownToTheBottomAndUpToTheT
     EXPECT_EQ(out.lastSaid(), "Picked layer " + std::to_string(layer) + " of 4.");
     EXPECT_EQ(model.status().picked_layer, layer);
     if (layer > 1)
-      EXPECT_EQ(model.status().picked_face, down[layer - 1]) << "layer " << layer;
+      EXPECT_EQ(model.status().picked_face, face_of[layer]) << "layer " << layer;
   }
-  const int top = model.status().picked_face;
-  EXPECT_GE(top, 0);
-  EXPECT_EQ(std::set<int>({ top, down[1], down[2], down[3] }).size(), 4u) << "four different faces";
+  face_of[1] = model.status().picked_face;
+  EXPECT_EQ(std::set<int>(face_of.begin() + 1, face_of.end()).size(), 4u) << "four different faces";
+  EXPECT_GE(face_of[1], 0);
   model.previousLayer(here);
   EXPECT_EQ(out.lastSaid(), "No layer above this one.");
   EXPECT_EQ(model.status().picked_layer, 1u);
-  EXPECT_EQ(model.status().picked_face, top);
+  EXPECT_EQ(model.status().picked_face, face_of[1]);
   // The top layer picked is the one a press turns, as a press with nothing picked does.
   out.forget();
   model.press(here);
@@ -337,7 +332,15 @@ TEST_F(GestureModelTest, TheLayersUnderAPointAreWalkedDownToTheBottomAndUpToTheT
   model.release(dragged(p3(0.2, 0.3), p3(0.2, 0.3)));
   ASSERT_FALSE(guides.empty());
   ASSERT_TRUE(guides.back().ring.has_value());
-  EXPECT_EQ(guides.back().ring->face, top);
+  EXPECT_EQ(guides.back().ring->face, face_of[1]);
+  // Elsewhere, with nothing picked there, up starts from the bottom layer.
+  const Pointer elsewhere = at(p3(0.3, 0.2));
+  model.previousLayer(elsewhere);
+  EXPECT_EQ(out.lastSaid(), "Picked layer 4 of 4.");
+  EXPECT_EQ(model.status().picked_layer, 4u);
+  EXPECT_EQ(model.status().picked_face, face_of[4]);
+  model.previousLayer(elsewhere);
+  EXPECT_EQ(model.status().picked_face, face_of[3]);
 }
 
 TEST_F(GestureModelTest, MarkedCreasesFoldInFramesThenTheMarksGo)

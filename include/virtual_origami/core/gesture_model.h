@@ -118,7 +118,8 @@ public:
   void foldByAssignment(double fraction, const Pointer& at);
   /// The next layer down under the last pick (or under the right-click).
   void nextLayer(const Pointer& at);
-  /// The next layer up under the last pick; from the top layer (or nothing picked there) none.
+  /// The next layer up under the last pick; with nothing picked there, the bottom layer; from the
+  /// top layer none.
   void previousLayer(const Pointer& at);
   void keepFace(const Pointer& at);
   /// Starts the animated fold on the marked creases to ±`angle` (π: flat; π/2: a right angle).
