@@ -22,7 +22,8 @@ paper on `state` and the interaction on `interaction_status`:
   9. a right click on the paper opens the sheet's menu from the Fold tool itself: *Next layer
      down* chosen with the keyboard reaches the node as the Interact tool's MENU_SELECT (the
      entry's id, the point under the mouse) and picks the second layer there; a right drag over
-     the paper moves the view and opens no menu;
+     the paper moves the view and opens no menu; elsewhere on the stack, with nothing picked
+     there, the wheel towards the user picks the bottom layer;
   10. a drag beside the paper turns the view and sends the node nothing;
   11. F again puts the tool away: a click reaches the sheet marker as before (the interactive
      marker path unchanged).
@@ -342,6 +343,14 @@ def run(out):
                       (len(check.menu_selections) - selections - 1, check.status.mode))
     shot('15_right_drag.png')
     print('right drag: the view moved (the eye %.2f m), no menu' % moved)
+    # Elsewhere on the stack, with nothing picked there, the wheel towards the user starts at the bottom.
+    mouse.move(mouse.pixel((0.2, 0.4, 0.0)))
+    time.sleep(0.3)
+    xdotool('click', 5)
+    wait_for(lambda: check.status.picked_layer == 4 and check.status.layers == 4, 10,
+             'the wheel towards the user with nothing picked picked layer %d of %d, not the bottom' %
+             (check.status.picked_layer, check.status.layers))
+    print('the wheel towards the user elsewhere: "%s"' % check.status.message)
 
     # 10. A drag beside the paper turns the view (rviz's own gesture) and sends the node nothing.
     events, eye = len(check.tool_events), check.camera()[0]
