@@ -7,6 +7,7 @@
 #include <QKeyEvent>
 #include <QKeySequence>
 #include <rviz/display_context.h>
+#include <rviz/frame_manager.h>
 #include <rviz/load_resource.h>
 #include <rviz/properties/string_property.h>
 #include <rviz/render_panel.h>
@@ -21,6 +22,11 @@ namespace
 {
 /// Ogre's camera looks along its -z with y up; the optical convention looks along z with y down.
 const Ogre::Quaternion kToOptical(Ogre::Radian(M_PI), Ogre::Vector3::UNIT_X);
+/// How far the mouse may move between the right button's press and release for a click (pixels,
+/// each way): further, it was a drag of the view.
+constexpr int kClickSlack = 3;
+/// The interaction node's sheet marker, whose menu a right click opens.
+const char* const kSheetMarker = "paper";
 
 uint8_t modifierBits(Qt::KeyboardModifiers modifiers)
 {
@@ -42,6 +48,11 @@ FoldTool::FoldTool()
                                                     "hint is the status "
                                                     "line (what a click does).",
                                                     getPropertyContainer(), SLOT(updateTopics()), this);
+  update_topic_property_ = new rviz::StringProperty("Update Topic", "/origami/interaction/update",
+                                                    "The interaction node's interactive marker server (the "
+                                                    "InteractiveMarkers display's Update "
+                                                    "Topic): a right click on the paper opens its sheet's menu.",
+                                                    getPropertyContainer(), SLOT(updateMenuTopic()), this);
 }
 
 FoldTool::~FoldTool()
@@ -55,12 +66,18 @@ void FoldTool::onInitialize()
   setIcon(rviz::loadPixmap("package://rviz/icons/classes/Interact.png"));
   setCursor(QCursor(Qt::CrossCursor));
   updateTopics();
+  updateMenuTopic();
 }
 
 void FoldTool::updateTopics()
 {
   events_pub_ = nh_.advertise<ToolEvent>(topic_property_->getStdString(), 100);
   status_sub_ = nh_.subscribe(status_topic_property_->getStdString(), 1, &FoldTool::statusReceived, this);
+}
+
+void FoldTool::updateMenuTopic()
+{
+  menu_.connect(nh_, update_topic_property_->getStdString(), kSheetMarker, ros::this_node::getName() + "/Fold");
 }
 
 void FoldTool::activate()
@@ -149,6 +166,12 @@ int FoldTool::processMouseEvent(rviz::ViewportMouseEvent& event)
       }
       else if (held_ != Held::Gesture)
       {
+        // The right button on the paper may be a click for the menu: the view takes it all the
+        // same (a right drag zooms), a click moves nothing.
+        right_press_.reset();
+        if (held_ == Held::None && event.acting_button == Qt::RightButton &&
+            overPaper(event.viewport, event.x, event.y))
+          right_press_ = QPoint(event.x, event.y);
         held_ = Held::View;
         toView();
       }
@@ -175,6 +198,11 @@ int FoldTool::processMouseEvent(rviz::ViewportMouseEvent& event)
         toView();
         if (!(event.buttons_down & (Qt::LeftButton | Qt::MiddleButton | Qt::RightButton)))
           held_ = Held::None;
+        if (right_press_ && event.acting_button == Qt::RightButton &&
+            std::abs(event.x - right_press_->x()) <= kClickSlack &&
+            std::abs(event.y - right_press_->y()) <= kClickSlack)
+          showMenu(event, right_press_->x(), right_press_->y());
+        right_press_.reset();
       }
       break;
     case QEvent::Wheel:
@@ -193,6 +221,31 @@ int FoldTool::processMouseEvent(rviz::ViewportMouseEvent& event)
   }
   showStatus();
   return Render;
+}
+
+void FoldTool::showMenu(rviz::ViewportMouseEvent& event, int x, int y)
+{
+  if (!menu_.known())
+  {
+    setStatus(QString("Fold: no menu from the interaction node on %1.").arg(update_topic_property_->getString()));
+    return;
+  }
+  // The point under the mouse in the marker's frame, as the Interact tool reports a right click.
+  geometry_msgs::Point point;
+  Ogre::Vector3 at, frame_position;
+  Ogre::Quaternion frame_orientation;
+  const bool valid =
+      context_->getSelectionManager()->get3DPoint(event.viewport, x, y, at) &&
+      context_->getFrameManager()->getTransform(menu_.frameId(), ros::Time(), frame_position, frame_orientation);
+  if (valid)
+  {
+    const Ogre::Vector3 local = frame_orientation.Inverse() * (at - frame_position);
+    point.x = local.x;
+    point.y = local.y;
+    point.z = local.z;
+  }
+  event.panel->showContextMenu(
+      menu_.build([this, point, valid](uint32_t id) { menu_.send(menu_.selection(id, point, valid)); }));
 }
 
 void FoldTool::sendKey(QKeyEvent* key, rviz::RenderPanel* panel)

@@ -3,13 +3,17 @@
 // tool"). While it is the current tool, a left press on the paper (on anything rviz picks there),
 // the drag and the release, a double click, the wheel over the paper and keys go to the node as
 // virtual_origami/ToolEvent on `Topic`, each with the line of sight through the mouse in the fixed
-// frame; the node carries them out as it carries out the sheet marker's feedback. A press beside
-// the paper, the middle and right buttons and Ctrl+wheel move the view. The status line says what
+// frame; the node carries them out as it carries out the sheet marker's feedback. A right click
+// on the paper opens the sheet marker's menu (marker_menu.h), chosen entries going back as rviz's
+// Interact tool sends them. A press beside the paper, the middle button, a right drag and
+// Ctrl+wheel move the view. The status line says what
 // a click does, from the node's interaction_status. It draws nothing of its own.
 #pragma once
 
+#include <optional>
 #include <string>
 
+#include <QPoint>
 #include <QPointer>
 #include <QString>
 #include <ros/ros.h>
@@ -17,6 +21,8 @@
 #include <rviz/tool.h>
 #include <virtual_origami/InteractionStatus.h>
 #include <virtual_origami/ToolEvent.h>
+
+#include "marker_menu.h"
 
 namespace Ogre
 {
@@ -50,6 +56,7 @@ protected:
 
 private Q_SLOTS:
   void updateTopics();
+  void updateMenuTopic();
 
 private:
   /// What the held buttons do: nothing held, a gesture on the paper, or the view moving.
@@ -66,11 +73,14 @@ private:
   void send(const ToolEvent& event);
   void sendKey(QKeyEvent* key, rviz::RenderPanel* panel);
   void cancel();
+  /// The sheet marker's menu at pixel (x, y), where the right button was clicked.
+  void showMenu(rviz::ViewportMouseEvent& event, int x, int y);
   void statusReceived(const InteractionStatus::ConstPtr& status);
   void showStatus();
 
   rviz::StringProperty* topic_property_;
   rviz::StringProperty* status_topic_property_;
+  rviz::StringProperty* update_topic_property_;
   ros::NodeHandle nh_;
   ros::Publisher events_pub_;
   ros::Subscriber status_sub_;
@@ -80,6 +90,10 @@ private:
   Ogre::Viewport* last_viewport_ = nullptr;
   int last_x_ = 0, last_y_ = 0;
   std::string hint_;
+  MarkerMenu menu_;
+  /// Where the right button went down over the paper: released there (within a few pixels) it
+  /// opens the menu; moved further it was a drag of the view.
+  std::optional<QPoint> right_press_;
 };
 
 }  // namespace virtual_origami::rviz_plugin

@@ -16,10 +16,16 @@ paper on `state` and the interaction on `interaction_status`:
   7. the fold slider's handle (at 100 % for the folded diagonal) dragged by the tool to 50 %
      folds the diagonal to 90°;
   8. on a quarter fold (four layers, folded through the services) in rotate mode (key 2) the
-     wheel (down and up) and Tab walk the layers under the pointer down to the fourth, and say
-     when there is none below;
-  9. a drag beside the paper turns the view and sends the node nothing;
-  10. F again puts the tool away: a click reaches the sheet marker as before (the interactive
+     wheel turned away from the user (`click 4`) and Tab walk the layers under the pointer down to
+     the fourth, and say when there is none below; the wheel towards the user (`click 5`) and
+     Shift+Tab walk them back up to the first, and say when there is none above;
+  9. a right click on the paper opens the sheet's menu from the Fold tool itself: *Next layer
+     down* chosen with the keyboard reaches the node as the Interact tool's MENU_SELECT (the
+     entry's id, the point under the mouse) and picks the second layer there; a right drag over
+     the paper moves the view and opens no menu; elsewhere on the stack, with nothing picked
+     there, the wheel towards the user picks the bottom layer;
+  10. a drag beside the paper turns the view and sends the node nothing;
+  11. F again puts the tool away: a click reaches the sheet marker as before (the interactive
      marker path unchanged).
 Screenshots of every step (the status line shows what a click does) go to the output folder.
 
@@ -37,7 +43,7 @@ from interaction_e2e import Failure, wait_for, xdotool  # noqa: E402
 
 import rospy  # noqa: E402
 from virtual_origami.msg import ToolEvent  # noqa: E402
-from visualization_msgs.msg import MarkerArray  # noqa: E402
+from visualization_msgs.msg import InteractiveMarkerFeedback, InteractiveMarkerInit, MarkerArray  # noqa: E402
 
 TIME_LIMIT = 280  # seconds for the whole test
 
@@ -49,8 +55,21 @@ class ToolChecker(e2e.Checker):
         super().__init__()
         self.tool_events = []
         self.slider = {}  # the fold slider's plain markers by namespace
+        self.menu_selections = []  # MENU_SELECT feedback, from any client
+        self.menu = []  # the sheet marker's menu entries
         rospy.Subscriber('/origami/tool_events', ToolEvent, self._tool_event)
         rospy.Subscriber('/origami/fold_slider_markers', MarkerArray, self._slider)
+        rospy.Subscriber('/origami/interaction/feedback', InteractiveMarkerFeedback, self._menu_selected)
+        rospy.Subscriber('/origami/interaction/update_full', InteractiveMarkerInit, self._init)
+
+    def _menu_selected(self, msg):
+        if msg.event_type == InteractiveMarkerFeedback.MENU_SELECT:
+            self.menu_selections.append(msg)
+
+    def _init(self, msg):
+        for m in msg.markers:
+            if m.name == 'paper':
+                self.menu = m.menu_entries
 
     def _slider(self, msg):
         for m in msg.markers:
@@ -242,24 +261,98 @@ def run(out):
     key('2')
     wait_for(lambda: check.status.mode == 'rotate', 10, 'key 2 did not choose rotate mode')
     walked = []
-    for step, action in enumerate(['click 5', 'click 4', 'key Tab']):
+
+    def walk(action, layer):
         mouse.move(mouse.pixel(at))
         time.sleep(0.3)
         xdotool(*action.split())
-        wait_for(lambda: check.status.picked_layer == step + 2, 10, '%s did not pick layer %d (%d of %d picked)' %
-                 (action, step + 2, check.status.picked_layer, check.status.layers))
+        wait_for(lambda: check.status.picked_layer == layer, 10, '%s did not pick layer %d (%d of %d picked)' %
+                 (action, layer, check.status.picked_layer, check.status.layers))
         walked.append((action, check.status.picked_layer, check.status.layers))
         time.sleep(0.5)  # rviz draws the pick
-        shot('12_layer_%d.png' % (step + 2))
+
+    # Down: button 4 is the wheel turned away from the user (Qt's positive delta).
+    for layer, action in zip([2, 3, 4], ['click 4', 'key Tab', 'click 4']):
+        walk(action, layer)
+        shot('12_layer_%d.png' % layer)
     if check.status.layers != 4:
         raise Failure('%d layers under the pointer, expected 4' % check.status.layers)
-    xdotool('click', 5)
+    xdotool('click', 4)
     status_says('the wheel at the bottom', 'No layer below')
+    bottom = check.status.message
+    # Up: the wheel towards the user, Shift+Tab.
+    for layer, action in zip([3, 2, 1], ['click 5', 'key shift+Tab', 'click 5']):
+        walk(action, layer)
+    if 'Layer 1 of 4' not in check.status.hint:
+        raise Failure('at the top the status line says "%s"' % check.status.hint)
+    shot('12_layer_1_again.png')
+    xdotool('click', 5)
+    status_says('the wheel at the top', 'No layer above')
     if check.revision() != quarter:
         raise Failure('walking the layers changed the paper')
-    print('layers: %s, then "%s"' % (', '.join('%s -> %d of %d' % w for w in walked), check.status.message))
+    print('layers: %s; "%s" at the bottom, "%s" at the top' %
+          (', '.join('%s -> %d of %d' % w for w in walked), bottom, check.status.message))
 
-    # 9. A drag beside the paper turns the view (rviz's own gesture) and sends the node nothing.
+    # 9. A right click on the paper: the sheet's menu from the Fold tool; Next layer down in it.
+    titles = [(e.id, e.title) for e in check.menu if e.parent_id == 0]
+    place = [i for i, (_, title) in enumerate(titles) if title.endswith('Next layer down')]
+    if not place:
+        raise Failure('no entry Next layer down in the sheet marker\'s menu: %s' % [t for _, t in titles])
+    entry = titles[place[0]][0]
+    mouse.move(mouse.pixel((0.3, 0.3, 0.0)))
+    time.sleep(0.3)
+    events, selections = len(check.tool_events), len(check.menu_selections)
+    xdotool('click', 3)
+    time.sleep(1.0)
+    shot('13_menu.png')
+    key(*(['Down'] * (place[0] + 1)))  # the menu's entries from the top, the submenus' heads included
+    key('Return')
+    wait_for(lambda: len(check.menu_selections) > selections, 10, 'the right click\'s menu sent no choice')
+    chosen = check.menu_selections[-1]
+    if chosen.menu_entry_id != entry or chosen.marker_name != 'paper' or not chosen.mouse_point_valid:
+        raise Failure('the menu sent entry %d of %s (point valid: %s), not Next layer down (%d) of paper' %
+                      (chosen.menu_entry_id, chosen.marker_name, chosen.mouse_point_valid, entry))
+    p = chosen.mouse_point
+    if math.hypot(p.x - 0.3, p.y - 0.3) > 0.02:
+        raise Failure('the menu\'s point (%.3f, %.3f, %.3f) is not under the mouse at (0.3, 0.3)' % (p.x, p.y, p.z))
+    wait_for(lambda: check.status.picked_layer == 2 and check.status.layers == 4, 10,
+             'Next layer down from the Fold tool\'s menu picked layer %d of %d' %
+             (check.status.picked_layer, check.status.layers))
+    if len(check.tool_events) != events:
+        raise Failure('the right click sent ToolEvents %s' % check.kinds(events))
+    time.sleep(0.5)
+    shot('14_menu_chosen.png')
+    print('right click: the menu from the Fold tool, Next layer down (id %d) at (%.3f, %.3f) sent by %s: layer 2 of 4'
+          % (entry, p.x, p.y, chosen.client_id))
+    # A right drag over the paper moves the view (rviz zooms) and opens no menu.
+    eye = check.camera()[0]
+    start = mouse.pixel((0.3, 0.3, 0.0))
+    mouse.move(start)
+    time.sleep(0.3)
+    xdotool('mousedown', 3)
+    mouse.glide(start, (start[0], start[1] + 60), steps=12)
+    xdotool('mouseup', 3)
+    time.sleep(1.0)
+    moved = e2e.norm(e2e.sub(check.camera()[0], eye))
+    if moved < 0.01:
+        raise Failure('a right drag over the paper did not move the view (the eye moved %.4f m)' % moved)
+    key('Return')  # were a menu open, this would choose its first entry (Crease mode)
+    time.sleep(1.0)
+    if len(check.menu_selections) != selections + 1 or check.status.mode != 'rotate':
+        raise Failure('a right drag opened the menu (%d choices since, mode %s)' %
+                      (len(check.menu_selections) - selections - 1, check.status.mode))
+    shot('15_right_drag.png')
+    print('right drag: the view moved (the eye %.2f m), no menu' % moved)
+    # Elsewhere on the stack, with nothing picked there, the wheel towards the user starts at the bottom.
+    mouse.move(mouse.pixel((0.2, 0.4, 0.0)))
+    time.sleep(0.3)
+    xdotool('click', 5)
+    wait_for(lambda: check.status.picked_layer == 4 and check.status.layers == 4, 10,
+             'the wheel towards the user with nothing picked picked layer %d of %d, not the bottom' %
+             (check.status.picked_layer, check.status.layers))
+    print('the wheel towards the user elsewhere: "%s"' % check.status.message)
+
+    # 10. A drag beside the paper turns the view (rviz's own gesture) and sends the node nothing.
     events, eye = len(check.tool_events), check.camera()[0]
     corner = (mouse.cx - e2e.PANEL[2] / 2.0 + 60, mouse.cy - e2e.PANEL[3] / 2.0 + 60)
     mouse.move(corner)
@@ -273,10 +366,10 @@ def run(out):
         raise Failure('a drag beside the paper did not turn the view (the eye moved %.4f m)' % moved)
     if len(check.tool_events) != events:
         raise Failure('a drag beside the paper sent the node %s' % check.kinds(events))
-    shot('13_view_turned.png')
+    shot('16_view_turned.png')
     print('beside the paper: the drag turned the view (the eye moved %.2f m), no ToolEvent' % moved)
 
-    # 10. F puts the tool away: the sheet marker takes the clicks again.
+    # 11. F puts the tool away: the sheet marker takes the clicks again.
     key('f')
     mouse.away()
     time.sleep(0.5)
@@ -286,7 +379,7 @@ def run(out):
              'sheet marker')
     if len(check.tool_events) != events:
         raise Failure('with the Fold tool put away it still sent events')
-    shot('14_interact_again.png')
+    shot('17_interact_again.png')
     print('F again: the Interact tool, the sheet marker takes the click')
     print('screenshots:\n  ' + '\n  '.join(shots))
 
