@@ -422,10 +422,10 @@ void frames(const std::string& dir, int n, int count, int stride)
               "all checked (%zu) max %.3g\n",
               steady_errors.size(), percentile(steady_errors, 0.5), percentile(steady_errors, 0.95),
               percentile(steady_errors, 1.0), all_errors.size(), percentile(all_errors, 1.0));
-  std::printf("  release: %s at force %.3g in %.3f s (%d corrections, %d factorisations, %d inertial steps); "
+  std::printf("  release: %s at force %.3g in %.3f s (%d corrections, %d factorisations, %d Newton iterations); "
               "load %s\n",
               release.converged ? "converged" : "NOT converged", release.max_force, release_wall, release.corrections,
-              release.factorizations, release.inertial_steps, load_after.c_str());
+              release.factorizations, release.newton_iterations, load_after.c_str());
   std::fflush(stdout);
 }
 

@@ -54,7 +54,9 @@ AnytimeFrames::AnytimeFrames(const CurvedMesh& mesh, const Paper& paper, const C
                              const ContactOptions& contact, const AnytimeFrameOptions& options,
                              const Surroundings& surroundings)
   : mesh_(mesh)
+  , paper_(paper)
   , material_(material)
+  , contact_options_(contact)
   , options_(options)
   , surroundings_(surroundings)
   , terms_(curvedTerms(mesh, paper, material))
@@ -130,7 +132,7 @@ Status AnytimeFrames::start(const Positions& x, const std::vector<CurvedPin>& pi
   frame_ = 0;
   last_request_ = 0;
   step_h_ = options_.time_step;
-  makeFactor(x_, 0, step_h_);
+  makeFactor(x_, 0, step_h_, options_.static_shift_limit);
   started_ = true;
   return success();
 }
@@ -174,7 +176,7 @@ double AnytimeFrames::objective(const Positions& x, const Positions* y, Eigen::V
   return e;
 }
 
-void AnytimeFrames::makeFactor(const Positions& x, long frame, double h)
+void AnytimeFrames::makeFactor(const Positions& x, long frame, double h, double static_limit)
 {
   const double cpu_start = threadCpuNow();
   // The terms' Hessian (weight and table in; contact not: its pairs belong to the frames'
@@ -187,10 +189,10 @@ void AnytimeFrames::makeFactor(const Positions& x, long frame, double h)
   evaluateCurved(terms_, x, out);
   evaluateSurroundings(surroundings_, terms_.mass, x, out);
   // Levenberg–Marquardt's shift where the shown state is off balance (its Hessian indefinite
-  // by a little: a compressed edge), tenfold per try up to static_shift_limit.
+  // by a little: a compressed edge), tenfold per try up to static_limit.
   double shift = options_.static_shift * material_.stretch;
   bool made = false;
-  for (; !made && shift <= options_.static_shift_limit * material_.stretch * 1.001; shift *= 10)
+  for (; !made && shift <= static_limit * material_.stretch * 1.001; shift *= 10)
   {
     made = factor_.factorize(hessian_, shift, factorTag(frame, false));
     ++factorizations_;
@@ -216,7 +218,7 @@ void AnytimeFrames::makeFactor(const Positions& x, long frame, double h)
 void AnytimeFrames::keepFactorAt(const Positions& x, long tag_frame)
 {
   waitForFactor(last_request_);
-  makeFactor(x, tag_frame, step_h_);
+  makeFactor(x, tag_frame, step_h_, options_.static_shift_limit);
 }
 
 void AnytimeFrames::backgroundLoop()
@@ -241,7 +243,7 @@ void AnytimeFrames::backgroundLoop()
       const std::lock_guard<std::mutex> lock(mutex_);
       found_ = std::move(found);
     }
-    makeFactor(request.x, request.frame, request.h);
+    makeFactor(request.x, request.frame, request.h, request.static_limit);
     {
       const std::lock_guard<std::mutex> lock(mutex_);
       made_frame_ = request.frame;
@@ -250,19 +252,28 @@ void AnytimeFrames::backgroundLoop()
   }
 }
 
+double AnytimeFrames::staticLimit() const
+{
+  // Frames that have been inertial for a while lag the pointer, a little off balance: they
+  // turn static again where the matrix factorises at the larger shift.
+  return inertial_ && inertial_frames_ >= options_.return_frames ?
+             std::max(options_.static_shift_limit, options_.return_shift_limit) :
+             options_.static_shift_limit;
+}
+
 void AnytimeFrames::ask(bool search_contact)
 {
   last_request_ = frame_;
   if (!options_.background)
   {
-    makeFactor(x_, frame_, step_h_);
+    makeFactor(x_, frame_, step_h_, staticLimit());
     made_frame_ = frame_;
     return;
   }
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     // The latest shown state replaces one not yet begun.
-    request_ = { x_, frame_, search_contact, step_h_ };
+    request_ = { x_, frame_, search_contact, step_h_, staticLimit() };
     has_request_ = true;
   }
   wake_.notify_one();
@@ -449,6 +460,7 @@ Expected<FrameReport> AnytimeFrames::frame(const std::vector<CurvedPin>& pins)
   }
   const bool inertial_before_frame = inertial_;
   inertial_ = inertial;
+  inertial_frames_ = inertial ? inertial_frames_ + 1 : 0;
   // The prediction: where the nodes coast to (inertial), or the shape carried on along the
   // last two frames in the pins' travel (static).
   Positions predicted = x_;
@@ -526,49 +538,51 @@ ReleaseReport AnytimeFrames::release()
   // A factor for the shape as it is now, and after each round of corrections a new one: each
   // step's matrix is the Hessian of a state at most a round old, so the corrections converge
   // as Newton's.
+  inertial_ = false;
+  inertial_frames_ = 0;
   ++frame_;
   ask(contact_.skinUsed(x_) > 0.5);
   waitForFactor(frame_);
-  const double frame_h = step_h_;
-  while (wallNow() - start < options_.release_seconds)
+  for (int round = 0; round < options_.release_rounds && wallNow() - start < options_.release_seconds; ++round)
   {
-    FrameReport report;
     if (taggedInertial(factor_.tag()))
-    {
-      // Still snapping: a step toward the nearest balance with M/h² (the sheet let go comes to
-      // rest; its velocity is not carried, so each step lowers the energy).
-      const Positions target = x_;
-      correct(&target, INFINITY, 4, 1e-3 * options_.release_tolerance, report);
-      ++result.inertial_steps;
-      // Nothing is shown any more: each step four times longer, toward the balance itself.
-      step_h_ *= 4;
-    }
-    else
-    {
-      correct(nullptr, INFINITY, 8, options_.release_tolerance, report);
-      result.max_force = report.max_force;
-      if (report.max_force <= options_.release_tolerance)
-      {
-        result.converged = true;
-        result.corrections += report.corrections;
-        break;
-      }
-    }
+      break;  // still snapping: Newton's saddle test and damping finish it (below)
+    FrameReport report;
+    correct(nullptr, INFINITY, 8, options_.release_tolerance, report);
     result.corrections += report.corrections;
+    if (report.max_force <= options_.release_tolerance)
+      break;
     ++frame_;
     ask(contact_.skinUsed(x_) > 0.5);
     waitForFactor(frame_);
   }
-  step_h_ = frame_h;
   Eigen::VectorXd g;
   energy(x_, &g);
   result.max_force = forceOf(g);
+  if (!(result.max_force <= options_.release_tolerance) && wallNow() - start < options_.release_seconds)
+  {
+    // Newton (curved_solver.h) from here: a fresh Hessian each iteration where needed, its
+    // damping, and saddles left downhill.
+    if (!newton_)
+    {
+      CurvedSolveOptions solve;
+      solve.predict = false;
+      newton_ = std::make_unique<CurvedSolver>(mesh_, paper_, material_, contact_options_, solve, surroundings_);
+    }
+    newton_->options().tolerance = options_.release_tolerance;
+    newton_->options().max_seconds = std::max(0.1, options_.release_seconds - (wallNow() - start));
+    const CurvedReport polished = newton_->solve(x_, pins_);
+    result.newton_iterations = polished.iterations;
+    result.factorizations += polished.factorizations;
+    contact_.update(x_);
+    energy(x_, &g);
+    result.max_force = forceOf(g);
+  }
   result.converged = result.max_force <= options_.release_tolerance;
   velocity_.setZero(3 * free_count_);
   x_before_ = Positions();
   older_ = Positions();
-  inertial_ = false;
-  result.factorizations = factorizations_ - factorizations_before;
+  result.factorizations += factorizations_ - factorizations_before;
   result.seconds = wallNow() - start;
   return result;
 }

@@ -60,6 +60,13 @@ struct AnytimeFrameOptions
   /// the snaps of curved_speed_bench's drag are −1e-9 to −1e-7, an off-balance frame's a little
   /// below zero).
   double static_shift_limit = 1e-10;
+  /// Inertial frames turn static again, after return_frames of them, where the matrix
+  /// factorises at a shift up to this × stretch (they lag the pointer: a little off balance).
+  double return_shift_limit = 1e-8;
+  int return_frames = 5;
+  /// release(): rounds of corrections with a factor made for the state they start at, before
+  /// Newton (CurvedSolver, saddles left) finishes.
+  int release_rounds = 3;
   /// A correction moves no node farther than this × the contact range.
   double max_step = 0.4;
 };
@@ -86,7 +93,7 @@ struct ReleaseReport
   double seconds = 0.0;
   int corrections = 0;
   int factorizations = 0;
-  int inertial_steps = 0;
+  int newton_iterations = 0;  // of the Newton solve that finished it, if one did
 };
 
 class AnytimeFrames
@@ -109,9 +116,9 @@ public:
   /// Refused (an empty report with refused set by the returned status) for other nodes.
   Expected<FrameReport> frame(const std::vector<CurvedPin>& pins);
 
-  /// The pointer let go: the shape is brought to release_tolerance at the last pins (inertial
-  /// steps first while the sheet is still snapping), each step's factor made for the state it
-  /// corrects.
+  /// The pointer let go: the shape is brought to release_tolerance at the last pins, by rounds
+  /// of corrections each with a factor made for the state it starts at, and where those do not
+  /// get there (the sheet still snapping, release_rounds spent) by Newton.
   ReleaseReport release();
 
   /// Makes the factor the frames correct with at `x` now, static (or inertial where that fails),
@@ -150,9 +157,12 @@ private:
     long frame = 0;
     bool search_contact = false;
     double h = 0.0;
+    double static_limit = 0.0;
   };
   void backgroundLoop();
-  void makeFactor(const Positions& x, long frame, double h);
+  void makeFactor(const Positions& x, long frame, double h, double static_limit);
+  /// The largest static shift the next factor may take (see return_shift_limit).
+  double staticLimit() const;
   void ask(bool search_contact);
   void waitForFactor(long frame);
   /// Modified Newton corrections of x_ with the kept factor toward the objective's balance
@@ -162,7 +172,9 @@ private:
   double forceOf(const Eigen::VectorXd& g) const;
 
   const CurvedMesh& mesh_;
+  const Paper& paper_;
   CurvedMaterial material_;
+  ContactOptions contact_options_;
   AnytimeFrameOptions options_;
   Surroundings surroundings_;
   CurvedTerms terms_;
@@ -176,6 +188,7 @@ private:
   std::vector<CurvedPin> pins_, pins_before_, pins_older_;
   Eigen::VectorXd velocity_;
   bool inertial_ = false;
+  int inertial_frames_ = 0;     // in a row, to this one
   double step_h_ = 1.0 / 30.0;  // of the inertial matrix and objective (release lengthens it)
   bool started_ = false;
   long frame_ = 0;
@@ -192,6 +205,7 @@ private:
   Request request_;
   long made_frame_ = -1;
   std::unique_ptr<LayerContact::Candidates> found_;  // candidates the thread found, not yet taken
+  std::unique_ptr<CurvedSolver> newton_;             // the release's last resort
   std::thread thread_;
 };
 
