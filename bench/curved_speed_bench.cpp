@@ -303,17 +303,28 @@ double percentile(std::vector<double> values, double p)
 /// 1e-10 by a Newton solver of its own (predict off: the balance nearest the shown shape); the
 /// largest node distance over the side is the frame's error. Frames within 3 of an inertial
 /// one (a loss of stability) are reported apart. One row per frame in curved_frames.csv.
-void frames(const std::string& dir, int n, int count, int stride)
+void frames(const std::string& dir, int n, int count, int stride, const std::string& budget)
 {
   PulledSheet sheet(n);
-  AnytimeFrames anytime(sheet.mesh, sheet.scene.paper);
+  AnytimeFrameOptions options;
+  options.budget_in_thread_cpu = budget == "cpu";
+  if (budget == "sync")
+  {
+    // The factor made in each frame at the state it shows (what a factorisation as fast as a
+    // frame would give): the frames' accuracy without the background's lag; not anytime.
+    options.background = false;
+    options.refactor_frames = 1;
+    options.frame_seconds = INFINITY;
+  }
+  AnytimeFrames anytime(sheet.mesh, sheet.scene.paper, {}, {}, options);
   const std::string load_before = loadAverage();
   double t = now(), cpu = threadCpuNow();
   if (!anytime.start(sheet.rest, sheet.pins))
     return;
-  std::printf("%zu vertices: start (first factorisation) %.0f ms wall, %.0f ms cpu; inertial density %.3g; "
+  std::printf("%zu vertices, budget %s: start (first factorisation) %.0f ms wall, %.0f ms cpu; inertial density %.3g; "
               "load %s\n",
-              sheet.mesh.nodes.size(), (now() - t) * 1e3, (threadCpuNow() - cpu) * 1e3, anytime.density(),
+              sheet.mesh.nodes.size(), budget.c_str(), (now() - t) * 1e3, (threadCpuNow() - cpu) * 1e3,
+              anytime.density(),
               load_before.c_str());
   std::fflush(stdout);
   struct Row
@@ -367,7 +378,7 @@ void frames(const std::string& dir, int n, int count, int stride)
     if (rows[k].report.inertial)
       for (size_t j = k >= 3 ? k - 3 : 0; j <= std::min(rows.size() - 1, k + 3); ++j)
         near_snap[j] = 1;
-  std::ofstream csv(dir + "/curved_frames.csv");
+  std::ofstream csv(dir + "/curved_frames_" + std::to_string(sheet.mesh.nodes.size()) + "_" + budget + ".csv");
   csv << "vertices,frame,pull,wall_ms,thread_cpu_ms,start_force,max_force,corrections,refused,inertial,factor_frame,"
          "contact_search,near_snap,error,solve_ms\n";
   std::vector<double> wall, frame_cpu, steady_errors, all_errors, solves;
@@ -591,8 +602,10 @@ int main(int argc, char** argv)
   if (part == "frames")
   {
     // curved_speed_bench dir frames [grid side, 100] [frames, 200] [every how many frames checked, 2]
+    //   [wall|cpu|sync: the frames' budget counted in wall time (default) or in the frame thread's
+    //   CPU time; sync: the factor made in every frame, six corrections, no budget]
     frames(dir, argc > 3 ? std::stoi(argv[3]) : 100, argc > 4 ? std::stoi(argv[4]) : 200,
-           argc > 5 ? std::stoi(argv[5]) : 2);
+           argc > 5 ? std::stoi(argv[5]) : 2, argc > 6 ? argv[6] : "wall");
   }
   if (part == "methods")
   {

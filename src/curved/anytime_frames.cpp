@@ -197,7 +197,9 @@ void AnytimeFrames::makeFactor(const Positions& x, long frame, double h, double 
     made = factor_.factorize(hessian_, shift, factorTag(frame, false));
     ++factorizations_;
   }
-  shift = options_.static_shift * material_.stretch;
+  // Past a snap the inertial matrix needs a shift too; each failed try costs a factorisation,
+  // so the ladder starts a hundredth below where it last succeeded.
+  shift = std::max(options_.static_shift * material_.stretch, 1e-2 * inertial_shift_);
   if (!made)
   {
     // Negative curvature beyond rounding: the sheet buckles or snaps here. With the paper's
@@ -210,6 +212,8 @@ void AnytimeFrames::makeFactor(const Positions& x, long frame, double h, double 
     {
       made = factor_.factorize(hessian_, shift, factorTag(frame, true));
       ++factorizations_;
+      if (made)
+        inertial_shift_ = shift;
     }
   }
   factor_cpu_ = factor_cpu_ + (threadCpuNow() - cpu_start);
@@ -290,7 +294,9 @@ void AnytimeFrames::waitForFactor(long frame)
 void AnytimeFrames::correct(const Positions* y, double seconds, int max_corrections, double tolerance,
                             FrameReport& report)
 {
-  const double start = wallNow();
+  // The budget's clock: the wall's, or (budget_in_thread_cpu) this thread's CPU time.
+  const auto clock = [this] { return options_.budget_in_thread_cpu ? threadCpuNow() : wallNow(); };
+  const double start = clock();
   Eigen::VectorXd g, gs;
   double e = objective(x_, y, &g, &gs);
   report.start_force = forceOf(gs);
@@ -309,16 +315,16 @@ void AnytimeFrames::correct(const Positions* y, double seconds, int max_correcti
     // Static frames stop at balance; inertial ones at the implicit Euler step's own.
     if ((y ? forceOf(g) : report.max_force) <= tolerance)
       break;
-    if (k > 0 && wallNow() - start + correction_seconds_ > seconds)
+    if (k > 0 && clock() - start + correction_seconds_ > seconds)
       break;
-    const double correction_start = wallNow();
+    const double correction_start = clock();
     long tag = 0;
     // Preconditioned nonlinear conjugate gradients (Polak–Ribière): the kept factor's step,
     // made conjugate to the last one along the exact curvature that each secant measures, so
     // that a factor gone soft or stiff in a few modes since it was made costs iterations, not
     // the frame's shape.
     Eigen::VectorXd z = factor_.solve(-g, &tag);
-    report.solve_seconds += wallNow() - correction_start;
+    report.solve_seconds += clock() - correction_start;
     if (z.size() != g.size())
       break;
     report.factor_frame = taggedFrame(tag);
@@ -418,7 +424,7 @@ void AnytimeFrames::correct(const Positions* y, double seconds, int max_correcti
     report.max_force = forceOf(gs);
     report.energy = e;
     ++report.corrections;
-    correction_seconds_ = wallNow() - correction_start;
+    correction_seconds_ = clock() - correction_start;
   }
 }
 
@@ -431,7 +437,7 @@ Expected<FrameReport> AnytimeFrames::frame(const std::vector<CurvedPin>& pins)
   for (size_t k = 0; k < pins.size(); ++k)
     if (pins[k].node != pins_[k].node || !pins[k].position.allFinite())
       return Expected<FrameReport>::failure("a frame's pins must hold the nodes start() was given, at finite points");
-  const double start = wallNow();
+  const double start = wallNow(), start_cpu = threadCpuNow();
   ++frame_;
   FrameReport report;
   if (options_.background)
@@ -514,7 +520,7 @@ Expected<FrameReport> AnytimeFrames::frame(const std::vector<CurvedPin>& pins)
   x_ = predicted;
   pins_ = pins;
   const Positions target = predicted;
-  const double used = wallNow() - start;
+  const double used = options_.budget_in_thread_cpu ? threadCpuNow() - start_cpu : wallNow() - start;
   correct(inertial ? &target : nullptr, options_.frame_seconds - used, options_.max_corrections,
           options_.frame_tolerance, report);
   report.inertial = inertial;

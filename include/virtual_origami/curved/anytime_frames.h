@@ -32,6 +32,9 @@ struct AnytimeFrameOptions
   /// is begun only when the time it took last fits in what is left. At least one is made.
   double frame_seconds = 0.026;
   int max_corrections = 6;
+  /// The budget counted in the frame thread's CPU time instead of the wall's (on a machine
+  /// shared with other work, the frames then do what an unshared one would in that time).
+  bool budget_in_thread_cpu = false;
   /// A new factorisation is asked for at the shown state every this many frames (and at once
   /// after a correction the residual check refused).
   int refactor_frames = 2;
@@ -197,6 +200,7 @@ private:
   // The factor and the thread that makes it.
   KeptFactor factor_;
   Eigen::SparseMatrix<double> hessian_;  // the factorising side's
+  double inertial_shift_ = 0.0;          // the shift the last inertial factor took
   std::atomic<int> factorizations_{ 0 };
   std::atomic<double> factor_cpu_{ 0.0 };
   std::mutex mutex_;
