@@ -303,6 +303,7 @@ void AnytimeFrames::correct(const Positions* y, double seconds, int max_correcti
   report.max_force = report.start_force;
   report.start_energy = e;
   report.energy = e;
+  shown_force_ = report.max_force;
   const Eigen::MatrixXd free_motions =
       y ? Eigen::MatrixXd(3 * free_count_, 0) :
           freeRigidMotions(x_, free_index_, free_count_, surroundings_.gravity != 0 || surroundings_.table);
@@ -405,6 +406,24 @@ void AnytimeFrames::correct(const Positions* y, double seconds, int max_correcti
           }
         }
       }
+      // Neither lowered the energy (negative curvature along the step, or a factor far too
+      // soft there): shorter steps, a quarter at a time, before the frame gives up on it.
+      for (double shorter = std::min(alpha > 0 ? alpha : 1.0, 1.0) / 4; !taken && shorter >= 1.0 / 64; shorter /= 4)
+      {
+        Positions third = trial;
+        Eigen::VectorXd g3, gs3;
+        if (!place(shorter, third))
+          continue;
+        const double e3 = objective(third, y, &g3, &gs3);
+        if (std::isfinite(e3) && better(e3, g3, e, nullptr))
+        {
+          taken = true;
+          e_taken = e3;
+          trial = std::move(third);
+          g_trial = std::move(g3);
+          gs_trial = std::move(gs3);
+        }
+      }
     }
     if (!taken)
     {
@@ -422,6 +441,7 @@ void AnytimeFrames::correct(const Positions* y, double seconds, int max_correcti
     if (contact_.watchedPairs() != watched)
       e = objective(x_, y, &g, &gs);
     report.max_force = forceOf(gs);
+    shown_force_ = report.max_force;
     report.energy = e;
     ++report.corrections;
     correction_seconds_ = clock() - correction_start;
@@ -470,7 +490,7 @@ Expected<FrameReport> AnytimeFrames::frame(const std::vector<CurvedPin>& pins)
   // The prediction: where the nodes coast to (inertial), or the shape carried on along the
   // last two frames in the pins' travel (static).
   Positions predicted = x_;
-  if (inertial)
+  if (inertial && options_.kept_velocity > 0)
   {
     for (size_t v = 0; v < free_index_.size(); ++v)
       if (const int f = free_index_[v]; f >= 0)
@@ -478,13 +498,19 @@ Expected<FrameReport> AnytimeFrames::frame(const std::vector<CurvedPin>& pins)
   }
   else if (moved_before && pins_before_.size() == pins.size())
   {
+    // (Inertial frames from rest coast nowhere, but the pins drag the sheet on: they carry on
+    // as static ones do.)
     // Lagrange's polynomial in the pins' travel through the last two shown shapes, or three
     // when the one before was static too (the pinned corner runs along a curve: a straight
     // carry strains its edges by the curve's bend).
     const double a = pinTravel(pins_before_, pins_), b = pinTravel(pins_, pins);
     if (a > 0 && b > 0 && b < 2 * a)
     {
-      const double c = older_.cols() == x_.cols() ? pinTravel(pins_older_, pins_before_) : 0.0;
+      // (Only from frames near balance: a polynomial through shapes off balance carries their
+      // errors on, magnified.)
+      const double c = older_.cols() == x_.cols() && shown_force_ <= options_.off_balance_force ?
+                           pinTravel(pins_older_, pins_before_) :
+                           0.0;
       if (c > 0)
       {
         // Nodes at travel −(a + c), −a, 0; the shape wanted at b.
@@ -519,7 +545,16 @@ Expected<FrameReport> AnytimeFrames::frame(const std::vector<CurvedPin>& pins)
   pins_before_ = pins_;
   x_ = predicted;
   pins_ = pins;
-  const Positions target = predicted;
+  // The inertial frames' anchor: where the nodes coast to (from rest: the last shown shape,
+  // the pins moved), not the carry along the branch: carried on, a sheet at a saddle would
+  // follow it as the static frames do instead of falling off it.
+  Positions target = predicted;
+  if (inertial && options_.kept_velocity == 0)
+  {
+    target = x_before_;
+    for (const CurvedPin& pin : pins)
+      target.col(pin.node) = pin.position;
+  }
   const double used = options_.budget_in_thread_cpu ? threadCpuNow() - start_cpu : wallNow() - start;
   correct(inertial ? &target : nullptr, options_.frame_seconds - used, options_.max_corrections,
           options_.frame_tolerance, report);

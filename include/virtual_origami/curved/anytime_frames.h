@@ -37,7 +37,7 @@ struct AnytimeFrameOptions
   bool budget_in_thread_cpu = false;
   /// A new factorisation is asked for at the shown state every this many frames (and at once
   /// after a correction the residual check refused).
-  int refactor_frames = 2;
+  int refactor_frames = 1;
   /// Factorisations in a thread of their own; false: in frame() itself when due (for tests:
   /// the same frames every run).
   bool background = true;
@@ -67,6 +67,10 @@ struct AnytimeFrameOptions
   /// factorises at a shift up to this × stretch (they lag the pointer: a little off balance).
   double return_shift_limit = 1e-8;
   int return_frames = 5;
+  /// A frame shown with a force above this (over stretch × spacing) is off balance: the next
+  /// frame's carry is a straight one (a polynomial through shapes off balance magnifies their
+  /// errors).
+  double off_balance_force = 1e-6;
   /// release(): rounds of corrections with a factor made for the state they start at, before
   /// Newton (CurvedSolver, saddles left) finishes.
   int release_rounds = 3;
@@ -192,6 +196,7 @@ private:
   Eigen::VectorXd velocity_;
   bool inertial_ = false;
   int inertial_frames_ = 0;     // in a row, to this one
+  double shown_force_ = 0.0;    // the static force at the shape shown last
   double step_h_ = 1.0 / 30.0;  // of the inertial matrix and objective (release lengthens it)
   bool started_ = false;
   long frame_ = 0;
