@@ -1,12 +1,12 @@
 // Curved paper at the mouse: one displayed frame per pointer event within a fixed wall-time
-// budget, however large the sheet. Each frame carries the last shape on along the pins' path
-// and corrects it with the last factorisation of the Hessian that a background thread made (a
-// modified Newton step: one back-substitution, no Hessian in the frame); every correction is
-// checked against the true energy and force at the frame's own state, so a factor made for an
-// older state is used only where it still descends. The thread renews the factor at the latest
-// shown state every few frames. Where the Hessian there is not positive definite (the sheet
-// buckles or snaps), the frames turn inertial: the paper's mass over the frame time squared,
-// M/h², is added to the matrix and each frame is a step of implicit Euler, until a static
+// budget. Each frame carries the last shape on along the pins' path and corrects it by
+// conjugate gradients preconditioned by the last factorisation of the Hessian that a
+// background thread made (back-substitutions and gradients, no Hessian in the frame); every
+// step is checked against the true energy and force at the frame's own state, so a factor made
+// for an older state is used only where it still descends. The thread renews the factor at the
+// latest shown state. Where the Hessian there is not positive definite (the sheet buckles or
+// snaps), the frames turn inertial: the paper's mass over the frame time squared, M/h², is added
+// to the matrix and each frame is a step of implicit Euler from rest, until a static
 // factorisation succeeds again. On release the shape is polished to balance.
 #pragma once
 
