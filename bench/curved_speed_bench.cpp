@@ -11,9 +11,15 @@
 // 1,024 to 10,000 vertices, each balance's error against a tight Newton balance, beside the
 // quasi-Newton floor (one back-substitution of the constant factor and one gradient).
 //
-//   curved_speed_bench [out_dir] [pulls|stability|scaling|methods]   writes curved_speed.csv and
-//   curved_drag_accuracy.csv, curved_stability.csv, curved_scaling.csv, curved_methods.csv (all,
-//   or the part named; `methods` is not part of the default run)
+// (e) the drag as a person sees it (issue 37): anytime frames (anytime_frames.h) at 30 Hz, one
+// per pointer step, each frame's wall and thread CPU time, its distance to the tight balance
+// for the same pointer (solved afresh after the drag, force 1e-10), the snaps' time to their
+// branch and the release's to 1e-8.
+//
+//   curved_speed_bench [out_dir] [pulls|stability|scaling|methods|frames]   writes curved_speed.csv
+//   and curved_drag_accuracy.csv, curved_stability.csv, curved_scaling.csv, curved_methods.csv,
+//   curved_frames.csv (all, or the part named; `methods` and `frames` are not part of the
+//   default run)
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -24,7 +30,12 @@
 #include <string>
 #include <vector>
 
+#include <chrono>
+#include <thread>
+
 #include <Eigen/Eigenvalues>
+
+#include "virtual_origami/curved/anytime_frames.h"
 
 #include "virtual_origami/numerics/blas_kernels.h"
 #include "virtual_origami/curved/seed_scenes.h"
@@ -263,6 +274,172 @@ void methods(const std::string& dir, const std::vector<int>& sizes, const std::v
   }
 }
 
+double threadCpuNow()
+{
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+std::string loadAverage()
+{
+  std::ifstream in("/proc/loadavg");
+  std::string one, five, fifteen;
+  in >> one >> five >> fifteen;
+  return one + " " + five + " " + fifteen;
+}
+
+double percentile(std::vector<double> values, double p)
+{
+  if (values.empty())
+    return NAN;
+  std::sort(values.begin(), values.end());
+  return values[std::min(values.size() - 1, static_cast<size_t>(std::ceil(p * values.size())) - (p > 0 ? 1 : 0))];
+}
+
+/// (e) The drag of (a) on an n × n sheet as anytime frames: the pointer moves 1/2000 of the pull
+/// per frame at 30 Hz (the frames paced in wall time, as pointer events come), `count` frames,
+/// then the release. Every `stride`-th frame's shape is kept and, after the drag, solved on to
+/// 1e-10 by a Newton solver of its own (predict off: the balance nearest the shown shape); the
+/// largest node distance over the side is the frame's error. Frames within 3 of an inertial
+/// one (a loss of stability) are reported apart. One row per frame in curved_frames.csv.
+void frames(const std::string& dir, int n, int count, int stride, const std::string& budget)
+{
+  PulledSheet sheet(n);
+  AnytimeFrameOptions options;
+  options.budget_in_thread_cpu = budget == "cpu";
+  if (budget == "sync")
+  {
+    // The factor made in each frame at the state it shows (what a factorisation as fast as a
+    // frame would give): the frames' accuracy without the background's lag; not anytime.
+    options.background = false;
+    options.refactor_frames = 1;
+    options.frame_seconds = INFINITY;
+  }
+  AnytimeFrames anytime(sheet.mesh, sheet.scene.paper, {}, {}, options);
+  const std::string load_before = loadAverage();
+  double t = now(), cpu = threadCpuNow();
+  if (!anytime.start(sheet.rest, sheet.pins))
+    return;
+  std::printf("%zu vertices, budget %s: start (first factorisation) %.0f ms wall, %.0f ms cpu; inertial density %.3g; "
+              "load %s\n",
+              sheet.mesh.nodes.size(), budget.c_str(), (now() - t) * 1e3, (threadCpuNow() - cpu) * 1e3,
+              anytime.density(),
+              load_before.c_str());
+  std::fflush(stdout);
+  struct Row
+  {
+    FrameReport report;
+    double cpu = 0, error = NAN;
+    std::vector<CurvedPin> pins;
+  };
+  std::vector<Row> rows;
+  std::vector<std::pair<int, Positions>> kept;
+  const double h = 1.0 / 30.0;
+  const double drag_start = now(), process_start = cpuNow(), factor_cpu_start = anytime.factorCpuSeconds();
+  double s = 0;
+  for (int k = 1; k <= count; ++k)
+  {
+    const double due = drag_start + (k - 1) * h;
+    if (now() < due)
+      std::this_thread::sleep_for(std::chrono::duration<double>(due - now()));
+    sheet.pullTo(s += 5e-4);
+    const double frame_cpu = threadCpuNow();
+    const Expected<FrameReport> r = anytime.frame(sheet.pins);
+    if (!r)
+    {
+      std::printf("frame %d refused: %s\n", k, r.message().c_str());
+      return;
+    }
+    rows.push_back({ *r, threadCpuNow() - frame_cpu, NAN, sheet.pins });
+    if (k % stride == 0)
+      kept.emplace_back(k - 1, anytime.positions());
+  }
+  const double drag_wall = now() - drag_start, drag_cpu = cpuNow() - process_start;
+  const double drag_factor_cpu = anytime.factorCpuSeconds() - factor_cpu_start;
+  const int drag_factorizations = anytime.factorizations();
+  t = now();
+  const ReleaseReport release = anytime.release();
+  const double release_wall = now() - t;
+  const std::string load_after = loadAverage();
+  // The tight balances, after the drag (not in its time).
+  CurvedSolver exact(sheet.mesh, sheet.scene.paper);
+  exact.options().tolerance = 1e-10;
+  exact.options().predict = false;
+  for (auto& [index, shape] : kept)
+  {
+    Positions balance = shape;
+    if (exact.solve(balance, rows[index].pins).converged)
+      rows[index].error = std::sqrt((balance - shape).colwise().squaredNorm().maxCoeff()) / sheet.scene.paper.scale();
+  }
+  // Near a loss of stability: within 3 frames of an inertial one.
+  std::vector<char> near_snap(rows.size(), 0);
+  for (size_t k = 0; k < rows.size(); ++k)
+    if (rows[k].report.inertial)
+      for (size_t j = k >= 3 ? k - 3 : 0; j <= std::min(rows.size() - 1, k + 3); ++j)
+        near_snap[j] = 1;
+  std::ofstream csv(dir + "/curved_frames_" + std::to_string(sheet.mesh.nodes.size()) + "_" + budget + ".csv");
+  csv << "vertices,frame,pull,wall_ms,thread_cpu_ms,start_force,max_force,corrections,refused,inertial,factor_frame,"
+         "contact_search,near_snap,error,solve_ms\n";
+  std::vector<double> wall, frame_cpu, steady_errors, all_errors, solves;
+  for (size_t k = 0; k < rows.size(); ++k)
+  {
+    const FrameReport& r = rows[k].report;
+    wall.push_back(r.seconds);
+    if (r.corrections + r.refused > 0)
+      solves.push_back(r.solve_seconds / (r.corrections + r.refused));
+    frame_cpu.push_back(rows[k].cpu);
+    if (std::isfinite(rows[k].error))
+    {
+      all_errors.push_back(rows[k].error);
+      if (!near_snap[k])
+        steady_errors.push_back(rows[k].error);
+    }
+    csv << sheet.mesh.nodes.size() << ',' << k + 1 << ',' << 5e-4 * (k + 1) << ',' << r.seconds * 1e3 << ','
+        << rows[k].cpu * 1e3 << ',' << r.start_force << ',' << r.max_force << ',' << r.corrections << ',' << r.refused
+        << ',' << r.inertial << ',' << r.factor_frame << ',' << r.contact_search << ',' << int(near_snap[k]) << ','
+        << rows[k].error << ',' << r.solve_seconds * 1e3 << '\n';
+  }
+  // Snaps: from the first inertial frame of a run to the first frame after it at force 1e-6.
+  std::printf("  snaps (first inertial frame -> frames until force <= 1e-6):");
+  for (size_t k = 0; k < rows.size(); ++k)
+    if (rows[k].report.inertial && (k == 0 || !rows[k - 1].report.inertial))
+    {
+      size_t j = k;
+      while (j < rows.size() && !(rows[j].report.max_force <= 1e-6 && !rows[j].report.inertial))
+        ++j;
+      if (j < rows.size())
+        std::printf(" frame %zu: %zu frames (%.2f s);", k + 1, j - k, (j - k) * h);
+      else
+        std::printf(" frame %zu: not within the drag;", k + 1);
+    }
+  std::printf("\n");
+  int inertial = 0, searches = 0, refused = 0;
+  for (const Row& row : rows)
+  {
+    inertial += row.report.inertial;
+    searches += row.report.contact_search;
+    refused += row.report.refused;
+  }
+  std::printf("  %zu frames in %.2f s wall: frame wall p50 %.1f / p95 %.1f / max %.1f ms; frame thread cpu p50 %.1f / "
+              "p95 %.1f / max %.1f ms; %d inertial, %d refused corrections, %d contact searches in a frame\n",
+              rows.size(), drag_wall, percentile(wall, 0.5) * 1e3, percentile(wall, 0.95) * 1e3,
+              percentile(wall, 1.0) * 1e3, percentile(frame_cpu, 0.5) * 1e3, percentile(frame_cpu, 0.95) * 1e3,
+              percentile(frame_cpu, 1.0) * 1e3, inertial, refused, searches);
+  std::printf("  one back-substitution (wall, median over frames) %.1f ms\n", percentile(solves, 0.5) * 1e3);
+  std::printf("  factorising thread: %d factorisations, %.2f s cpu; the process %.2f s cpu over the drag's %.2f s\n",
+              drag_factorizations, drag_factor_cpu, drag_cpu, drag_wall);
+  std::printf("  error to the tight balance / side: steady frames (%zu checked) median %.3g, p95 %.3g, max %.3g; "
+              "all checked (%zu) max %.3g\n",
+              steady_errors.size(), percentile(steady_errors, 0.5), percentile(steady_errors, 0.95),
+              percentile(steady_errors, 1.0), all_errors.size(), percentile(all_errors, 1.0));
+  std::printf("  release: %s at force %.3g in %.3f s (%d corrections, %d factorisations, %d Newton iterations); "
+              "load %s\n",
+              release.converged ? "converged" : "NOT converged", release.max_force, release_wall, release.corrections,
+              release.factorizations, release.newton_iterations, load_after.c_str());
+  std::fflush(stdout);
+}
+
 /// Bytes an RK4 step must move at least: four force evaluations, each reading the term lists
 /// and the positions and writing the forces, plus the state vectors of the four stages (about
 /// a dozen reads and writes of 3 doubles per vertex).
@@ -422,6 +599,14 @@ int main(int argc, char** argv)
     stability(dir);
   if (part.empty() || part == "scaling")
     scaling(dir);
+  if (part == "frames")
+  {
+    // curved_speed_bench dir frames [grid side, 100] [frames, 200] [every how many frames checked, 2]
+    //   [wall|cpu|sync: the frames' budget counted in wall time (default) or in the frame thread's
+    //   CPU time; sync: the factor made in every frame, six corrections, no budget]
+    frames(dir, argc > 3 ? std::stoi(argv[3]) : 100, argc > 4 ? std::stoi(argv[4]) : 200,
+           argc > 5 ? std::stoi(argv[5]) : 2, argc > 6 ? argv[6] : "wall");
+  }
   if (part == "methods")
   {
     // curved_speed_bench dir methods [grid sides, e.g. 32,100] [newton|quasi_newton|quasi_newton_krylov, each optionally _checked]

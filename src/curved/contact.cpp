@@ -272,6 +272,41 @@ int LayerContact::edgeSideFor(int a, int b, double signed_distance, const Vec3& 
 
 void LayerContact::findCandidates(const Positions& x)
 {
+  Candidates found = candidatesAt(x);
+  candidates_ = std::move(found.nodes);
+  edge_candidates_ = std::move(found.edges);
+  candidates_at_ = std::move(found.at);
+}
+
+bool LayerContact::needsSearch(const Positions& x) const
+{
+  return !(skinUsed(x) <= 1.0);
+}
+
+double LayerContact::skinUsed(const Positions& x) const
+{
+  if (candidates_at_.cols() != x.cols())
+    return INFINITY;
+  return std::sqrt((x - candidates_at_).colwise().squaredNorm().maxCoeff()) / (0.5 * skin_);
+}
+
+bool LayerContact::adoptCandidates(Candidates&& found, const Positions& x)
+{
+  if (found.at.cols() != x.cols())
+    return false;
+  // Taken when good for x and fresher than the kept ones (nearer x: longer until a search).
+  const double found_used = std::sqrt((x - found.at).colwise().squaredNorm().maxCoeff()) / (0.5 * skin_);
+  if (!(found_used <= 1.0) || !(found_used < skinUsed(x)))
+    return false;
+  candidates_ = std::move(found.nodes);
+  edge_candidates_ = std::move(found.edges);
+  candidates_at_ = std::move(found.at);
+  return true;
+}
+
+LayerContact::Candidates LayerContact::candidatesAt(const Positions& x) const
+{
+  Candidates found;
   // Every element pair whose boxes come within reach + edge margin + skin, less those the rules below never
   // watch whatever the shape (a node's own triangles, neighbours within the exclusion, edges
   // sharing a node): while no node moves farther than half the skin, every pair that comes
@@ -284,8 +319,6 @@ void LayerContact::findCandidates(const Positions& x)
   const double reach = thickness_ + range_;
   const double wide = reach + edge_margin_ + skin_;
   const double one_face = std::sqrt(3.0) * wide;
-  candidates_.clear();
-  edge_candidates_.clear();
   const ElementGrid grid(mesh_, x, std::max(wide, mesh_.spacing), wide);
   std::vector<int> stamp(mesh_.triangles.size(), -1);
   Vec3 lo, hi;
@@ -308,7 +341,7 @@ void LayerContact::findCandidates(const Positions& x)
       const double apart = patternDistance(mesh_, t, mesh_.nodes[node].crease_pattern);
       if (apart < exclusion_ || (apart < one_face && inFace(node, mesh_.triangles[t].face)))
         return;
-      candidates_.push_back({ node, t });
+      found.nodes.push_back({ node, t });
     });
   }
   const auto edge_nodes = [this](size_t e) { return mesh_.edges[e].nodes; };
@@ -344,18 +377,18 @@ void LayerContact::findCandidates(const Positions& x)
           segmentDistance2d(mesh_.nodes[na[0]].crease_pattern, mesh_.nodes[na[1]].crease_pattern,
                             mesh_.nodes[nb[0]].crease_pattern, mesh_.nodes[nb[1]].crease_pattern) < one_face)
         return;
-      edge_candidates_.push_back({ static_cast<int>(ea), eb });
+      found.edges.push_back({ static_cast<int>(ea), eb });
     });
   }
-  candidates_at_ = x;
+  found.at = x;
+  return found;
 }
 
 void LayerContact::update(const Positions& x)
 {
   if (!x.allFinite())
     return;  // a diverged state: the solver rolls it back; keep the pairs of the last good one
-  if (candidates_at_.cols() != x.cols() ||
-      (x - candidates_at_).colwise().squaredNorm().maxCoeff() > 0.25 * skin_ * skin_)
+  if (needsSearch(x))
     findCandidates(x);
   const double reach = thickness_ + range_;
   std::map<std::pair<int, int>, Pair> nearest;  // per (node, paper face), the nearest triangle

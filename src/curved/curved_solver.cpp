@@ -129,6 +129,12 @@ bool stopBeforeStep(const Eigen::VectorXd& g, double energy, double force_scale,
 }
 }  // namespace
 
+Eigen::MatrixXd freeRigidMotions(const Positions& x, const std::vector<int>& free_index, int free_count,
+                                 bool in_plane_only)
+{
+  return freeMotions(x, free_index, free_count, in_plane_only);
+}
+
 CurvedSolver::CurvedSolver(const CurvedMesh& mesh, const Paper& paper, const CurvedMaterial& material,
                            const ContactOptions& contact, const CurvedSolveOptions& options,
                            const Surroundings& surroundings)

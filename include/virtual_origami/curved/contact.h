@@ -53,6 +53,25 @@ public:
   /// half the thickness. Pairs that left the range are forgotten.
   void update(const Positions& x);
 
+  /// The pairs update() watches for, found at `x` (the costly part of an update: a grid of
+  /// every triangle and edge), good while no node moves farther than half the skin from `at`.
+  struct Candidates
+  {
+    std::vector<std::array<int, 2>> nodes;  // (node, triangle)
+    std::vector<std::array<int, 2>> edges;  // (edge, edge), lower first
+    Positions at;
+  };
+  /// Finds them without changing this contact (another thread may, meanwhile, update it).
+  Candidates candidatesAt(const Positions& x) const;
+  /// Whether update(x) would search anew (its candidates are not good for x).
+  bool needsSearch(const Positions& x) const;
+  /// How far some node at `x` has moved from where the candidates were found, over the half
+  /// skin it may move (above 1: update searches anew; infinity before any search).
+  double skinUsed(const Positions& x) const;
+  /// Takes candidates found elsewhere in place of the kept ones, when they are good for `x`
+  /// and found nearer it than the kept ones; false (nothing changed) otherwise.
+  bool adoptCandidates(Candidates&& found, const Positions& x);
+
   /// Penalty energy of the watched pairs (and its derivatives into `out`).
   double evaluate(const Positions& x, const Assembly& out = {}) const;
 

@@ -119,6 +119,13 @@ struct CurvedReport
   std::string message;
 };
 
+/// The rigid motions of the free nodes that leave every pinned node where it is and the energy
+/// as it is (all six for a floating sheet; with weight or a table, `in_plane_only`: those in the
+/// table's plane), as orthonormal columns over the free coordinates at `x`. No force resists
+/// them: a step's part along them is rounding over the damping.
+Eigen::MatrixXd freeRigidMotions(const Positions& x, const std::vector<int>& free_index, int free_count,
+                                 bool in_plane_only);
+
 class CurvedSolver
 {
 public:
