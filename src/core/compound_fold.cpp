@@ -172,8 +172,8 @@ int farthestFace(const Paper& paper, int face)
 }
 
 /// The search for the flat folds of a pressed face: every way of folding or unfolding a set of
-/// creases that folds flat at each inner vertex (Kawasaki, checked as soon as a vertex's creases
-/// are decided), closes over the whole paper and moves the pressed face.
+/// creases that folds flat at each inner vertex it changes (Kawasaki), closes over the whole paper
+/// and moves the pressed face.
 class OutcomeSearch
 {
 public:
@@ -230,7 +230,9 @@ public:
   }
 
   /// Every way of folding the creases at `vertices` and `line_creases` (at least one of those
-  /// changing, when given) into `outcomes`.
+  /// changing, when given) into `outcomes`: the ways changing one crease first, then two, and so
+  /// on, so that the folds a hand makes (a few creases at a corner) are found before the cap on
+  /// the ways tried, also at a vertex where many creases meet (a frog base's centre has 16).
   void foldCreasesAt(const std::vector<int>& vertices, const std::vector<int>& line_creases, bool from_line, bool patch)
   {
     pool_ = line_creases;
@@ -244,26 +246,15 @@ public:
     position_.assign(paper_.edges.size(), -1);
     for (size_t i = 0; i < pool_.size(); ++i)
       position_[pool_[i]] = static_cast<int>(i);
-    // Each inner vertex a pool crease meets is checked once its last pool crease is decided.
-    check_at_.assign(pool_.size(), {});
-    std::set<int> touched;
-    for (int e : pool_)
-      for (int v : paper_.edges[e].vertices)
-        if (inner(v))
-          touched.insert(v);
-    for (int v : touched)
-    {
-      int last = -1;
-      for (int e : incidence_.creases[v])
-        last = std::max(last, position_[e]);
-      check_at_[last].push_back(v);
-    }
     line_creases_ = line_creases;
     from_line_ = from_line;
     patch_ = patch;
-    state_.assign(pool_.size(), 0);
+    state_.resize(pool_.size());
+    for (size_t i = 0; i < pool_.size(); ++i)
+      state_[i] = folded_now_[pool_[i]];
     assignments_ = 0;
-    decide(0);
+    for (size_t changes = 1; changes <= pool_.size(); ++changes)
+      change(0, changes);
   }
 
   std::vector<CompoundOutcome> outcomes;
@@ -274,25 +265,40 @@ private:
     return position_[e] >= 0 ? state_[position_[e]] != 0 : folded_now_[e] != 0;
   }
 
-  void decide(size_t i)
+  bool capped() const
   {
-    if (assignments_ >= kMaxAssignments || faces_placed_ >= kMaxFacesPlaced)
+    return assignments_ >= kMaxAssignments || faces_placed_ >= kMaxFacesPlaced;
+  }
+
+  /// Every way of changing `left` more pool creases from the `from`-th on.
+  void change(size_t from, size_t left)
+  {
+    if (capped())
       return;
-    if (i == pool_.size())
+    if (left == 0)
     {
       ++assignments_;
-      record();
+      if (foldsFlat())
+        record();
       return;
     }
-    for (const char s : { folded_now_[pool_[i]], static_cast<char>(!folded_now_[pool_[i]]) })
+    for (size_t i = from; i + left <= pool_.size() && !capped(); ++i)
     {
-      state_[i] = s;
-      bool flat = true;
-      for (int v : check_at_[i])
-        flat = flat && foldsFlatAt(paper_, v, incidence_.creases[v], [this](int e) { return folded(e); });
-      if (flat)
-        decide(i + 1);
+      state_[i] = !folded_now_[pool_[i]];
+      change(i + 1, left - 1);
+      state_[i] = folded_now_[pool_[i]];
     }
+  }
+
+  /// Kawasaki at every inner vertex a changed crease meets (the others lie flat as before).
+  bool foldsFlat() const
+  {
+    for (size_t k = 0; k < pool_.size(); ++k)
+      if (state_[k] != folded_now_[pool_[k]])
+        for (int v : paper_.edges[pool_[k]].vertices)
+          if (inner(v) && !foldsFlatAt(paper_, v, incidence_.creases[v], [this](int e) { return folded(e); }))
+            return false;
+    return true;
   }
 
   /// The outcome of the creases as decided, when it changes something new, closes and moves
@@ -347,7 +353,6 @@ private:
   std::set<std::vector<std::pair<int, char>>> seen_;  // the change sets recorded
   // The crease set being decided.
   std::vector<int> pool_, position_, line_creases_;
-  std::vector<std::vector<int>> check_at_;
   std::vector<char> state_;
   bool from_line_ = false, patch_ = false;
   size_t assignments_ = 0;
