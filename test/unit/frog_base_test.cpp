@@ -1,0 +1,128 @@
+// The traditional frog base's four squash folds (test/data/frog_base_reference.json): the square
+// base, the squash lines creased through all layers, and each of the four flaps squashed by one
+// drag (compound_fold.h) — the front flaps pressed from above, the back ones on the bottom layer,
+// one of them under another flap's layers — against the script to 1e-6; the kite they make against
+// its closed form; docs/INTERACTION.md's walkthrough ("## Fold a frog base") against the script.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "model_reference.h"
+#include "reference_fold_checks.h"
+#include "virtual_origami/core/chosen_creases.h"
+#include "virtual_origami/core/layer_pick.h"
+#include "walkthrough_checks.h"
+
+using namespace virtual_origami;
+using namespace virtual_origami::core;
+using namespace virtual_origami::core::test;
+
+namespace
+{
+const FoldSequence& script()
+{
+  static const Expected<FoldSequence> sequence = modelReference("frog_base_reference.json");
+  EXPECT_TRUE(sequence.ok()) << sequence.message();
+  return *sequence;
+}
+
+const std::vector<Paper>& frog()
+{
+  static const Expected<std::vector<Paper>> states = modelStates(script());
+  EXPECT_TRUE(states.ok()) << states.message();
+  return *states;
+}
+
+Vec3 at(const Paper& paper, const Vec2& cp)
+{
+  const int v = paper.vertexAt(cp, 1e-9);
+  EXPECT_GE(v, 0) << "no vertex at (" << cp.transpose() << ")";
+  return v >= 0 ? paper.vertices[v].folded : Vec3::Constant(NAN);
+}
+
+/// Where the flap at `cp` lies in the stack before step `step`, seen from above (1: on top; the
+/// number of layers there: at the bottom).
+std::pair<int, int> layerOf(int step, const Vec2& cp)
+{
+  const Paper& before = frog()[step - 1];
+  const int face = faceContaining(before, cp);
+  const std::vector<int> under = facesUnder(before, facePose(before, face) * Vec3(cp.x(), cp.y(), 0), Vec3(0, 0, -1));
+  const auto it = std::find(under.begin(), under.end(), face);
+  return { it == under.end() ? -1 : static_cast<int>(it - under.begin()) + 1, static_cast<int>(under.size()) };
+}
+
+const double kTan = std::tan(M_PI / 8);  // the squash lines halve the 45° at the closed point
+}  // namespace
+
+TEST(FrogBase, DraggingEachFlapOpenAcrossTheCentreLineSquashesIt)
+{
+  // The front left flap, on top.
+  EXPECT_EQ(layerOf(11, Vec2(0.4, 0.1)).first, 1);
+  expectTheScriptsFold(script(), frog(), 11, Vec2(0.4, 0.1), CompoundKind::Squash);
+  // The back left flap: the bottom layer (the paper turned over).
+  const auto [back_left, left_layers] = layerOf(12, Vec2(0.9, 0.4));
+  EXPECT_EQ(back_left, left_layers);
+  expectTheScriptsFold(script(), frog(), 12, Vec2(0.9, 0.4), CompoundKind::Squash);
+  // The front right flap lies under a layer of the first squash: picked one layer down.
+  EXPECT_EQ(layerOf(13, Vec2(0.1, 0.6)).first, 2);
+  expectTheScriptsFold(script(), frog(), 13, Vec2(0.1, 0.6), CompoundKind::Squash);
+  // The back right flap, at the bottom again.
+  const auto [back_right, right_layers] = layerOf(14, Vec2(0.4, 0.9));
+  EXPECT_EQ(back_right, right_layers);
+  expectTheScriptsFold(script(), frog(), 14, Vec2(0.4, 0.9), CompoundKind::Squash);
+}
+
+TEST(FrogBase, TheFourSquashesLayTheFlapsOnTheKiteAboutTheCentreLine)
+{
+  const Paper& base = frog().back();
+  for (const Edge& e : base.edges)
+    if (e.isCrease())
+      EXPECT_TRUE(std::abs(e.fold_angle) < 1e-9 || std::abs(std::abs(e.fold_angle) - M_PI) < 1e-9) << e.fold_angle;
+  // The closed point C, the four corners at the open point B half a diagonal away; every
+  // flap's folded edge (the midlines' ends) on the centre line CB half a side from C; the
+  // squash lines' ends at the kite's side points, tan(22.5°) / 2 from the corners.
+  const Vec3 c = at(base, Vec2(0.5, 0.5)), b = at(base, Vec2(0, 0));
+  for (const Vec2& corner : { Vec2(1, 0), Vec2(1, 1), Vec2(0, 1) })
+    EXPECT_LE((at(base, corner) - b).norm(), 1e-9);
+  EXPECT_NEAR((b - c).norm(), std::sqrt(0.5), 1e-9);
+  const Vec3 axis = (b - c).normalized();
+  for (const Vec2& end : { Vec2(0.5, 0), Vec2(1, 0.5), Vec2(0.5, 1), Vec2(0, 0.5) })
+    EXPECT_LE((at(base, end) - (c + 0.5 * axis)).norm(), 1e-9) << end.transpose();
+  std::vector<Vec3> sides;
+  for (const Vec2& end :
+       { Vec2(0.5 - 0.5 * kTan, 0), Vec2(0.5 + 0.5 * kTan, 0), Vec2(1, 0.5 - 0.5 * kTan), Vec2(1, 0.5 + 0.5 * kTan),
+         Vec2(0.5 + 0.5 * kTan, 1), Vec2(0.5 - 0.5 * kTan, 1), Vec2(0, 0.5 + 0.5 * kTan), Vec2(0, 0.5 - 0.5 * kTan) })
+  {
+    const Vec3 p = at(base, end);
+    EXPECT_NEAR((p - b).norm(), 0.5 - 0.5 * kTan, 1e-9) << end.transpose();
+    EXPECT_NEAR((p - c).norm(), 0.5 / std::cos(M_PI / 8), 1e-9) << end.transpose();
+    sides.push_back(p);
+  }
+  // Two side points, one either side of the centre line, four of the squash lines' ends at each.
+  const Vec3 normal = base.faceNormal(0);
+  int left = 0;
+  for (const Vec3& p : sides)
+    left += axis.cross(p - c).dot(normal) > 0;
+  EXPECT_EQ(left, 4);
+  // Every vertex within the kite C, side, B, side: no layer sticks out.
+  for (const Vertex& v : base.vertices)
+  {
+    const Vec3 d = v.folded - c;
+    const double along = d.dot(axis), across = (d - along * axis).norm();
+    EXPECT_GE(along, -1e-9);
+    EXPECT_LE(along, std::sqrt(0.5) + 1e-9);
+    // The kite's half width at `along`: widening from C to the side points, narrowing to B.
+    const double side_along = (sides[0] - c).dot(axis), side_across = ((sides[0] - c) - side_along * axis).norm();
+    const double half_width = along <= side_along ?
+                                  side_across * along / side_along :
+                                  side_across * (std::sqrt(0.5) - along) / (std::sqrt(0.5) - side_along);
+    EXPECT_LE(across, half_width + 1e-9) << v.crease_pattern.transpose();
+  }
+}
+
+TEST(FrogBase, TheWalkthroughNamesTheScriptsFoldsAndItsGesturesAddUp)
+{
+  const virtual_origami::test::Walkthrough walkthrough = virtual_origami::test::readWalkthrough("## Fold a frog base");
+  virtual_origami::test::expectTheWalkthroughFoldsTheScript(walkthrough, script(), frog());
+}
