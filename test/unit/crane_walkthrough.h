@@ -140,10 +140,10 @@ inline Walkthrough parseWalkthrough(const std::string& markdown, const std::stri
   return w;
 }
 
-/// docs/INTERACTION.md's "## Fold a crane".
-inline Walkthrough parseCraneWalkthrough(const std::string& markdown)
+/// docs/INTERACTION.md's "## Fold a crane" (or the walkthrough under `heading`).
+inline Walkthrough parseCraneWalkthrough(const std::string& markdown, const std::string& heading = "## Fold a crane")
 {
-  return parseWalkthrough(markdown, "## Fold a crane");
+  return parseWalkthrough(markdown, heading);
 }
 
 }  // namespace virtual_origami::test

@@ -126,3 +126,31 @@ TEST(FrogBase, TheWalkthroughNamesTheScriptsFoldsAndItsGesturesAddUp)
   const virtual_origami::test::Walkthrough walkthrough = virtual_origami::test::readWalkthrough("## Fold a frog base");
   virtual_origami::test::expectTheWalkthroughFoldsTheScript(walkthrough, script(), frog());
 }
+
+TEST(FrogBase, AFlapLetGoOnTheSideItWasPressedFromFoldsOverOnItsSquashLineInstead)
+{
+  // The front left flap pressed as for its squash, let go where folding the flap's edge over the
+  // squash line puts the point (mirrored over that line only): no squash, a plain fold of the
+  // flap's two layers on their squash lines, nothing else changed.
+  const Paper& before = frog()[10];
+  const Vec2 cp(0.4, 0.1);
+  const int face = faceContaining(before, cp);
+  ASSERT_GE(face, 0);
+  const Vec3 press = facePose(before, face) * Vec3(cp.x(), cp.y(), 0);
+  const Vec3 c = at(before, Vec2(0.5, 0.5)), p = at(before, Vec2(0.5 + 0.5 * kTan, 0));
+  const Vec3 d = (p - c).normalized();
+  const Vec3 foot = c + (press - c).dot(d) * d;
+  Expected<CompoundFolds> folds = CompoundFolds::at(before, face, press);
+  ASSERT_TRUE(folds.ok()) << folds.message();
+  const auto chosen = folds->nearestResolved(2 * foot - press);
+  ASSERT_TRUE(chosen.has_value());
+  EXPECT_LT(chosen->first.miss, 1e-9);
+  ASSERT_EQ(chosen->second.request.creases.size(), 2u);
+  for (const CreaseLineAngle& line : chosen->second.request.creases)
+  {
+    EXPECT_NEAR(std::abs(line.angle), M_PI, 1e-12);
+    const Vec2 away = (line.start - Vec2(0.5, 0.5)).norm() > 1e-9 ? line.start : line.end;
+    EXPECT_NEAR(away.y(), 0.0, 1e-9) << "a squash line of the flap's layers";
+    EXPECT_NEAR(std::abs(away.x() - 0.5), 0.5 * kTan, 1e-9);
+  }
+}
