@@ -101,37 +101,52 @@ std::string GestureModel::keepFaceAt(const Vec3& at)
 void GestureModel::nextLayer(const Pointer& at)
 {
   press_camera_ = at.camera;
-  const std::string said = nextLayerAt(surfacePoint(at));
+  const std::string said = walkLayers(surfacePoint(at), true);
   if (!said.empty())
     tellBeside(said);
 }
 
-std::string GestureModel::nextLayerAt(const Vec3& at)
+void GestureModel::previousLayer(const Pointer& at)
+{
+  press_camera_ = at.camera;
+  const std::string said = walkLayers(surfacePoint(at), false);
+  if (!said.empty())
+    tellBeside(said);
+}
+
+std::string GestureModel::walkLayers(const Vec3& at, bool down)
 {
   if (!paper_)
     return "";
   const Vec3 view = sight(press_camera_, at);
   if (!pickedHere(pick_.kind, at) || pick_.kind == Pick::Kind::None)
   {
-    // Nothing picked here yet: the layers under the right-click, top first.
+    // Nothing picked here yet: the layers under the pointer, top first; the top one is where a
+    // click picks, so up from it there is nothing.
     const std::vector<int> creases =
         mode_ == GestureMode::Fold ? creasesUnder(*paper_, at, view, settings_.snap.radius) : std::vector<int>{};
+    Pick under;
     if (mode_ == GestureMode::Drag)
-      pick_ = Pick{ Pick::Kind::Vertex, at, verticesUnder(*paper_, at, view, settings_.snap.radius), 0, revision_ };
+      under = Pick{ Pick::Kind::Vertex, at, verticesUnder(*paper_, at, view, settings_.snap.radius), 0, revision_ };
     else if (!creases.empty())
-      pick_ = Pick{ Pick::Kind::Crease, at, creases, 0, revision_ };
+      under = Pick{ Pick::Kind::Crease, at, creases, 0, revision_ };
     else
-      pick_ = Pick{ Pick::Kind::Face, at, facesUnder(*paper_, at, view), 0, revision_ };
-    if (pick_.candidates.empty())
+      under = Pick{ Pick::Kind::Face, at, facesUnder(*paper_, at, view), 0, revision_ };
+    if (under.candidates.empty())
     {
       pick_ = Pick{};
       showPicks();
       return "Nothing here to pick.";
     }
+    if (!down)
+      return "No layer above this one: a click here picks the top layer.";
+    pick_ = std::move(under);
   }
-  if (pick_.index + 1 >= pick_.candidates.size())
+  if (down && pick_.index + 1 >= pick_.candidates.size())
     return "No layer below this one.";
-  ++pick_.index;
+  if (!down && pick_.index == 0)
+    return "No layer above this one.";
+  pick_.index = down ? pick_.index + 1 : pick_.index - 1;
   if (pick_.kind == Pick::Kind::Face && mode_ == GestureMode::Fold)
     keep_point_ = creasePatternPoint(*paper_, pick_.current());
   showPicks();

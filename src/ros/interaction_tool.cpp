@@ -143,10 +143,12 @@ void InteractionNode::toolEvent(const ToolEvent& event)
         model_.foldMarks(M_PI, at);
       break;
     case ToolEvent::WHEEL:
-      if (toolHolds())
+      if (toolHolds() || event.wheel_delta == 0)
         break;
-      if (at.mouse_point)
+      if (at.mouse_point && event.wheel_delta > 0)  // turned away from the user: down
         model_.nextLayer(at);
+      else if (at.mouse_point)
+        model_.previousLayer(at);
       else
         tell(core::Message{ "Nothing under the pointer: the wheel walks through the layers under it.",
                             core::Vec3::Zero(), core::Message::Place::Beside });
@@ -178,8 +180,11 @@ void InteractionNode::toolKey(const ToolEvent& event, const core::Pointer& at)
   switch (action)
   {
     case ToolAction::NextLayer:
-      if (at.mouse_point)
+    case ToolAction::PreviousLayer:
+      if (at.mouse_point && action == ToolAction::NextLayer)
         model_.nextLayer(at);
+      else if (at.mouse_point)
+        model_.previousLayer(at);
       else
         tell(core::Message{ "Nothing under the pointer: Tab walks through the layers under it.", core::Vec3::Zero(),
                             core::Message::Place::Beside });

@@ -41,7 +41,7 @@ std::string toolHint(core::GestureMode mode, const core::GestureStatus& status)
   // One line in rviz's status bar: the layers under the pick, else the keys.
   if (status.layers > 1)
     return hint + " Layer " + std::to_string(status.picked_layer) + " of " + std::to_string(status.layers) +
-           ": the wheel or Tab for the next.";
+           ": the wheel or Tab for the next down, the other way or Shift+Tab up.";
   return hint + " Keys: 1-5 mode, Ctrl+Z undo, Ctrl+Y redo.";
 }
 

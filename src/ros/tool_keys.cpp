@@ -23,6 +23,9 @@ ToolAction toolKeyAction(const std::string& key, uint8_t modifiers)
       return ToolAction::Redo;
     return ToolAction::None;
   }
+  // Qt names Shift+Tab "Backtab"; a Tab with Shift held is the same key.
+  if (k == "backtab" || (k == "tab" && shift))
+    return ToolAction::PreviousLayer;
   if (k == "tab")
     return ToolAction::NextLayer;
   if (k == "return" || k == "enter")
@@ -46,7 +49,7 @@ ToolAction toolKeyAction(const std::string& key, uint8_t modifiers)
 
 bool repeats(ToolAction action)
 {
-  return action == ToolAction::NextLayer;
+  return action == ToolAction::NextLayer || action == ToolAction::PreviousLayer;
 }
 
 }  // namespace virtual_origami

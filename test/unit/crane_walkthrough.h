@@ -39,6 +39,7 @@ struct WalkthroughRow
 {
   int first = 0, last = 0;
   int gestures = 0;
+  int tool_gestures = -1;                 // with the Fold tool (a `tool` column), -1 when not given
   std::string how;                        // the row's instructions, as written
   std::map<int, std::vector<int>> marks;  // per fold step: +1 valley, −1 mountain, 0 unfold
   std::map<int, FlapDragNamed> drags;     // per fold step made by dragging a flap
@@ -47,9 +48,10 @@ struct WalkthroughRow
 struct Walkthrough
 {
   std::vector<WalkthroughRow> rows;
-  int steps = 0;           // "21 steps" in the text before the table
-  int total_gestures = 0;  // "**233 gestures**" there
-  std::string error;       // what could not be read; empty when all was
+  int steps = 0;                 // "21 steps" in the text before the table
+  int total_gestures = 0;        // "**233 gestures**" there
+  int total_tool_gestures = -1;  // "**N gestures with the Fold tool**" there, -1 when not given
+  std::string error;             // what could not be read; empty when all was
 };
 
 /// The marks named after `**N**:` up to the next step number: *valley*, *mountain*, *unfold*,
@@ -106,7 +108,11 @@ inline Walkthrough parseWalkthrough(const std::string& markdown, const std::stri
   }
   else
     w.error = "no \"N steps, **M gestures**\" before the table";
-  static const std::regex row(R"(\n\|\s*([0-9]+)(?:–([0-9]+))?\s*\|[^|]*\|\s*([0-9]+)\s*\|([^\n]*)\|)");
+  if (std::regex_search(text, m, std::regex(R"(\*\*([0-9]+) gestures with the Fold tool\*\*)")))
+    w.total_tool_gestures = std::stoi(m[1]);
+  // | steps | what | gestures | tool (optional) | how |
+  static const std::regex row(
+      R"(\n\|\s*([0-9]+)(?:–([0-9]+))?\s*\|[^|]*\|\s*([0-9]+)\s*\|(?:\s*([0-9]+)\s*\|)?([^\n]*)\|)");
   static const std::regex step_number(R"(\*\*([0-9]+)\*\*)");
   for (auto it = std::sregex_iterator(text.begin(), text.end(), row); it != std::sregex_iterator(); ++it)
   {
@@ -114,7 +120,9 @@ inline Walkthrough parseWalkthrough(const std::string& markdown, const std::stri
     r.first = std::stoi((*it)[1]);
     r.last = (*it)[2].matched ? std::stoi((*it)[2]) : r.first;
     r.gestures = std::stoi((*it)[3]);
-    r.how = (*it)[4];
+    if ((*it)[4].matched)
+      r.tool_gestures = std::stoi((*it)[4]);
+    r.how = (*it)[5];
     struct StepNumber
     {
       int step;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
 #include <vector>
 
 #include "crane_reference.h"
@@ -291,6 +292,52 @@ TEST_F(GestureModelTest, NextLayerDownPicksTheLayerUnderTheTopOneAndTheRingTakes
   EXPECT_EQ(ringFace(), status.picked_face);  // a press where the pick was turns the picked layer
   model.nextLayer(at(p3(0.25, 0.5)));
   EXPECT_EQ(out.lastSaid(), "No layer below this one.");
+}
+
+TEST_F(GestureModelTest, TheLayersUnderAPointAreWalkedDownToTheBottomAndUpToTheTop)
+{
+  load(stackOfLayers(2));  // four layers over [0, .5] × [0, .5]
+  model.chooseMode(GestureMode::Rotate, at(p3(0.25, 0.25)));
+  const Pointer here = at(p3(0.2, 0.3));
+  // Up from nothing picked: the top is where a click picks; nothing changes.
+  model.previousLayer(here);
+  EXPECT_EQ(out.lastSaid(), "No layer above this one: a click here picks the top layer.");
+  EXPECT_EQ(model.status().picked_layer, 0u);
+  EXPECT_EQ(model.status().picked_face, -1);
+  std::vector<int> down{ -1 };  // the face of each layer, from the top (the top one not picked)
+  for (uint32_t layer = 2; layer <= 4; ++layer)
+  {
+    model.nextLayer(here);
+    EXPECT_EQ(out.lastSaid(), "Picked layer " + std::to_string(layer) + " of 4.");
+    EXPECT_EQ(model.status().picked_layer, layer);
+    down.push_back(model.status().picked_face);
+  }
+  model.nextLayer(here);
+  EXPECT_EQ(out.lastSaid(), "No layer below this one.");
+  EXPECT_EQ(model.status().picked_layer, 4u);
+  for (uint32_t layer = 3; layer >= 1; --layer)
+  {
+    model.previousLayer(here);
+    EXPECT_EQ(out.lastSaid(), "Picked layer " + std::to_string(layer) + " of 4.");
+    EXPECT_EQ(model.status().picked_layer, layer);
+    if (layer > 1)
+      EXPECT_EQ(model.status().picked_face, down[layer - 1]) << "layer " << layer;
+  }
+  const int top = model.status().picked_face;
+  EXPECT_GE(top, 0);
+  EXPECT_EQ(std::set<int>({ top, down[1], down[2], down[3] }).size(), 4u) << "four different faces";
+  model.previousLayer(here);
+  EXPECT_EQ(out.lastSaid(), "No layer above this one.");
+  EXPECT_EQ(model.status().picked_layer, 1u);
+  EXPECT_EQ(model.status().picked_face, top);
+  // The top layer picked is the one a press turns, as a press with nothing picked does.
+  out.forget();
+  model.press(here);
+  const std::vector<Guides> guides = out.drawn<Guides>();
+  model.release(dragged(p3(0.2, 0.3), p3(0.2, 0.3)));
+  ASSERT_FALSE(guides.empty());
+  ASSERT_TRUE(guides.back().ring.has_value());
+  EXPECT_EQ(guides.back().ring->face, top);
 }
 
 TEST_F(GestureModelTest, MarkedCreasesFoldInFramesThenTheMarksGo)

@@ -2,7 +2,8 @@
 // it folds: every step in one row, in turn; every fold step either names the flap it drags — and
 // a drag from there to where the script puts that point makes the script's fold, of the kind
 // named (compound_fold.h) — or names its marks in the order of the script's creases with the
-// script's signs and the menu entry that folds them; the rows' gestures add up to the total said.
+// script's signs and the menu entry that folds them; the rows' gestures add up to the totals said
+// (with rviz's Interact tool, and with the Fold tool: the `tool` column).
 // For the models' tests (flapping_bird_test, frog_base_test).
 #pragma once
 
@@ -57,7 +58,7 @@ inline void expectTheWalkthroughFoldsTheScript(const Walkthrough& walkthrough, c
   ASSERT_TRUE(walkthrough.error.empty()) << walkthrough.error;
   const int steps = static_cast<int>(script.steps.size());
   EXPECT_EQ(walkthrough.steps, steps);
-  int next = 1, gestures = 0;
+  int next = 1, gestures = 0, tool_gestures = 0;
   for (const WalkthroughRow& row : walkthrough.rows)
   {
     SCOPED_TRACE("row " + std::to_string(row.first) + "–" + std::to_string(row.last));
@@ -65,6 +66,8 @@ inline void expectTheWalkthroughFoldsTheScript(const Walkthrough& walkthrough, c
     EXPECT_LE(row.first, row.last);
     next = row.last + 1;
     gestures += row.gestures;
+    tool_gestures += row.tool_gestures;
+    EXPECT_GE(row.tool_gestures, 0) << "the row gives the Fold tool's count (the `tool` column)";
     bool flat = false, right_angle = false;
     for (int step = row.first; step <= row.last && step <= steps; ++step)
     {
@@ -104,6 +107,7 @@ inline void expectTheWalkthroughFoldsTheScript(const Walkthrough& walkthrough, c
   }
   EXPECT_EQ(next, steps + 1) << "every step in a row";
   EXPECT_EQ(gestures, walkthrough.total_gestures) << "the rows' gestures add up to the total said";
+  EXPECT_EQ(tool_gestures, walkthrough.total_tool_gestures) << "and so do the Fold tool's";
 }
 
 }  // namespace virtual_origami::test

@@ -118,6 +118,8 @@ public:
   void foldByAssignment(double fraction, const Pointer& at);
   /// The next layer down under the last pick (or under the right-click).
   void nextLayer(const Pointer& at);
+  /// The next layer up under the last pick; from the top layer (or nothing picked there) none.
+  void previousLayer(const Pointer& at);
   void keepFace(const Pointer& at);
   /// Starts the animated fold on the marked creases to ±`angle` (π: flat; π/2: a right angle).
   void foldMarks(double angle, const Pointer& at);
@@ -273,7 +275,8 @@ private:
   bool pickedHere(Pick::Kind kind, const Vec3& at) const;
   std::string foldClick();
   std::string keepFaceAt(const Vec3& at);
-  std::string nextLayerAt(const Vec3& at);
+  /// One layer down (`down`) or up from the pick at `at`; what to tell the user.
+  std::string walkLayers(const Vec3& at, bool down);
   int keptFace() const;
   std::string startFold(double angle);
   bool previewFold(double fraction, std::string& message);
