@@ -64,7 +64,8 @@ TEST(FrogBase, DraggingEachFlapOpenAcrossTheCentreLineSquashesIt)
   const auto [back_left, left_layers] = layerOf(12, Vec2(0.9, 0.4));
   EXPECT_EQ(back_left, left_layers);
   expectTheScriptsFold(script(), frog(), 12, Vec2(0.9, 0.4), CompoundKind::Squash);
-  // The front right flap lies under a layer of the first squash: picked one layer down.
+  // The front right flap: its inner layer (the outer one is held at the centre line by the first
+  // squash), picked one layer down.
   EXPECT_EQ(layerOf(13, Vec2(0.1, 0.6)).first, 2);
   expectTheScriptsFold(script(), frog(), 13, Vec2(0.1, 0.6), CompoundKind::Squash);
   // The back right flap, at the bottom again.
