@@ -1,14 +1,16 @@
 // rostest: the interaction node driven through the Fold tool's interface, as the rviz tool
 // virtual_origami/Fold drives it (ToolEvent on `tool_events`, each with the line of sight through
-// the mouse), checked on `state` and `interaction_status`: the wheel and Tab walk the layers of a
-// square base, clicks mark creases and Enter or a double click folds on them, Ctrl+Z and Ctrl+Y
-// undo and redo, Esc cancels a drag, number keys choose the mode.
+// the mouse), checked on `state` and `interaction_status`: the wheel, Tab and Shift+Tab walk the
+// layers of a square base down and up, clicks mark creases and Enter or a double click folds on
+// them, Ctrl+Z and Ctrl+Y undo and redo, Esc cancels a drag, number keys choose the mode.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <set>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -200,7 +202,7 @@ TEST_F(ToolEvents, NumberKeysChooseTheModeAndTheHintSaysWhatAClickDoes)
   expectUnchanged();
 }
 
-TEST_F(ToolEvents, TheWheelAndTabWalkTheLayersOfASquareBaseDown)
+TEST_F(ToolEvents, TheWheelAndTabWalkTheLayersOfASquareBaseDownAndShiftTabAndTheWheelBackUp)
 {
   squareBase();
   const core::Expected<core::Paper> paper = fromMessage(client_.state());
@@ -220,27 +222,55 @@ TEST_F(ToolEvents, TheWheelAndTabWalkTheLayersOfASquareBaseDown)
     }
   ASSERT_GE(most, 4u) << "no stack in the square base";
   key("2");  // rotate mode picks faces
-  std::set<int> faces;
+  // Above the top layer nothing: a click there picks the top one.
+  wheel(at, -120);
+  EXPECT_NE(status_.message.find("No layer above this one"), std::string::npos) << status_.message;
+  EXPECT_EQ(status_.picked_layer, 0u);
+  std::map<uint32_t, int> face_of;
   for (uint32_t layer = 2; layer <= most; ++layer)
   {
     if (layer % 2)
       key("Tab", 0, layer > 3, at);  // a held Tab repeats
     else
-      wheel(at, layer == 2 ? -120 : 120);  // either way down
+      wheel(at, 120);  // turned away from the user: down
     EXPECT_EQ(status_.layers, most);
     EXPECT_EQ(status_.picked_layer, layer);
-    faces.insert(status_.picked_face);
+    face_of[layer] = status_.picked_face;
   }
-  EXPECT_EQ(faces.size(), most - 1);
-  wheel(at);
+  std::set<int> below;
+  for (const auto& [layer, face] : face_of)
+    below.insert(face);
+  EXPECT_EQ(below.size(), most - 1) << "a face of its own in each layer";
+  wheel(at, 120);
   EXPECT_NE(status_.message.find("No layer below this one"), std::string::npos) << status_.message;
   EXPECT_EQ(status_.picked_layer, most);
   EXPECT_NE(status_.hint.find("Layer " + std::to_string(most) + " of " + std::to_string(most)), std::string::npos)
       << status_.hint;
+  // Back up: the wheel towards the user, Shift+Tab (Qt names it Backtab, Shift held; a Tab with
+  // Shift is the same), through the same faces to the top.
+  for (uint32_t layer = most - 1; layer >= 1; --layer)
+  {
+    if (layer % 3 == 0)
+      wheel(at, -120);
+    else
+      key(layer % 3 == 1 ? "Backtab" : "Tab", ToolEvent::SHIFT, layer < most - 1, at);  // held, it repeats
+    EXPECT_EQ(status_.picked_layer, layer);
+    if (layer > 1)
+      EXPECT_EQ(status_.picked_face, face_of[layer]) << "layer " << layer;
+  }
+  EXPECT_NE(status_.hint.find("Layer 1 of " + std::to_string(most)), std::string::npos) << status_.hint;
+  EXPECT_NE(status_.message.find("Picked layer 1 of"), std::string::npos) << status_.message;
+  const int top = status_.picked_face;
+  EXPECT_GE(top, 0);
+  EXPECT_EQ(below.count(top), 0u) << "the top layer is none of those below";
+  wheel(at, -120);
+  EXPECT_NE(status_.message.find("No layer above this one"), std::string::npos) << status_.message;
+  EXPECT_EQ(status_.picked_layer, 1u);
+  EXPECT_EQ(status_.picked_face, top);
   // Off the paper and its margin the wheel picks nothing and lets go of nothing.
   wheel(p3(3, 3));
   EXPECT_NE(status_.message.find("Nothing under the pointer"), std::string::npos) << status_.message;
-  EXPECT_EQ(status_.picked_layer, most);
+  EXPECT_EQ(status_.picked_layer, 1u);
   expectUnchanged();
 }
 
