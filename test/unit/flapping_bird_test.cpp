@@ -46,9 +46,13 @@ TEST(FlappingBird, TheScriptFoldsFlatUpToTheWings)
   ASSERT_EQ(bird().size(), script().steps.size() + 1);
   for (size_t i = 1; i + 2 < bird().size(); ++i)
     for (const Edge& e : bird()[i].edges)
+    {
       if (e.isCrease())
+      {
         EXPECT_TRUE(std::abs(e.fold_angle) < 1e-9 || std::abs(std::abs(e.fold_angle) - M_PI) < 1e-9)
             << "after step " << i << ": a crease at " << e.fold_angle;
+      }
+    }
 }
 
 TEST(FlappingBird, DraggingTheBirdBasesLowerFlapsUpAndOutReverseFoldsThemInside)

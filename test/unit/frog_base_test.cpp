@@ -78,8 +78,12 @@ TEST(FrogBase, TheFourSquashesLayTheFlapsOnTheKiteAboutTheCentreLine)
 {
   const Paper& base = frog().back();
   for (const Edge& e : base.edges)
+  {
     if (e.isCrease())
+    {
       EXPECT_TRUE(std::abs(e.fold_angle) < 1e-9 || std::abs(std::abs(e.fold_angle) - M_PI) < 1e-9) << e.fold_angle;
+    }
+  }
   // The closed point C, the four corners at the open point B half a diagonal away; every
   // flap's folded edge (the midlines' ends) on the centre line CB half a side from C; the
   // squash lines' ends at the kite's side points, tan(22.5°) / 2 from the corners.
@@ -154,4 +158,34 @@ TEST(FrogBase, AFlapLetGoOnTheSideItWasPressedFromFoldsOverOnItsSquashLineInstea
     EXPECT_NEAR(away.y(), 0.0, 1e-9) << "a squash line of the flap's layers";
     EXPECT_NEAR(std::abs(away.x() - 0.5), 0.5 * kTan, 1e-9);
   }
+}
+
+TEST(FrogBase, EachFoldAPressFindsAtTheClosedPointLandsThePressedPointWhereItsFoldPutsIt)
+{
+  // Where 16 creases meet, the press finds its folds by moving the parts of the paper each one's
+  // creases part (compound_fold.cpp): each landing is where the flat fold of its creases takes
+  // the pressed point, the face that stays bit for bit (the first 150 of them, which fold flat).
+  const Paper& before = frog()[10];
+  const Vec2 cp(0.4, 0.1);
+  const int face = faceContaining(before, cp);
+  ASSERT_GE(face, 0);
+  const Vec3 press = facePose(before, face) * Vec3(cp.x(), cp.y(), 0);
+  Expected<CompoundFolds> folds = CompoundFolds::at(before, face, press);
+  ASSERT_TRUE(folds.ok()) << folds.message();
+  ASSERT_GT(folds->outcomes().size(), 150u);
+  int resolved = 0;
+  for (size_t i = 0; i < 150; ++i)
+  {
+    const Expected<CompoundFolds::Resolved> fold = folds->resolve(i);
+    if (!fold)
+      continue;
+    ++resolved;
+    Paper folded = before;
+    ASSERT_TRUE(flatFold(folded, fold->request).ok());
+    const Eigen::Isometry3d motion = facePose(folded, face) * facePose(before, face).inverse();
+    EXPECT_LE((motion * press - folds->outcomes()[i].landing).norm(), 1e-9) << "outcome " << i;
+    for (int v : before.faces[folds->fixedFace()].vertices)
+      EXPECT_EQ(folded.vertices[v].folded, before.vertices[v].folded);
+  }
+  EXPECT_GT(resolved, 10);
 }
