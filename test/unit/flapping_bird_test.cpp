@@ -91,3 +91,16 @@ TEST(FlappingBird, TheWalkthroughNamesTheScriptsFoldsAndItsGesturesAddUp)
                                                                                                 "bird");
   virtual_origami::test::expectTheWalkthroughFoldsTheScript(walkthrough, script(), bird());
 }
+
+TEST(FlappingBird, TheShippedSequenceFoldsTheScriptsPaperStepByStep)
+{
+  // sequences/flapping_bird.json, what the mouse issues (the rostest flapping_bird_by_mouse checks that), folds
+  // without ROS through the same papers as the script, to 1e-6 after a rigid fit.
+  const Expected<FoldSequence> shipped = shippedSequence("flapping_bird.json");
+  ASSERT_TRUE(shipped.ok()) << shipped.message();
+  const Expected<std::vector<Paper>> states = modelStates(*shipped);
+  ASSERT_TRUE(states.ok()) << states.message();
+  ASSERT_EQ(states->size(), bird().size());
+  for (size_t i = 1; i < states->size(); ++i)
+    EXPECT_LE(rigidFitDistance((*states)[i], bird()[i]), 1e-6) << "after step " << i;
+}

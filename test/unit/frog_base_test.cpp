@@ -189,3 +189,16 @@ TEST(FrogBase, EachFoldAPressFindsAtTheClosedPointLandsThePressedPointWhereItsFo
   }
   EXPECT_GT(resolved, 10);
 }
+
+TEST(FrogBase, TheShippedSequenceFoldsTheScriptsPaperStepByStep)
+{
+  // sequences/frog_base.json, what the mouse issues (the rostest frog_base_by_mouse checks that), folds
+  // without ROS through the same papers as the script, to 1e-6 after a rigid fit.
+  const Expected<FoldSequence> shipped = shippedSequence("frog_base.json");
+  ASSERT_TRUE(shipped.ok()) << shipped.message();
+  const Expected<std::vector<Paper>> states = modelStates(*shipped);
+  ASSERT_TRUE(states.ok()) << states.message();
+  ASSERT_EQ(states->size(), frog().size());
+  for (size_t i = 1; i < states->size(); ++i)
+    EXPECT_LE(rigidFitDistance((*states)[i], frog()[i]), 1e-6) << "after step " << i;
+}
