@@ -1,8 +1,10 @@
-// The traditional frog base's four squash folds (test/data/frog_base_reference.json): the square
-// base, the squash lines creased through all layers, and each of the four flaps squashed by one
-// drag (compound_fold.h) — the front flaps pressed from above, the back ones on the bottom layer,
-// one of them under another flap's layers — against the script to 1e-6; the kite they make against
-// its closed form; docs/INTERACTION.md's walkthrough ("## Fold a frog base") against the script.
+// The traditional frog base (test/data/frog_base_reference.json): the square base, the squash lines
+// creased through all layers, and each of the four flaps squashed by one drag (compound_fold.h) —
+// the front flaps pressed from above, the back ones on the bottom layer, one of them under another
+// flap's layers — then the petal folds' creases through all layers and each squashed flap petal
+// folded by one drag, against the script to 1e-6; the kite of the squashes and the frog base
+// against their closed forms; docs/INTERACTION.md's walkthrough ("## Fold a frog base") against
+// the script.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -53,6 +55,46 @@ std::pair<int, int> layerOf(int step, const Vec2& cp)
 }
 
 const double kTan = std::tan(M_PI / 8);  // the squash lines halve the 45° at the closed point
+constexpr int kSquashed = 14;            // the steps up to the fourth squash fold
+
+/// `cp` turned a quarter turn about the centre of the sheet `turns` times (the four flaps alike).
+Vec2 quarterTurned(Vec2 cp, int turns)
+{
+  for (int k = 0; k < turns; ++k)
+    cp = Vec2(1 - cp.y(), cp.x());
+  return cp;
+}
+
+/// Every crease of `paper` flat (0 or ±180°).
+void expectFlat(const Paper& paper)
+{
+  for (const Edge& e : paper.edges)
+  {
+    if (e.isCrease())
+    {
+      EXPECT_TRUE(std::abs(e.fold_angle) < 1e-9 || std::abs(std::abs(e.fold_angle) - M_PI) < 1e-9) << e.fold_angle;
+    }
+  }
+}
+
+/// Every vertex of `paper` within the kite from `c` to `b` whose side points lie `side_along`
+/// along and `side_across` across: no layer sticks out.
+void expectWithinTheKite(const Paper& paper, const Vec3& c, const Vec3& b, double side_along, double side_across)
+{
+  const Vec3 axis = (b - c).normalized();
+  const double length = (b - c).norm();
+  for (const Vertex& v : paper.vertices)
+  {
+    const Vec3 d = v.folded - c;
+    const double along = d.dot(axis), across = (d - along * axis).norm();
+    EXPECT_GE(along, -1e-9);
+    EXPECT_LE(along, length + 1e-9);
+    // The kite's half width at `along`: widening from C to the side points, narrowing to B.
+    const double half_width =
+        along <= side_along ? side_across * along / side_along : side_across * (length - along) / (length - side_along);
+    EXPECT_LE(across, half_width + 1e-9) << v.crease_pattern.transpose();
+  }
+}
 }  // namespace
 
 TEST(FrogBase, DraggingEachFlapOpenAcrossTheCentreLineSquashesIt)
@@ -76,14 +118,8 @@ TEST(FrogBase, DraggingEachFlapOpenAcrossTheCentreLineSquashesIt)
 
 TEST(FrogBase, TheFourSquashesLayTheFlapsOnTheKiteAboutTheCentreLine)
 {
-  const Paper& base = frog().back();
-  for (const Edge& e : base.edges)
-  {
-    if (e.isCrease())
-    {
-      EXPECT_TRUE(std::abs(e.fold_angle) < 1e-9 || std::abs(std::abs(e.fold_angle) - M_PI) < 1e-9) << e.fold_angle;
-    }
-  }
+  const Paper& base = frog()[kSquashed];
+  expectFlat(base);
   // The closed point C, the four corners at the open point B half a diagonal away; every
   // flap's folded edge (the midlines' ends) on the centre line CB half a side from C; the
   // squash lines' ends at the kite's side points, tan(22.5°) / 2 from the corners.
@@ -111,19 +147,54 @@ TEST(FrogBase, TheFourSquashesLayTheFlapsOnTheKiteAboutTheCentreLine)
     left += axis.cross(p - c).dot(normal) > 0;
   EXPECT_EQ(left, 4);
   // Every vertex within the kite C, side, B, side: no layer sticks out.
-  for (const Vertex& v : base.vertices)
+  const double side_along = (sides[0] - c).dot(axis);
+  expectWithinTheKite(base, c, b, side_along, ((sides[0] - c) - side_along * axis).norm());
+}
+
+TEST(FrogBase, LiftingEachSquashedFlapsRawEdgeUpOverTheLineThroughItsSidePointsPetalFoldsIt)
+{
+  // Pressed on the squashed flap's top layer below the line through its side points, beside the
+  // centre line, and dragged up to where the fold puts that point; the flaps alike a quarter turn
+  // apart on the sheet (the front left flap on top, then the back left, back right and front
+  // right ones, each pressed on its own layer).
+  for (int k = 0; k < 4; ++k)
+    expectTheScriptsFold(script(), frog(), kSquashed + 6 + k, quarterTurned(Vec2(0.47, 0.06), k), CompoundKind::Petal);
+}
+
+TEST(FrogBase, TheFourPetalFoldsMakeTheFrogBase)
+{
+  // The kite of the squashes, C the closed point, B the open one half a diagonal away; the
+  // petal folds' hinge crosses it halfway from C to B, between the side points (where the
+  // lower edges' creases, halving the 45° at B, meet its edges).
+  const Paper& base = frog().back();
+  ASSERT_EQ(frog().size(), script().steps.size() + 1);
+  expectFlat(base);
+  const Vec3 c = at(base, Vec2(0.5, 0.5)), b = at(base, Vec2(0, 0));
+  for (const Vec2& corner : { Vec2(1, 0), Vec2(1, 1), Vec2(0, 1) })
+    EXPECT_LE((at(base, corner) - b).norm(), 1e-9) << "every corner at the open point";
+  EXPECT_NEAR((b - c).norm(), std::sqrt(0.5), 1e-9);
+  const Vec3 axis = (b - c).normalized();
+  const double hinge = std::sqrt(0.5) / 2, side = hinge * kTan;
+  for (int k = 0; k < 4; ++k)
   {
-    const Vec3 d = v.folded - c;
-    const double along = d.dot(axis), across = (d - along * axis).norm();
-    EXPECT_GE(along, -1e-9);
-    EXPECT_LE(along, std::sqrt(0.5) + 1e-9);
-    // The kite's half width at `along`: widening from C to the side points, narrowing to B.
-    const double side_along = (sides[0] - c).dot(axis), side_across = ((sides[0] - c) - side_along * axis).norm();
-    const double half_width = along <= side_along ?
-                                  side_across * along / side_along :
-                                  side_across * (std::sqrt(0.5) - along) / (std::sqrt(0.5) - side_along);
-    EXPECT_LE(across, half_width + 1e-9) << v.crease_pattern.transpose();
+    SCOPED_TRACE("flap " + std::to_string(k));
+    // Each flap's point, its raw edge's middle (half a side from C before), turned up over the
+    // hinge onto the centre line: 2 * hinge - 1/2 = (sqrt(2) - 1) / 2 from C.
+    EXPECT_LE((at(base, quarterTurned(Vec2(0.5, 0), k)) - (c + (2 * hinge - 0.5) * axis)).norm(), 1e-9);
+    // The sides collapsed in: the squash lines' ends (the kite's side points before) on the
+    // centre line, their distance from B (1/2 - tan(22.5°)/2) laid along it from B.
+    for (const Vec2& end : { Vec2(0.5 - 0.5 * kTan, 0), Vec2(0.5 + 0.5 * kTan, 0) })
+      EXPECT_LE((at(base, quarterTurned(end, k)) - (b - (0.5 - 0.5 * kTan) * axis)).norm(), 1e-9) << end.transpose();
+    // The side points stay: on the hinge, tan(22.5°) of it either side of the centre line.
+    for (const Vec2& q : { Vec2(hinge, 0.5 - hinge), Vec2(1 - hinge, 0.5 - hinge) })
+    {
+      const Vec3 d = at(base, quarterTurned(q, k)) - c;
+      EXPECT_NEAR(d.dot(axis), hinge, 1e-9) << q.transpose();
+      EXPECT_NEAR((d - d.dot(axis) * axis).norm(), side, 1e-9) << q.transpose();
+    }
   }
+  // Nothing sticks out of the kite; its widest, at the side points, is what the squashes made.
+  expectWithinTheKite(base, c, b, 0.5, 0.5 * kTan);
 }
 
 TEST(FrogBase, TheWalkthroughNamesTheScriptsFoldsAndItsGesturesAddUp)
