@@ -1,6 +1,7 @@
-// rostest frog_base_by_mouse: The traditional frog base's four squash folds (the square base, the squash lines creased
-// through all layers, each flap squashed by one drag, two of them on the bottom layer and one under another flap's
-// layer) folded through the interaction node alone, as the rviz tool virtual_origami/Fold drives it (ToolEvents;
+// rostest frog_base_by_mouse: The traditional frog base (the square base, the squash lines creased through all layers,
+// each flap squashed by one drag, two of them on the bottom layer and one under another flap's layer; the petal folds'
+// creases through all layers, each squashed flap petal folded by one drag, two of them a few layers down) folded
+// through the interaction node alone, as the rviz tool virtual_origami/Fold drives it (ToolEvents;
 // `~driver: markers` drives it as rviz's Interact tool does instead), step by step against the paper the reference
 // script folds, as docs/INTERACTION.md's walkthrough "Fold a frog base" says (model_by_mouse.h): every step to 1e-6
 // after a rigid fit, every row's gestures and the total as the text counts them; the shipped sequence is what the
