@@ -1,9 +1,12 @@
 #include "virtual_origami/core/compound_fold.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <map>
+#include <numeric>
+#include <optional>
 #include <set>
 
 #include <Eigen/Geometry>
@@ -18,11 +21,13 @@ namespace virtual_origami::core
 {
 namespace
 {
-/// How many ways of folding the creases of one vertex set are tried, at most: a press must
-/// answer at once.
+/// How many ways of folding the creases of one vertex set are tried, at most (each checked whole,
+/// or dropped with the ways it begins at a vertex that cannot fold flat): a press must answer at
+/// once.
 constexpr size_t kMaxAssignments = 20000;
-/// Faces placed, summed over the folds tried, at most per press (each fold tried places every
-/// face): a press on a large crease pattern answers within a second or so.
+/// Faces moved, summed over the folds tried, at most per press (each fold tried moves the parts
+/// of the paper its creases part, counted as every face): a press on a large crease pattern
+/// answers within a second or so.
 constexpr size_t kMaxFacesPlaced = 2000000;
 /// Vertex sets with more creases than this are left out (2^n assignments).
 constexpr size_t kMaxPool = 22;
@@ -54,45 +59,6 @@ struct Incidence
       }
   }
 };
-
-/// Kawasaki at an inner vertex for the creases folded (`folded(e)`): the angles between them,
-/// taken alternately, sum to 180°.
-bool foldsFlatAt(const Paper& paper, int v, const std::vector<int>& creases, const std::function<bool(int)>& folded)
-{
-  std::vector<double> directions;
-  for (int e : creases)
-    if (folded(e))
-    {
-      const Vec2 d = paper.vertices[paper.edges[e].otherVertex(v)].crease_pattern - paper.vertices[v].crease_pattern;
-      directions.push_back(std::atan2(d.y(), d.x()));
-    }
-  if (directions.empty())
-    return true;
-  if (directions.size() % 2)
-    return false;
-  std::sort(directions.begin(), directions.end());
-  double alternating = 0.0;
-  for (size_t i = 0; i < directions.size(); ++i)
-  {
-    const double next = i + 1 < directions.size() ? directions[i + 1] : directions[0] + 2 * M_PI;
-    alternating += (i % 2 ? -1.0 : 1.0) * (next - directions[i]);
-  }
-  return std::abs(alternating) < 1e-9;
-}
-
-Eigen::Isometry3d motionOf(const Paper& paper, const std::vector<Vec3>& after, int face)
-{
-  const std::vector<int>& vs = paper.faces[face].vertices;
-  Eigen::Matrix3Xd from(3, vs.size()), to(3, vs.size());
-  for (size_t i = 0; i < vs.size(); ++i)
-  {
-    from.col(static_cast<Eigen::Index>(i)) = paper.vertices[vs[i]].folded;
-    to.col(static_cast<Eigen::Index>(i)) = after[vs[i]];
-  }
-  Eigen::Isometry3d motion;
-  motion.matrix() = Eigen::umeyama(from, to, false);
-  return motion;
-}
 
 /// Whether `other` lies above `face` along +z, by a face order of `paper`.
 bool aboveAlongZ(const Paper& paper, const FaceOrder& o)
@@ -172,8 +138,8 @@ int farthestFace(const Paper& paper, int face)
 }
 
 /// The search for the flat folds of a pressed face: every way of folding or unfolding a set of
-/// creases that folds flat at each inner vertex (Kawasaki, checked as soon as a vertex's creases
-/// are decided), closes over the whole paper and moves the pressed face.
+/// creases that folds flat at each inner vertex it changes (Kawasaki), closes over the whole paper
+/// and moves the pressed face.
 class OutcomeSearch
 {
 public:
@@ -184,11 +150,41 @@ public:
     , press_(press)
     , incidence_(paper)
     , folded_now_(paper.edges.size(), 0)
-    , root_pose_(facePose(paper, fixed_face))
+    , directions_(paper.vertices.size())
+    , vertex_face_(paper.vertices.size(), 0)
+    , turns_(paper.edges.size())
+    , part_(paper.faces.size(), 0)
     , tolerance_(1e-7 * paper.scale())
   {
     for (size_t e = 0; e < paper.edges.size(); ++e)
       folded_now_[e] = isFolded(paper.edges[e].fold_angle);
+    for (size_t v = 0; v < paper.vertices.size(); ++v)
+      if (incidence_.inner[v])
+      {
+        for (int e : incidence_.creases[v])
+        {
+          const Vec2 d = paper.vertices[paper.edges[e].otherVertex(static_cast<int>(v))].crease_pattern -
+                         paper.vertices[v].crease_pattern;
+          directions_[v].emplace_back(std::atan2(d.y(), d.x()), e);
+        }
+        std::sort(directions_[v].begin(), directions_[v].end());
+      }
+    for (size_t f = 0; f < paper.faces.size(); ++f)
+    {
+      poses_.push_back(facePose(paper, static_cast<int>(f)));
+      for (int v : paper.faces[f].vertices)
+        vertex_face_[v] = static_cast<int>(f);
+    }
+    // The turn of a crease's second face relative to its first, in the paper's frame, when the
+    // crease is unfolded (0) or folded flat (1) from its angle now.
+    for (size_t e = 0; e < paper.edges.size(); ++e)
+      if (paper.edges[e].isCrease())
+      {
+        const int f = paper.edges[e].faces[0], i = static_cast<int>(e);
+        const Eigen::Isometry3d now = hingeTransform(paper, i, f, paper.edges[e].fold_angle).inverse();
+        for (const int folded : { 0, 1 })
+          turns_[e][folded] = poses_[f] * hingeTransform(paper, i, f, folded ? M_PI : 0.0) * now * poses_[f].inverse();
+      }
   }
 
   bool inner(int v) const
@@ -230,7 +226,9 @@ public:
   }
 
   /// Every way of folding the creases at `vertices` and `line_creases` (at least one of those
-  /// changing, when given) into `outcomes`.
+  /// changing, when given) into `outcomes`: the ways changing one crease first, then two, and so
+  /// on, so that the folds a hand makes (a few creases at a corner) are found before the cap on
+  /// the ways tried, also at a vertex where many creases meet (a frog base's centre has 16).
   void foldCreasesAt(const std::vector<int>& vertices, const std::vector<int>& line_creases, bool from_line, bool patch)
   {
     pool_ = line_creases;
@@ -244,26 +242,22 @@ public:
     position_.assign(paper_.edges.size(), -1);
     for (size_t i = 0; i < pool_.size(); ++i)
       position_[pool_[i]] = static_cast<int>(i);
-    // Each inner vertex a pool crease meets is checked once its last pool crease is decided.
-    check_at_.assign(pool_.size(), {});
-    std::set<int> touched;
-    for (int e : pool_)
-      for (int v : paper_.edges[e].vertices)
-        if (inner(v))
-          touched.insert(v);
-    for (int v : touched)
-    {
-      int last = -1;
-      for (int e : incidence_.creases[v])
-        last = std::max(last, position_[e]);
-      check_at_[last].push_back(v);
-    }
     line_creases_ = line_creases;
     from_line_ = from_line;
     patch_ = patch;
-    state_.assign(pool_.size(), 0);
+    state_.resize(pool_.size());
+    for (size_t i = 0; i < pool_.size(); ++i)
+      state_[i] = folded_now_[pool_[i]];
+    // Each inner vertex is checked once its last crease in the pool is decided: a way failing
+    // Kawasaki there is dropped with every way it begins (a petal fold changes 8 of 18 creases).
+    check_at_.assign(pool_.size(), {});
+    for (size_t i = 0; i < pool_.size(); ++i)
+      for (int v : paper_.edges[pool_[i]].vertices)
+        if (inner(v) && lastInPool(v) == static_cast<int>(i))
+          check_at_[i].push_back(v);
     assignments_ = 0;
-    decide(0);
+    for (size_t changes = 1; changes <= pool_.size(); ++changes)
+      change(0, changes);
   }
 
   std::vector<CompoundOutcome> outcomes;
@@ -274,25 +268,157 @@ private:
     return position_[e] >= 0 ? state_[position_[e]] != 0 : folded_now_[e] != 0;
   }
 
-  void decide(size_t i)
+  bool capped() const
   {
-    if (assignments_ >= kMaxAssignments || faces_placed_ >= kMaxFacesPlaced)
+    return assignments_ >= kMaxAssignments || faces_placed_ >= kMaxFacesPlaced;
+  }
+
+  /// The last position in the pool of a crease at `v`.
+  int lastInPool(int v) const
+  {
+    int last = -1;
+    for (int e : incidence_.creases[v])
+      last = std::max(last, position_[e]);
+    return last;
+  }
+
+  /// Whether the vertices whose creases are all decided once the `i`-th is fold flat (Kawasaki)
+  /// where a crease of theirs changes.
+  bool decidedFoldFlat(size_t i) const
+  {
+    for (int v : check_at_[i])
+      for (int e : incidence_.creases[v])
+        if (folded(e) != (folded_now_[e] != 0))
+        {
+          if (!kawasaki(v))
+            return false;
+          break;
+        }
+    return true;
+  }
+
+  /// Every way of changing `left` more pool creases from the `i`-th on (in the order of the
+  /// changed creases' positions: the first changing first).
+  void change(size_t i, size_t left)
+  {
+    if (capped())
       return;
-    if (i == pool_.size())
+    if (left == 0)
     {
       ++assignments_;
-      record();
+      if (foldsFlat())
+        record();
       return;
     }
-    for (const char s : { folded_now_[pool_[i]], static_cast<char>(!folded_now_[pool_[i]]) })
+    if (i + left > pool_.size())
+      return;
+    state_[i] = !folded_now_[pool_[i]];
+    if (decidedFoldFlat(i))
+      change(i + 1, left - 1);
+    else
+      ++assignments_;
+    state_[i] = folded_now_[pool_[i]];
+    if (i + left < pool_.size())
     {
-      state_[i] = s;
-      bool flat = true;
-      for (int v : check_at_[i])
-        flat = flat && foldsFlatAt(paper_, v, incidence_.creases[v], [this](int e) { return folded(e); });
-      if (flat)
-        decide(i + 1);
+      if (decidedFoldFlat(i))
+        change(i + 1, left);
+      else
+        ++assignments_;
     }
+  }
+
+  /// Kawasaki at every inner vertex a changed crease meets (the others lie flat as before).
+  bool foldsFlat()
+  {
+    checked_.clear();
+    for (size_t k = 0; k < pool_.size(); ++k)
+      if (state_[k] != folded_now_[pool_[k]])
+        for (int v : paper_.edges[pool_[k]].vertices)
+          if (inner(v) && std::find(checked_.begin(), checked_.end(), v) == checked_.end())
+          {
+            if (!kawasaki(v))
+              return false;
+            checked_.push_back(v);
+          }
+    return true;
+  }
+
+  /// Kawasaki at `v` for the creases as decided: the angles between the folded creases, taken
+  /// alternately, sum to 180° (their directions sorted once, at the start).
+  bool kawasaki(int v) const
+  {
+    double alternating = 0.0, first = 0.0, last = 0.0;
+    int count = 0;
+    for (const auto& [direction, e] : directions_[v])
+      if (folded(e))
+      {
+        if (count == 0)
+          first = direction;
+        else
+          alternating += (count % 2 ? 1.0 : -1.0) * (direction - last);
+        last = direction;
+        ++count;
+      }
+    if (count == 0)
+      return true;
+    if (count % 2)
+      return false;
+    alternating -= first + 2 * M_PI - last;  // the angle closing the turn, taken with the even ones
+    return std::abs(alternating) < 1e-9;
+  }
+
+  /// How the changes move the paper: the parts the changed creases divide it into (`part_`, by
+  /// the faces joined across unchanged creases) each move rigidly, the fixed face's part stays,
+  /// and across a changed crease the next part turns about it by the change of its angle (its
+  /// faces as they lie now). Per part its motion, or none when the parts' motions disagree (the
+  /// changed angles do not close) or a part is not reached. Faster than placing every face
+  /// anew from the crease pattern, which a press would do for each of thousands of ways.
+  std::optional<std::vector<Eigen::Isometry3d>> partMotions(const std::vector<std::pair<int, char>>& changes)
+  {
+    std::iota(part_.begin(), part_.end(), 0);
+    const std::function<int(int)> root = [&](int f) { return part_[f] == f ? f : part_[f] = root(part_[f]); };
+    for (size_t e = 0; e < paper_.edges.size(); ++e)
+      if (paper_.edges[e].isCrease() && (position_[e] < 0 || state_[position_[e]] == folded_now_[e]))
+        part_[root(paper_.edges[e].faces[0])] = root(paper_.edges[e].faces[1]);
+    for (size_t f = 0; f < part_.size(); ++f)
+      part_[f] = root(static_cast<int>(f));
+    std::vector<Eigen::Isometry3d> motion(paper_.faces.size());
+    std::vector<char> known(paper_.faces.size(), 0);
+    motion[part_[fixed_face_]] = Eigen::Isometry3d::Identity();
+    known[part_[fixed_face_]] = 1;
+    for (bool progress = true; progress;)
+    {
+      progress = false;
+      for (const auto& [e, folded] : changes)
+      {
+        const int f = paper_.edges[e].faces[0], g = paper_.edges[e].faces[1];
+        const int a = part_[f], b = part_[g];
+        if (known[a] == known[b] && !known[a])
+          continue;
+        const Eigen::Isometry3d& turn = turns_[e][folded ? 1 : 0];
+        if (!known[b])
+        {
+          motion[b] = motion[a] * turn;
+          known[b] = 1;
+          progress = true;
+        }
+        else if (!known[a])
+        {
+          motion[a] = motion[b] * turn.inverse();
+          known[a] = 1;
+          progress = true;
+        }
+        else
+          for (int v : paper_.faces[g].vertices)
+            if ((motion[b] * paper_.vertices[v].folded - motion[a] * turn * paper_.vertices[v].folded).norm() >
+                tolerance_)
+              return std::nullopt;
+      }
+    }
+    for (size_t f = 0; f < part_.size(); ++f)
+      if (!known[part_[f]])
+        return std::nullopt;
+    return motion;
   }
 
   /// The outcome of the creases as decided, when it changes something new, closes and moves
@@ -309,17 +435,11 @@ private:
       }
     if (changes.empty() || !on_line || !seen_.insert(changes).second)
       return;
-    std::vector<double> angles(paper_.edges.size());
-    for (size_t e = 0; e < paper_.edges.size(); ++e)
-      angles[e] = paper_.edges[e].fold_angle;
-    for (const auto& [e, f] : changes)
-      angles[e] = f ? M_PI : 0.0;  // either direction puts the faces in the same places
     faces_placed_ += paper_.faces.size();
-    const Expected<std::vector<Vec3>> placed =
-        foldedPositionsFromAngles(paper_, angles, fixed_face_, root_pose_, tolerance_);
-    if (!placed)
+    const std::optional<std::vector<Eigen::Isometry3d>> motions = partMotions(changes);
+    if (!motions)
       return;
-    const Vec3 landing = motionOf(paper_, *placed, face_) * press_;
+    const Vec3 landing = (*motions)[part_[face_]] * press_;
     if ((landing - press_).norm() < 1e-6 * paper_.scale())
       return;
     CompoundOutcome outcome;
@@ -330,7 +450,10 @@ private:
     }
     outcome.landing = landing;
     for (size_t v = 0; v < paper_.vertices.size(); ++v)
-      outcome.disturbance += ((*placed)[v] - paper_.vertices[v].folded).norm();
+    {
+      const Vec3& at = paper_.vertices[v].folded;
+      outcome.disturbance += ((*motions)[part_[vertex_face_[v]]] * at - at).norm();
+    }
     outcome.line_creases = line_creases_;
     outcome.from_line = from_line_;
     outcome.patch = patch_;
@@ -342,12 +465,17 @@ private:
   const Vec3 press_;
   const Incidence incidence_;
   std::vector<char> folded_now_;
-  const Eigen::Isometry3d root_pose_;
+  std::vector<std::vector<std::pair<double, int>>> directions_;  // per inner vertex, its creases by direction
+  std::vector<int> checked_;                                     // the vertices foldsFlat checked
+  std::vector<std::vector<int>> check_at_;                       // per pool position, the vertices decided with it
+  std::vector<Eigen::Isometry3d> poses_;                         // each face's pose as it lies now
+  std::vector<int> vertex_face_;                                 // a face of each vertex
+  std::vector<std::array<Eigen::Isometry3d, 2>> turns_;          // per crease, unfolded and folded
+  std::vector<int> part_;                                        // per face, the part it moves with (partMotions)
   const double tolerance_;
   std::set<std::vector<std::pair<int, char>>> seen_;  // the change sets recorded
   // The crease set being decided.
   std::vector<int> pool_, position_, line_creases_;
-  std::vector<std::vector<int>> check_at_;
   std::vector<char> state_;
   bool from_line_ = false, patch_ = false;
   size_t assignments_ = 0;

@@ -3,6 +3,7 @@
 // pointer is on, as far along as the pointer is; the release commits it flat.
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <cmath>
 
 #include "virtual_origami/core/gesture_model.h"
@@ -15,8 +16,10 @@ namespace
 /// A release this far from where the fold takes the pressed point, of the way there, folds
 /// nothing: the pointer is nearer the press than the fold.
 constexpr double kMissedFold = 0.5;
-/// Folds whose directions the press works out, at most (each a flat fold or a few).
+/// Folds whose directions the press works out, at most (each a flat fold or a few), and for how
+/// long at most: a press where many folds meet (a frog base's closed point) stays within a frame.
 constexpr size_t kResolvedAtPress = 64;
+constexpr std::chrono::milliseconds kResolvingAtPress(10);
 }  // namespace
 
 void GestureModel::pressFlap()
@@ -46,8 +49,13 @@ void GestureModel::pressFlap()
   {
     // Their fold directions now, while the press is still: the previews then only ask for
     // frames (of many folds, the rest when the pointer first comes near them).
+    const auto until = std::chrono::steady_clock::now() + kResolvingAtPress;
     for (size_t i = 0; i < std::min(folds->outcomes().size(), kResolvedAtPress); ++i)
+    {
       folds->resolve(i);
+      if (std::chrono::steady_clock::now() > until)
+        break;
+    }
     flap_ = std::move(*folds);
   }
 }

@@ -1,9 +1,10 @@
-// The crane walkthrough of docs/INTERACTION.md ("## Fold a crane") read as a person reads it:
-// per row of its table the steps, the gestures they take, and for each fold step the marks it
-// names (`**20**: ... *valley* ×3`), in the order of the reference's creases, or the flap it
-// drags (`**7**: press at (0.33, 0.17) ... *squash fold*`). The
-// rostest crane_by_mouse marks what the text says and counts the gestures against it;
-// crane_walkthrough_test checks the text against the reference script.
+// The walkthroughs of docs/INTERACTION.md ("## Fold a crane", "## Fold a flapping bird", "## Fold
+// a frog base") read as a person reads them: per row of a section's table the steps, the
+// gestures they take, and for each fold step the marks it names (`**20**: ... *valley* ×3`), in
+// the order of the reference's creases, or the flap it drags (`**7**: press at (0.33, 0.17) ...
+// *squash fold*`). The rostests crane_by_mouse, flapping_bird_by_mouse and frog_base_by_mouse
+// mark what the text says and count the gestures against it; crane_walkthrough_test and the
+// models' tests check the text against the reference scripts.
 #pragma once
 
 #include <map>
@@ -68,17 +69,36 @@ inline std::vector<int> marksNamed(const std::string& text)
   return marks;
 }
 
-/// The walkthrough under `heading` (a whole heading line, e.g. "## Fold a crane").
-inline Walkthrough parseCraneWalkthrough(const std::string& markdown, const std::string& heading = "## Fold a crane")
+/// The walkthrough under the heading `heading` (a whole line, "## Fold a crane"), up to the next
+/// heading of its level or above.
+inline Walkthrough parseWalkthrough(const std::string& markdown, const std::string& heading)
 {
   Walkthrough w;
-  const size_t section = markdown.find("\n" + heading);
+  size_t section = std::string::npos;
+  for (size_t at = markdown.find(heading); at != std::string::npos; at = markdown.find(heading, at + 1))
+  {
+    const size_t after = at + heading.size();
+    if ((at == 0 || markdown[at - 1] == '\n') && (after == markdown.size() || markdown[after] == '\n'))
+    {
+      section = at;
+      break;
+    }
+  }
   if (section == std::string::npos)
   {
     w.error = "no section \"" + heading + "\"";
     return w;
   }
-  const size_t end = markdown.find("\n## ", section + 1);
+  // The section ends at the next heading of its level or above (its own "###" parts belong to it).
+  const size_t level = heading.find_first_not_of('#');
+  size_t end = std::string::npos;
+  for (size_t at = markdown.find('\n', section); at != std::string::npos && end == std::string::npos;
+       at = markdown.find('\n', at + 1))
+  {
+    const size_t hashes = markdown.find_first_not_of('#', at + 1);
+    if (hashes != std::string::npos && hashes > at + 1 && hashes - (at + 1) <= level && markdown[hashes] == ' ')
+      end = at;
+  }
   const std::string text = markdown.substr(section, end == std::string::npos ? std::string::npos : end - section);
   std::smatch m;
   if (std::regex_search(text, m, std::regex(R"(([0-9]+) steps,\s*\*\*([0-9]+) gestures\*\*)")))
@@ -126,6 +146,12 @@ inline Walkthrough parseCraneWalkthrough(const std::string& markdown, const std:
   if (w.rows.empty() && w.error.empty())
     w.error = "no rows in the table";
   return w;
+}
+
+/// docs/INTERACTION.md's "## Fold a crane" (or the walkthrough under `heading`).
+inline Walkthrough parseCraneWalkthrough(const std::string& markdown, const std::string& heading = "## Fold a crane")
+{
+  return parseWalkthrough(markdown, heading);
 }
 
 }  // namespace virtual_origami::test
