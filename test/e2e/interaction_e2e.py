@@ -21,7 +21,8 @@ ViewCamera display broadcasts as the tf frame rviz_camera:
   7. "Drag mode": a corner of a sheet pinned at its other three corners, dragged in and up (no
      flat face can move), is bent after the mouse by the curved model (curved_mesh_solver, as
      the default launch starts it) and drawn by the interaction; let go, it springs back and
-     nothing is committed.
+     nothing is committed; with the menu's "Keep the bend" checked, the same drag let go is kept:
+     one revision, the paper's faces where the bent sheet was.
 Screenshots of every step go to the output folder. Exits non-zero on any failure.
 
 Usage: interaction_e2e.py OUTPUT_DIR   (with the devel space's environment, e.g. devel/env.sh)
@@ -46,6 +47,7 @@ from visualization_msgs.msg import InteractiveMarkerFeedback, MarkerArray
 # render panel fills it between the tool bar and the status bar, beside the dock buttons.
 PANEL = (16, 62, 992, 629)  # x, y, width, height in pixels
 DRAG_MODE = 12              # the menu's "Drag mode" entry, from 1 (InteractionNode's constructor)
+KEEP_THE_BEND = 20          # its "Keep the bend" check entry
 FOV = 0.785                 # the view's vertical field of view, radians
 ON_FACE_PX = 3.0            # "the pointer stays on the turning face": within this many pixels
 TIME_LIMIT = 280            # seconds for the whole test
@@ -603,6 +605,33 @@ def run(out):
     if 'springs back' not in check.status.message:
         raise Failure('letting go said: %s' % check.status.message)
     print('bend: let go, it springs back; revision %d unchanged' % revision)
+
+    # 7b. "Keep the bend" checked: the same drag let go keeps the bent sheet as the paper.
+    mouse.menu((0.5, 0.5, 0.0), KEEP_THE_BEND)
+    wait_for(lambda: 'keeps the bend' in check.status.message, 10,
+             'the menu did not check "Keep the bend" (%s)' % check.status.message)
+    mouse.press(corner)
+    mouse.glide(mouse.pixel(corner), mouse.pixel(goal))
+    wait_for(lambda: check.status.bending and check.bent is not None and
+             min(norm(sub((p.x, p.y, p.z), goal)) for p in check.bent.points) < 0.01, 30,
+             'the curved model did not bend the sheet after the corner again (%s)' % check.status.message)
+    mouse.release()
+    kept = check.wait_revision(revision + 1, 'the kept bend')
+    wait_for(lambda: not check.status.bending and check.bent is None, 10, 'the bend did not end on release')
+    if 'Kept the bend' not in check.status.message:
+        raise Failure('letting go with "Keep the bend" said: %s' % check.status.message)
+    if len(kept.faces) < 10:
+        raise Failure('the kept paper has %d faces: the bend is not in its faces' % len(kept.faces))
+    kept_corner = kept.vertices_folded[vertex_at(kept, 0, 0)]
+    kept_off = norm(sub((kept_corner.x, kept_corner.y, kept_corner.z), goal))
+    if kept_off > 0.01:
+        raise Failure('the kept corner is %.1f mm from where the mouse let it go' % (1000 * kept_off))
+    time.sleep(1.0)  # rviz draws the paper
+    shot('13_kept.png')
+    if check.revision() != revision + 1:
+        raise Failure('keeping the bend made %d revisions' % (check.revision() - revision))
+    print('bend kept: %d faces, the corner %.1f mm from where it was let go; said: %s' %
+          (len(kept.faces), 1000 * kept_off, check.status.message))
     print('screenshots:\n  ' + '\n  '.join(shots))
 
 
