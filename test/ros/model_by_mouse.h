@@ -221,7 +221,9 @@ protected:
     operations_.clear();  // the reset
     ASSERT_TRUE(waitFor([&] { return feedback_pub_.getNumSubscribers() > 0; }, 30));
     if (driver_ == MouseDriver::Tool)
+    {
       ASSERT_TRUE(waitFor([&] { return tool_pub_.getNumSubscribers() > 0; }, 30));
+    }
     ASSERT_TRUE(waitFor([&] { return loadMenu(); }, 30)) << "no interactive marker `paper` with a menu";
     revision_ = client_.state().revision;
     ASSERT_TRUE(waitFor([&] { return statuses_ > 0 && status_.revision == revision_; }, 10));
