@@ -13,8 +13,10 @@
 
 #include <virtual_origami/DragVertex.h>
 #include <virtual_origami/FlatFold.h>
+#include <virtual_origami/KeepBend.h>
 #include <virtual_origami/PinVertex.h>
 
+#include "../unit/bent_strips.h"
 #include "ros_test_client.h"
 #include "virtual_origami/ros/recording.h"
 #include "virtual_origami/ros/replay.h"
@@ -265,6 +267,71 @@ TEST(RecordReplay, ABrokenBagIsReportedNotReplayed)
   EXPECT_NE(broken.message().find(path), std::string::npos) << broken.message();
   EXPECT_FALSE(readRecording("/no/such.bag").ok());
   std::remove(path.c_str());
+}
+
+// Issue 38 item 1: a bend kept is recorded in a bag (its `operations` message carries the sheet,
+// written by the recorder's DurableBagWriter) and a replay of the bag lands on the kept state
+// bit for bit.
+TEST(RecordReplay, AKeptBendIsRecordedInABagAndReplayedExactly)
+{
+  PaperClient recorded("/origami"), replayed("/replayed");
+  std::vector<Operation> operations;
+  ros::Subscriber operations_sub = recorded.nh().subscribe<Operation>(
+      "operations", 10, [&](const Operation::ConstPtr& op) { operations.push_back(*op); });
+  ASSERT_TRUE(waitFor([&] { return operations_sub.getNumPublishers() > 0; }, 30));
+  ASSERT_TRUE(recorded.trigger("reset").response.success);
+  ASSERT_TRUE(waitFor([&] { return !operations.empty() && recorded.state().faces.size() == 1u; }, 10));
+  const PaperState flat = recorded.state();
+  operations.clear();
+
+  const core::BentSheet sheet = core::test::stripsBentFrom(0.0, 8, 0.2);
+  KeepBend::Request keep;
+  for (const core::Vec2& p : sheet.points)
+    keep.points.push_back(point(p.x(), p.y()));
+  for (const auto& t : sheet.triangles)
+    keep.triangles.insert(keep.triangles.end(), t.begin(), t.end());
+  for (const core::Vec3& p : sheet.positions)
+    keep.positions.push_back(point(p.x(), p.y(), p.z()));
+  const KeepBend kept = recorded.call<KeepBend>("keep_bend", keep);
+  ASSERT_TRUE(kept.response.success) << kept.response.message;
+  EXPECT_EQ(kept.response.triangles_kept, 128);
+  EXPECT_NEAR(kept.response.largest_bend, 0.2, 1e-12);
+  const PaperState expected = recorded.stateAt(kept.response.revision);
+  ASSERT_TRUE(waitFor([&] { return !operations.empty(); }, 10));
+  ASSERT_EQ(operations.back().type, "keep_bend");
+
+  // The bag as the recorder writes it: the state the operation started from, then the operation.
+  const std::string bag = (std::filesystem::temp_directory_path() /
+                           ("virtual_origami_kept_bend_" + std::to_string(::getpid()) + ".bag"))
+                              .string();
+  DurableBagWriter writer(bag);
+  ASSERT_TRUE(writer.write("/origami/state", flat).ok());
+  ASSERT_TRUE(writer.write("/origami/operations", operations.back()).ok());
+  const core::Expected<Recording> recording = readRecording(bag);
+  std::filesystem::remove(bag);
+  ASSERT_TRUE(recording.ok()) << recording.message();
+  ASSERT_EQ(recording->operations.size(), 1u);
+  EXPECT_EQ(recording->operations[0].bend_points.size(), sheet.points.size());
+  EXPECT_EQ(recording->operations[0].bend_triangles.size(), 3 * sheet.triangles.size());
+
+  OperationClient client("/replayed");
+  ASSERT_TRUE(client.waitForServices(30.0));
+  ReplayOptions options;
+  options.speed = 0;
+  const core::Status done = replay(*recording, client, options);
+  ASSERT_TRUE(done.ok()) << done.message();
+  ASSERT_TRUE(waitFor([&] { return replayed.state().faces.size() == expected.faces.size(); }, 10));
+  const PaperState& got = replayed.state();
+  EXPECT_EQ(got.faces, expected.faces);
+  EXPECT_EQ(got.vertices_folded, expected.vertices_folded);
+  EXPECT_EQ(got.vertices_crease_pattern, expected.vertices_crease_pattern);
+  ASSERT_EQ(got.edges.size(), expected.edges.size());
+  for (size_t e = 0; e < got.edges.size(); ++e)
+  {
+    EXPECT_EQ(got.edges[e].fold_angle, expected.edges[e].fold_angle) << "edge " << e;
+    EXPECT_EQ(got.edges[e].split, expected.edges[e].split) << "edge " << e;
+    EXPECT_EQ(got.edges[e].target_angle, expected.edges[e].target_angle) << "edge " << e;
+  }
 }
 
 int main(int argc, char** argv)

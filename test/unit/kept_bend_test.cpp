@@ -10,6 +10,7 @@
 
 #include <unistd.h>
 
+#include "bent_strips.h"
 #include "virtual_origami/core/compliant_faces.h"
 #include "virtual_origami/core/fold_io.h"
 #include "virtual_origami/core/kept_bend.h"
@@ -29,33 +30,9 @@ namespace
 constexpr int kCells = 8;           // the sheet's grid: kCells × kCells squares, two triangles each
 constexpr double kStripTurn = 0.2;  // radians between neighbouring strips
 
-/// The unit square meshed on a grid, each square cut by its rising diagonal; the strips right of
-/// `from_x` turned about the y axis, the k-th by (k + 1) · kStripTurn from flat (so a crease at
-/// `from_x` folds by kStripTurn too). Every triangle keeps its shape exactly.
 BentSheet stripsBentFrom(double from_x)
 {
-  BentSheet sheet;
-  const double h = 1.0 / kCells;
-  const int first = static_cast<int>(std::lround(from_x / h));
-  for (int j = 0; j <= kCells; ++j)
-  {
-    Vec3 at(0.0, j * h, 0.0);
-    for (int i = 0; i <= kCells; ++i)
-    {
-      sheet.points.emplace_back(i * h, j * h);
-      sheet.positions.push_back(at);
-      const double turn = i >= first ? (i - first + 1) * kStripTurn : 0.0;
-      at += h * Vec3(std::cos(turn), 0.0, std::sin(turn));
-    }
-  }
-  const auto node = [](int i, int j) { return j * (kCells + 1) + i; };
-  for (int j = 0; j < kCells; ++j)
-    for (int i = 0; i < kCells; ++i)
-    {
-      sheet.triangles.push_back({ node(i, j), node(i + 1, j), node(i + 1, j + 1) });
-      sheet.triangles.push_back({ node(i, j), node(i + 1, j + 1), node(i, j + 1) });
-    }
-  return sheet;
+  return test::stripsBentFrom(from_x, kCells, kStripTurn);
 }
 
 Vec3 p3(double x, double y)
@@ -321,7 +298,9 @@ TEST(KeptBend, ASheetThatDoesNotFitOrStretchesOrDidNotBendIsRefusedAndChangesNot
     const Expected<KeptBend> kept = keepBend(paper, sheet);
     EXPECT_FALSE(kept) << says;
     if (!kept)
+    {
       EXPECT_THAT(kept.message(), HasSubstr(says));
+    }
     EXPECT_TRUE(paper == creased) << says;
   };
   BentSheet nan = stripsBentFrom(0.5);
