@@ -1,6 +1,7 @@
 // A model folded by mouse through the interaction node alone, step by step against the model a
 // reference script folds, as a walkthrough of docs/INTERACTION.md says (test/unit/
-// crane_walkthrough.h reads it). Used by the rostests crane_by_mouse and crane_by_tool.
+// crane_walkthrough.h reads it). Used by the rostests crane_by_mouse, crane_by_tool,
+// flapping_bird_by_mouse and frog_base_by_mouse.
 //
 // How to use it:
 //   class BirdByMouse : public virtual_origami::test::ModelByMouse
@@ -51,6 +52,7 @@
 #include <visualization_msgs/InteractiveMarkerInit.h>
 
 #include "../unit/crane_walkthrough.h"
+#include "../unit/rigid_fit.h"
 #include "ros_test_client.h"
 #include "virtual_origami/core/chosen_creases.h"
 #include "virtual_origami/core/compound_fold.h"
@@ -72,31 +74,7 @@ enum class MouseDriver
   Tool,
 };
 
-/// Largest distance between the vertices of `a` and `b` (matched by crease-pattern position)
-/// after the rigid motion that fits `a` onto `b` best (Kabsch); infinity when they differ.
-inline double rigidFitDistance(const core::Paper& a, const core::Paper& b)
-{
-  if (a.vertices.size() != b.vertices.size())
-    return INFINITY;
-  std::vector<std::pair<int, int>> pairs;
-  for (size_t i = 0; i < a.vertices.size(); ++i)
-  {
-    int match = -1;
-    for (size_t j = 0; j < b.vertices.size() && match < 0; ++j)
-      if ((a.vertices[i].crease_pattern - b.vertices[j].crease_pattern).norm() < 1e-9)
-        match = static_cast<int>(j);
-    if (match < 0)
-      return INFINITY;
-    pairs.emplace_back(static_cast<int>(i), match);
-  }
-  core::Positions pa(3, static_cast<Eigen::Index>(pairs.size())), pb(3, static_cast<Eigen::Index>(pairs.size()));
-  for (size_t k = 0; k < pairs.size(); ++k)
-  {
-    pa.col(static_cast<Eigen::Index>(k)) = a.vertices[pairs[k].first].folded;
-    pb.col(static_cast<Eigen::Index>(k)) = b.vertices[pairs[k].second].folded;
-  }
-  return core::shapeDistance(pa, pb).largest;
-}
+using core::test::rigidFitDistance;
 
 /// The crease edges lying on a crease-pattern segment (as flat_fold names them).
 inline std::vector<int> creasesOn(const core::Paper& paper, const core::Vec2& start, const core::Vec2& end)
@@ -189,6 +167,14 @@ inline bool sameOperations(const core::FoldSequence& shipped, const std::vector<
     }
   }
   return true;
+}
+
+/// The driver the test node's `~driver` parameter names: `markers`, else the Fold tool.
+inline MouseDriver driverAsked()
+{
+  std::string driver = "tool";
+  ros::param::get("~driver", driver);
+  return driver == "markers" ? MouseDriver::Markers : MouseDriver::Tool;
 }
 
 class ModelByMouse : public ::testing::Test
@@ -303,6 +289,26 @@ protected:
                        "mouse (clicks, drags, menu selections)",
                 sequence->steps.size(), gestures_);
     std::printf("the longest update of a flap drag, its preview call included: %.1f ms\n", 1e3 * longest_flap_update_);
+  }
+
+  /// foldAsTheWalkthroughSays with the test node's parameters (`~reference`, `~walkthrough`), then
+  /// the shipped sequence at `~shipped` checked to be what the gestures issued.
+  void foldAsTheLaunchSays(const std::string& heading)
+  {
+    std::string path, shipped_path, walkthrough_path;
+    ASSERT_TRUE(ros::param::get("~reference", path));
+    ASSERT_TRUE(ros::param::get("~shipped", shipped_path));
+    ASSERT_TRUE(ros::param::get("~walkthrough", walkthrough_path));
+    foldAsTheWalkthroughSays(path, walkthrough_path, heading);
+    if (HasFatalFailure())
+      return;
+    const std::vector<core::Operation> issued = issuedOperations();
+    const core::Expected<core::FoldSequence> shipped = core::parseFoldSequence(readFile(shipped_path));
+    ASSERT_TRUE(shipped.ok()) << shipped.message();
+    EXPECT_TRUE(sameOperations(*shipped, issued))
+        << shipped_path << " is not what the gestures issued; their sequence:\n"
+        << sequenceJson(issued, reference_);
+    RecordProperty("gestures", gestures_);
   }
 
   /// The operations the gestures made paper_model carry out (the reset before them left out).

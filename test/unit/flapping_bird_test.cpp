@@ -32,13 +32,6 @@ const std::vector<Paper>& bird()
   EXPECT_TRUE(states.ok()) << states.message();
   return *states;
 }
-
-Vec3 at(const Paper& paper, const Vec2& cp)
-{
-  const int v = paper.vertexAt(cp, 1e-9);
-  EXPECT_GE(v, 0) << "no vertex at (" << cp.transpose() << ")";
-  return v >= 0 ? paper.vertices[v].folded : Vec3::Constant(NAN);
-}
 }  // namespace
 
 TEST(FlappingBird, TheScriptFoldsFlatUpToTheWings)
@@ -67,8 +60,8 @@ TEST(FlappingBird, EachWingIsLoweredToARightAngleOnItsOwnSide)
   // Before the wings: the wing of corner (0, 0) lies on top (nearest the eye above), the wing of
   // corner (1, 1) under it, both tips at one point half the sheet's side from the hinge's middle.
   const Paper& flat = bird()[19];
-  const Vec3 tip = at(flat, Vec2(0, 0)), hinge = at(flat, Vec2(0.5, 0));
-  EXPECT_LE((at(flat, Vec2(1, 1)) - tip).norm(), 1e-9);
+  const Vec3 tip = foldedAt(flat, Vec2(0, 0)), hinge = foldedAt(flat, Vec2(0.5, 0));
+  EXPECT_LE((foldedAt(flat, Vec2(1, 1)) - tip).norm(), 1e-9);
   EXPECT_NEAR((tip - hinge).norm(), 0.5, 1e-9);
   const std::vector<int> under = facesUnder(flat, tip + 0.05 * (hinge - tip), Vec3(0, 0, -1));
   ASSERT_GE(under.size(), 2u);
@@ -76,13 +69,13 @@ TEST(FlappingBird, EachWingIsLoweredToARightAngleOnItsOwnSide)
   // After: each wing stands at a right angle to the body, the top one towards the eye, the
   // bottom one away: the wings spread and do not pass through each other.
   const Paper& spread = bird().back();
-  const Vec3 front = at(spread, Vec2(0, 0)), back = at(spread, Vec2(1, 1)), base = at(spread, Vec2(0.5, 0));
+  const Vec3 front = foldedAt(spread, Vec2(0, 0)), back = foldedAt(spread, Vec2(1, 1)), base = foldedAt(spread, Vec2(0.5, 0));
   EXPECT_NEAR(front.z() - base.z(), 0.5, 1e-9);
   EXPECT_NEAR(back.z() - base.z(), -0.5, 1e-9);
   EXPECT_NEAR((front - base).head<2>().norm(), 0.0, 1e-9);
   EXPECT_NEAR((back - base).head<2>().norm(), 0.0, 1e-9);
   // The body stays where it lay.
-  EXPECT_LE((at(spread, Vec2(0.5, 0.5)) - at(flat, Vec2(0.5, 0.5))).norm(), 1e-9);
+  EXPECT_LE((foldedAt(spread, Vec2(0.5, 0.5)) - foldedAt(flat, Vec2(0.5, 0.5))).norm(), 1e-9);
 }
 
 TEST(FlappingBird, TheWalkthroughNamesTheScriptsFoldsAndItsGesturesAddUp)

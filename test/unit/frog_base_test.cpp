@@ -36,13 +36,6 @@ const std::vector<Paper>& frog()
   return *states;
 }
 
-Vec3 at(const Paper& paper, const Vec2& cp)
-{
-  const int v = paper.vertexAt(cp, 1e-9);
-  EXPECT_GE(v, 0) << "no vertex at (" << cp.transpose() << ")";
-  return v >= 0 ? paper.vertices[v].folded : Vec3::Constant(NAN);
-}
-
 /// Where the flap at `cp` lies in the stack before step `step`, seen from above (1: on top; the
 /// number of layers there: at the bottom).
 std::pair<int, int> layerOf(int step, const Vec2& cp)
@@ -123,19 +116,19 @@ TEST(FrogBase, TheFourSquashesLayTheFlapsOnTheKiteAboutTheCentreLine)
   // The closed point C, the four corners at the open point B half a diagonal away; every
   // flap's folded edge (the midlines' ends) on the centre line CB half a side from C; the
   // squash lines' ends at the kite's side points, tan(22.5°) / 2 from the corners.
-  const Vec3 c = at(base, Vec2(0.5, 0.5)), b = at(base, Vec2(0, 0));
+  const Vec3 c = foldedAt(base, Vec2(0.5, 0.5)), b = foldedAt(base, Vec2(0, 0));
   for (const Vec2& corner : { Vec2(1, 0), Vec2(1, 1), Vec2(0, 1) })
-    EXPECT_LE((at(base, corner) - b).norm(), 1e-9);
+    EXPECT_LE((foldedAt(base, corner) - b).norm(), 1e-9);
   EXPECT_NEAR((b - c).norm(), std::sqrt(0.5), 1e-9);
   const Vec3 axis = (b - c).normalized();
   for (const Vec2& end : { Vec2(0.5, 0), Vec2(1, 0.5), Vec2(0.5, 1), Vec2(0, 0.5) })
-    EXPECT_LE((at(base, end) - (c + 0.5 * axis)).norm(), 1e-9) << end.transpose();
+    EXPECT_LE((foldedAt(base, end) - (c + 0.5 * axis)).norm(), 1e-9) << end.transpose();
   std::vector<Vec3> sides;
   for (const Vec2& end :
        { Vec2(0.5 - 0.5 * kTan, 0), Vec2(0.5 + 0.5 * kTan, 0), Vec2(1, 0.5 - 0.5 * kTan), Vec2(1, 0.5 + 0.5 * kTan),
          Vec2(0.5 + 0.5 * kTan, 1), Vec2(0.5 - 0.5 * kTan, 1), Vec2(0, 0.5 + 0.5 * kTan), Vec2(0, 0.5 - 0.5 * kTan) })
   {
-    const Vec3 p = at(base, end);
+    const Vec3 p = foldedAt(base, end);
     EXPECT_NEAR((p - b).norm(), 0.5 - 0.5 * kTan, 1e-9) << end.transpose();
     EXPECT_NEAR((p - c).norm(), 0.5 / std::cos(M_PI / 8), 1e-9) << end.transpose();
     sides.push_back(p);
@@ -169,9 +162,9 @@ TEST(FrogBase, TheFourPetalFoldsMakeTheFrogBase)
   const Paper& base = frog().back();
   ASSERT_EQ(frog().size(), script().steps.size() + 1);
   expectFlat(base);
-  const Vec3 c = at(base, Vec2(0.5, 0.5)), b = at(base, Vec2(0, 0));
+  const Vec3 c = foldedAt(base, Vec2(0.5, 0.5)), b = foldedAt(base, Vec2(0, 0));
   for (const Vec2& corner : { Vec2(1, 0), Vec2(1, 1), Vec2(0, 1) })
-    EXPECT_LE((at(base, corner) - b).norm(), 1e-9) << "every corner at the open point";
+    EXPECT_LE((foldedAt(base, corner) - b).norm(), 1e-9) << "every corner at the open point";
   EXPECT_NEAR((b - c).norm(), std::sqrt(0.5), 1e-9);
   const Vec3 axis = (b - c).normalized();
   const double hinge = std::sqrt(0.5) / 2, side = hinge * kTan;
@@ -180,15 +173,15 @@ TEST(FrogBase, TheFourPetalFoldsMakeTheFrogBase)
     SCOPED_TRACE("flap " + std::to_string(k));
     // Each flap's point, its raw edge's middle (half a side from C before), turned up over the
     // hinge onto the centre line: 2 * hinge - 1/2 = (sqrt(2) - 1) / 2 from C.
-    EXPECT_LE((at(base, quarterTurned(Vec2(0.5, 0), k)) - (c + (2 * hinge - 0.5) * axis)).norm(), 1e-9);
+    EXPECT_LE((foldedAt(base, quarterTurned(Vec2(0.5, 0), k)) - (c + (2 * hinge - 0.5) * axis)).norm(), 1e-9);
     // The sides collapsed in: the squash lines' ends (the kite's side points before) on the
     // centre line, their distance from B (1/2 - tan(22.5°)/2) laid along it from B.
     for (const Vec2& end : { Vec2(0.5 - 0.5 * kTan, 0), Vec2(0.5 + 0.5 * kTan, 0) })
-      EXPECT_LE((at(base, quarterTurned(end, k)) - (b - (0.5 - 0.5 * kTan) * axis)).norm(), 1e-9) << end.transpose();
+      EXPECT_LE((foldedAt(base, quarterTurned(end, k)) - (b - (0.5 - 0.5 * kTan) * axis)).norm(), 1e-9) << end.transpose();
     // The side points stay: on the hinge, tan(22.5°) of it either side of the centre line.
     for (const Vec2& q : { Vec2(hinge, 0.5 - hinge), Vec2(1 - hinge, 0.5 - hinge) })
     {
-      const Vec3 d = at(base, quarterTurned(q, k)) - c;
+      const Vec3 d = foldedAt(base, quarterTurned(q, k)) - c;
       EXPECT_NEAR(d.dot(axis), hinge, 1e-9) << q.transpose();
       EXPECT_NEAR((d - d.dot(axis) * axis).norm(), side, 1e-9) << q.transpose();
     }
@@ -213,7 +206,7 @@ TEST(FrogBase, AFlapLetGoOnTheSideItWasPressedFromFoldsOverOnItsSquashLineInstea
   const int face = faceContaining(before, cp);
   ASSERT_GE(face, 0);
   const Vec3 press = facePose(before, face) * Vec3(cp.x(), cp.y(), 0);
-  const Vec3 c = at(before, Vec2(0.5, 0.5)), p = at(before, Vec2(0.5 + 0.5 * kTan, 0));
+  const Vec3 c = foldedAt(before, Vec2(0.5, 0.5)), p = foldedAt(before, Vec2(0.5 + 0.5 * kTan, 0));
   const Vec3 d = (p - c).normalized();
   const Vec3 foot = c + (press - c).dot(d) * d;
   Expected<CompoundFolds> folds = CompoundFolds::at(before, face, press);

@@ -4,7 +4,7 @@
 // named (compound_fold.h) — or names its marks in the order of the script's creases with the
 // script's signs and the menu entry that folds them; the rows' gestures add up to the totals said
 // (with rviz's Interact tool, and with the Fold tool: the `tool` column).
-// For the models' tests (flapping_bird_test, frog_base_test).
+// For the models' tests (crane_walkthrough_test, flapping_bird_test, frog_base_test).
 #pragma once
 
 #include <gtest/gtest.h>
