@@ -324,13 +324,17 @@ TEST_F(Faults, AFifoIsRefusedAtOnceAndHoldsUpNoOne)
     fifos.push_back(dir + "/" + name);
     ASSERT_EQ(::mkfifo(fifos.back().c_str(), 0600), 0) << fifos.back();
   }
-  // More loads than the node has threads (4 by default).
+  // More loads than the node has threads (4 by default). Each call has a persistent connection
+  // of its own: a connection made per call loses now and then an answer that comes at once, as a
+  // FIFO's refusal does (roscpp closes the socket on the server's hang-up before reading the
+  // answer: ros/ros_comm#1976; seen once in CI), and that loss is roscpp's, not the node's.
   std::vector<std::future<std::pair<bool, Load::Response>>> loads;
   for (int i = 0; i < 6; ++i)
     loads.push_back(std::async(std::launch::async, [path = fifos[i % fifos.size()]] {
       Load srv;
       srv.request.path = path;
-      const bool called = ros::service::call("/origami/load", srv);
+      ros::ServiceClient client = ros::NodeHandle().serviceClient<Load>("/origami/load", true);
+      const bool called = client.call(srv);
       return std::make_pair(called, srv.response);
     }));
   auto crease = std::async(std::launch::async, [] {
@@ -338,7 +342,8 @@ TEST_F(Faults, AFifoIsRefusedAtOnceAndHoldsUpNoOne)
     srv.request.start.x = srv.request.end.x = 0.4;
     srv.request.start.y = -0.1;
     srv.request.end.y = 1.1;
-    const bool called = ros::service::call("/origami/crease", srv);
+    ros::ServiceClient client = ros::NodeHandle().serviceClient<Crease>("/origami/crease", true);
+    const bool called = client.call(srv);
     return std::make_pair(called, srv.response);
   });
   // Whatever the test finds, no call is left waiting on a FIFO: each gets a writer that closes
