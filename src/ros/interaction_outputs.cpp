@@ -17,6 +17,7 @@
 #include "virtual_origami/ros/conversions.h"
 #include "virtual_origami/ros/interaction_node.h"
 #include "virtual_origami/ros/interaction_text.h"
+#include "virtual_origami/ros/service_call.h"
 
 namespace virtual_origami
 {
@@ -29,7 +30,7 @@ constexpr size_t kMessageWidth = 32;
 template <class Service>
 bool call(ros::ServiceClient& client, Service& srv, std::string& message)
 {
-  if (client.call(srv))
+  if (callService(client.getService(), srv))
     return true;
   message = client.getService() + " did not answer; is paper_model running?";
   return false;

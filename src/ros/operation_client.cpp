@@ -13,6 +13,8 @@
 #include <virtual_origami/Rotate.h>
 #include <virtual_origami/Save.h>
 
+#include "virtual_origami/ros/service_call.h"
+
 namespace virtual_origami
 {
 namespace
@@ -20,7 +22,7 @@ namespace
 template <class Service>
 core::Status call(ros::NodeHandle& nh, const std::string& name, Service& srv)
 {
-  if (!ros::service::call(nh.resolveName(name), srv))
+  if (!callService(nh.resolveName(name), srv))
     return core::failure("the service " + nh.resolveName(name) + " did not answer");
   if (!srv.response.success)
     return core::failure(name + " refused: " + srv.response.message);
@@ -77,7 +79,7 @@ core::Status OperationClient::apply(const Operation& op, int animation_steps, do
     {
       srv.request.angle = op.angle * i / animation_steps;
       srv.request.commit = false;
-      ros::service::call(nh_.resolveName("rotate"), srv);  // a preview that fails only shows less
+      callService(nh_.resolveName("rotate"), srv);  // a preview that fails only shows less
       ros::WallDuration(animation_seconds / animation_steps).sleep();
     }
     srv.request.angle = op.angle;
@@ -109,7 +111,7 @@ core::Status OperationClient::apply(const Operation& op, int animation_steps, do
     {
       srv.request.fraction = *folded_from + (op.fraction - *folded_from) * i / animation_steps;
       srv.request.preview = true;
-      ros::service::call(nh_.resolveName("fold_by_assignment"), srv);  // a preview that fails only shows less
+      callService(nh_.resolveName("fold_by_assignment"), srv);  // a preview that fails only shows less
       ros::WallDuration(animation_seconds / animation_steps).sleep();
     }
     srv.request.fraction = op.fraction;
@@ -130,7 +132,7 @@ core::Status OperationClient::apply(const Operation& op, int animation_steps, do
     {
       srv.request.fraction = static_cast<double>(i) / animation_steps;
       srv.request.commit = false;
-      ros::service::call(nh_.resolveName("flat_fold"), srv);  // a preview that fails only shows less
+      callService(nh_.resolveName("flat_fold"), srv);  // a preview that fails only shows less
       ros::WallDuration(animation_seconds / animation_steps).sleep();
     }
     srv.request.fraction = 1.0;

@@ -10,6 +10,7 @@
 #include <virtual_origami/Solve.h>
 
 #include "virtual_origami/ros/conversions.h"
+#include "virtual_origami/ros/service_call.h"
 
 namespace virtual_origami
 {
@@ -40,15 +41,16 @@ core::SolveReport RemoteSolver::solve(core::Paper& paper, const std::vector<char
                      " calls; it seems stopped";
     return report;
   }
-  // A connection made per call is now and then lost under load (seen in contention_bench: one
-  // call in 60): the solve is a pure function, so a lost call is made again within the deadline.
+  // A connection made per call was now and then lost under load (seen in contention_bench: one
+  // call in 60; callService now avoids roscpp's cause of it). A connection can still break: the
+  // solve is a pure function, so a lost call is made again within the deadline.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_);
   auto shared = std::make_shared<Solve>(std::move(call));
   for (int attempt = 1;; ++attempt)
   {
     auto answered = std::make_shared<std::promise<bool>>();
     std::future<bool> done = answered->get_future();
-    std::thread([service = service_, shared, answered] { answered->set_value(ros::service::call(service, *shared)); })
+    std::thread([service = service_, shared, answered] { answered->set_value(callService(service, *shared)); })
         .detach();
     if (done.wait_until(deadline) != std::future_status::ready)
     {

@@ -45,7 +45,7 @@ Answer callOnce(const std::string& name, Service& srv)
   const std::string resolved = "/origami/" + name;
   if (!ros::service::waitForService(resolved, ros::Duration(30)))
     return a;
-  a.delivered = ros::service::call(resolved, srv);
+  a.delivered = callService(resolved, srv);
   a.success = a.delivered && srv.response.success;
   a.message = srv.response.message;
   return a;

@@ -108,7 +108,7 @@ TEST(CurvedMeshSolver, SpacingIsTunedLive)
   set.request.config.doubles.push_back(spacing);
   const std::string service = client.nh().resolveName("curved_mesh_solver/set_parameters");
   ASSERT_TRUE(ros::service::waitForService(service, ros::Duration(30)));
-  ASSERT_TRUE(ros::service::call(service, set));
+  ASSERT_TRUE(callService(service, set));
   // Half the spacing: about four times the triangles.
   const visualization_msgs::Marker& fine = sheet.next();
   EXPECT_GT(fine.points.size(), 3 * coarse);
@@ -128,7 +128,7 @@ TEST(CurvedMeshSolver, MesherIsChosenLive)
   set.request.config.strs.push_back(mesher);
   const std::string service = client.nh().resolveName("curved_mesh_solver/set_parameters");
   ASSERT_TRUE(ros::service::waitForService(service, ros::Duration(30)));
-  ASSERT_TRUE(ros::service::call(service, set));
+  ASSERT_TRUE(callService(service, set));
   bool applied = false;
   for (const dynamic_reconfigure::StrParameter& p : set.response.config.strs)
     applied = applied || (p.name == "mesher" && p.value == "cgal");

@@ -109,7 +109,7 @@ std::pair<bool, typename Service::Response> callPath(const std::string& name, co
 {
   Service srv;
   srv.request.path = path;
-  const bool called = ros::service::call("/origami/" + name, srv);
+  const bool called = callService("/origami/" + name, srv);
   return { called, srv.response };
 }
 
@@ -342,7 +342,7 @@ TEST(Durability, ARespawnWithALargeSessionAnswersWithinTenSeconds)
   // redo: nothing to redo in that session, so the answer changes nothing either way.
   auto redo = std::async(std::launch::async, [] {
     std_srvs::Trigger t;
-    const bool called = ros::service::call("/origami/redo", t);
+    const bool called = callService("/origami/redo", t);
     return std::make_pair(called, t.response);
   });
   ASSERT_EQ(redo.wait_for(std::chrono::seconds(10)), std::future_status::ready);

@@ -17,6 +17,8 @@
 #include <virtual_origami/Rotate.h>
 #include <xmlrpcpp/XmlRpcClient.h>
 
+#include "virtual_origami/ros/service_call.h"
+
 namespace virtual_origami::test
 {
 /// Spins until `done` holds or `seconds` pass; true when it held.
@@ -107,7 +109,7 @@ public:
     srv.request = request;
     const std::string resolved = nh_.resolveName(name);
     EXPECT_TRUE(ros::service::waitForService(resolved, ros::Duration(30))) << resolved;
-    EXPECT_TRUE(ros::service::call(resolved, srv)) << resolved;
+    EXPECT_TRUE(callService(resolved, srv)) << resolved;
     return srv;
   }
 
