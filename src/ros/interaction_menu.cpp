@@ -73,6 +73,7 @@ std::vector<InteractionNode::MenuEntry> InteractionNode::menuEntries()
       [this] { return model_.outsideReverse(); } },
     { "Keep the bend", "", [this](const Feedback& f) { model_.toggleKeepBend(pointer(f)); },
       [this] { return model_.keepBend(); } },
+    { "Next layer up", "", [this](const Feedback& f) { model_.previousLayer(pointer(f)); }, {} },
   };
 }
 

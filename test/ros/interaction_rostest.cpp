@@ -574,18 +574,33 @@ TEST_F(Interaction, NextLayerDownPicksTheLayersOfAStackInTurnAndSaysWhenThereIsN
   EXPECT_NE(status_.message.find("No layer below this one"), std::string::npos) << status_.message;
   quarterFold();
   std::set<int> faces;
+  std::map<uint32_t, int> face_of_layer;
   for (uint32_t layer = 2; layer <= 4; ++layer)
   {
     menu("Next layer down", p3(0.25, 0.2));
     EXPECT_EQ(status_.layers, 4u);
     EXPECT_EQ(status_.picked_layer, layer);
     faces.insert(status_.picked_face);
+    face_of_layer[layer] = status_.picked_face;
   }
   EXPECT_EQ(faces.size(), 3u);
   EXPECT_TRUE(shown_.count("pick"));
   menu("Next layer down", p3(0.25, 0.2));
   EXPECT_NE(status_.message.find("No layer below this one"), std::string::npos) << status_.message;
   EXPECT_EQ(status_.picked_layer, 4u);
+  // And back up through the same faces to the top one (none of them), which has none above it.
+  for (uint32_t layer = 3; layer >= 2; --layer)
+  {
+    menu("Next layer up", p3(0.25, 0.2));
+    EXPECT_EQ(status_.picked_layer, layer);
+    EXPECT_EQ(status_.picked_face, face_of_layer[layer]);
+  }
+  menu("Next layer up", p3(0.25, 0.2));
+  EXPECT_EQ(status_.picked_layer, 1u);
+  EXPECT_EQ(faces.count(status_.picked_face), 0u);
+  menu("Next layer up", p3(0.25, 0.2));
+  EXPECT_NE(status_.message.find("No layer above this one"), std::string::npos) << status_.message;
+  EXPECT_EQ(status_.picked_layer, 1u);
   expectUnchanged();
 }
 
