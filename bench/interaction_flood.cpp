@@ -23,6 +23,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "virtual_origami/ros/mouse_feedback.h"
+#include "virtual_origami/ros/service_call.h"
 
 namespace
 {
@@ -93,10 +94,10 @@ public:
   {
     ros::service::waitForService(nh_.resolveName("reset"), ros::Duration(30));
     std_srvs::Trigger reset;
-    ros::service::call(nh_.resolveName("reset"), reset);
+    virtual_origami::callService(nh_.resolveName("reset"), reset);
     virtual_origami::Crease crease;
     crease.request.end.x = crease.request.end.y = 1.0;
-    if (!ros::service::call(nh_.resolveName("crease"), crease) || !crease.response.success)
+    if (!virtual_origami::callService(nh_.resolveName("crease"), crease) || !crease.response.success)
     {
       ROS_FATAL("interaction_flood: could not crease the sheet");
       return false;
@@ -150,7 +151,7 @@ public:
         virtual_origami::Save save;
         save.request.path = "/tmp/interaction_flood_probe.fold";
         const ros::WallTime t0 = ros::WallTime::now();
-        ros::service::call(nh_.resolveName("save"), save);
+        virtual_origami::callService(nh_.resolveName("save"), save);
         save_ms_.push_back((ros::WallTime::now() - t0).toSec() * 1e3);
         ros::WallDuration(0.25).sleep();
       }

@@ -58,6 +58,7 @@
 #include "virtual_origami/core/tessellations.h"
 #include "virtual_origami/ros/conversions.h"
 #include "virtual_origami/ros/fold_slider.h"
+#include "virtual_origami/ros/service_call.h"
 #include "virtual_origami/ros/markers.h"
 #include "virtual_origami/ros/mouse_feedback.h"
 #include "virtual_origami/core/session.h"
@@ -346,7 +347,7 @@ public:
     const int markers = markersSeen();
     const NodeCpu::Sample cpu = cpu_.now();
     const auto t0 = Clock::now();
-    if (!ros::service::call(nh_.resolveName("load"), load))
+    if (!callService(nh_.resolveName("load"), load))
       load.response.message = "the call failed";
     row = Row("load");
     row.answer_ms = msSince(t0);
@@ -796,7 +797,7 @@ Breakdown measureBreakdown(UserPath& path, const std::vector<int>& held)
     {
       std_srvs::Trigger t;
       auto t0 = Clock::now();
-      const bool fresh_ok = ros::service::call(name, t);
+      const bool fresh_ok = callService(name, t);
       fresh.push_back(fresh_ok ? msSince(t0) : NAN);
       t0 = Clock::now();
       const bool kept_ok = persistent.call(t);
@@ -835,7 +836,7 @@ Breakdown measureBreakdown(UserPath& path, const std::vector<int>& held)
     call.request.paper = input;
     call.request.fixed_vertices = held;
     auto t0 = Clock::now();
-    const bool called = ros::service::call(path.nh_.resolveName("solve"), call);
+    const bool called = callService(path.nh_.resolveName("solve"), call);
     b.add("solve_service_" + label + "_ms", called ? msSince(t0) : NAN);
     b.add("solve_service_" + label + "_iterations", called ? call.response.iterations : NAN);
     const auto [request_bytes, request_ser] = serialiseTimed(call.request);
