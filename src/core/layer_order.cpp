@@ -444,30 +444,9 @@ void tortillaTortillaRules(const StackProblem& stack, const std::vector<int>& fa
     }
 }
 
-/// A sheet flat across an unfolded crease cannot lie between the two faces of a fold on the same
-/// line (taco–tortilla where the tortilla's crease meets the fold).
-void tacoUnfoldedRules(const StackProblem& stack, const std::vector<FlatCrease>& creases,
-                       const std::vector<UnfoldedCrease>& unfolded, Clauses& clauses)
-{
-  const Paper& paper = stack.paper();
-  for (const FlatCrease& c : creases)
-    for (const UnfoldedCrease& u : unfolded)
-    {
-      if (!onOneLine(c.a, c.b, u.a, u.b, stack.tolerance()))
-        continue;
-      const int h = faceOnSide(u, c.a, c.b, c.side);
-      if (h == c.face || h == c.other || stack.higher(c.face, h) == 0 || stack.higher(c.other, h) == 0)
-        continue;
-      const std::string why = faceText(paper, h) + ", flat across " + creaseText(paper, u.edge) +
-                              ", would pass through the fold at " + creaseText(paper, c.edge);
-      clauses.push_back({ { -stack.higher(c.face, h), -stack.higher(h, c.other) }, why });
-      clauses.push_back({ { -stack.higher(c.other, h), -stack.higher(h, c.face) }, why });
-    }
-}
-
 /// Every rule of the stack as clauses.
 Clauses rulesOf(const Paper& paper, const StackProblem& stack, const std::vector<int>& faces,
-                const std::vector<FaceOrder>& kept)
+                const std::vector<FaceOrder>& kept, bool unfolded_sheets)
 {
   std::vector<char> member(paper.faces.size(), 0);
   for (int f : faces)
@@ -478,9 +457,8 @@ Clauses rulesOf(const Paper& paper, const StackProblem& stack, const std::vector
   transitivityRules(stack, faces, clauses);
   tacoTortillaRules(stack, faces, creases, clauses);
   tacoTacoRules(stack, creases, clauses);
-  const std::vector<UnfoldedCrease> unfolded = unfoldedCreases(paper, stack, member);
-  tortillaTortillaRules(stack, faces, unfolded, clauses);
-  tacoUnfoldedRules(stack, creases, unfolded, clauses);
+  if (unfolded_sheets)
+    tortillaTortillaRules(stack, faces, unfoldedCreases(paper, stack, member), clauses);
   return clauses;
 }
 
@@ -619,7 +597,7 @@ private:
 };
 
 /// The faces of `paper` in groups that lie flat on one another (connected by stacking).
-std::vector<std::vector<int>> stacksOf(const Paper& paper, double tolerance)
+std::vector<std::vector<int>> stacksOf(const Paper& paper, double tolerance, bool unfolded_sheets)
 {
   const int n = static_cast<int>(paper.faces.size());
   std::vector<int> parent(n);
@@ -638,18 +616,44 @@ std::vector<std::vector<int>> stacksOf(const Paper& paper, double tolerance)
       parent[root(f)] = root(g);
       stacked[f] = stacked[g] = 1;
     }
-  // Faces flat across an unfolded crease are one sheet: the layers on either side are ordered together.
-  for (const Edge& edge : paper.edges)
-    if (edge.isCrease() && std::abs(edge.fold_angle) <= kFlatAngleTolerance && stacked[edge.faces[0]] &&
-        stacked[edge.faces[1]])
-      parent[root(edge.faces[0])] = root(edge.faces[1]);
   std::map<int, std::vector<int>> groups;
   for (int f = 0; f < n; ++f)
     if (stacked[f])
       groups[root(f)].push_back(f);
-  std::vector<std::vector<int>> stacks;
+  // Faces flat across an unfolded crease are one sheet: the stacks on either side are ordered
+  // together, each stack's faces kept together (its pairs searched in the order they were alone).
+  std::map<int, int> group_of;  // a stacked face's group, by the group's place in `groups`
+  std::vector<int> group_parent;
   for (auto& [r, faces] : groups)
-    stacks.push_back(std::move(faces));
+  {
+    for (int f : faces)
+      group_of[f] = static_cast<int>(group_parent.size());
+    group_parent.push_back(static_cast<int>(group_parent.size()));
+  }
+  const std::function<int(int)> group_root = [&](int g) {
+    return group_parent[g] == g ? g : group_parent[g] = group_root(group_parent[g]);
+  };
+  for (const Edge& edge : paper.edges)
+    if (unfolded_sheets && edge.isCrease() && std::abs(edge.fold_angle) <= kFlatAngleTolerance &&
+        stacked[edge.faces[0]] && stacked[edge.faces[1]])
+    {
+      const int a = group_root(group_of[edge.faces[0]]), b = group_root(group_of[edge.faces[1]]);
+      group_parent[std::max(a, b)] = std::min(a, b);
+    }
+  std::vector<std::vector<int>> stacks;
+  std::map<int, size_t> stack_of_root;
+  int g = 0;
+  for (auto& [r, faces] : groups)
+  {
+    const int joined = group_root(g++);
+    if (!stack_of_root.count(joined))
+    {
+      stack_of_root[joined] = stacks.size();
+      stacks.emplace_back();
+    }
+    std::vector<int>& stack = stacks[stack_of_root[joined]];
+    stack.insert(stack.end(), faces.begin(), faces.end());
+  }
   return stacks;
 }
 }  // namespace
@@ -664,7 +668,7 @@ Expected<LayerOrder> solveLayerOrder(const Paper& paper, const LayerOrderOptions
                         std::to_string(options.max_paper_faces) + " whose stacks are looked for";
     return result;
   }
-  for (const std::vector<int>& faces : stacksOf(paper, options.tolerance))
+  for (const std::vector<int>& faces : stacksOf(paper, options.tolerance, options.unfolded_sheets))
   {
     if (static_cast<int>(faces.size()) > options.max_faces)
     {
@@ -674,7 +678,7 @@ Expected<LayerOrder> solveLayerOrder(const Paper& paper, const LayerOrderOptions
       continue;
     }
     const StackProblem stack(paper, faces, options.tolerance);
-    const std::vector<Clause> clauses = rulesOf(paper, stack, faces, options.kept);
+    const std::vector<Clause> clauses = rulesOf(paper, stack, faces, options.kept, options.unfolded_sheets);
     Search search(stack.variableCount(), clauses);
     bool gave_up = false;
     if (const std::optional<std::string> conflict = search.solve(options.max_guesses, gave_up))
@@ -696,11 +700,12 @@ Expected<LayerOrder> solveLayerOrder(const Paper& paper, const LayerOrderOptions
   return result;
 }
 
-std::string layerOrderViolation(const Paper& paper, const std::vector<FaceOrder>& orders, double tolerance)
+std::string layerOrderViolation(const Paper& paper, const std::vector<FaceOrder>& orders, double tolerance,
+                                bool unfolded_sheets)
 {
   Paper ordered = paper;
   ordered.face_orders = orders;
-  for (const std::vector<int>& faces : stacksOf(paper, tolerance))
+  for (const std::vector<int>& faces : stacksOf(paper, tolerance, unfolded_sheets))
   {
     const StackProblem stack(paper, faces, tolerance);
     std::vector<int> value(stack.variableCount(), 0);
@@ -712,7 +717,7 @@ std::string layerOrderViolation(const Paper& paper, const std::vector<FaceOrder>
         return "faces " + std::to_string(f) + " and " + std::to_string(g) + " lie on each other with no order recorded";
       value[k] = above * stack.facing(f);
     }
-    for (const Clause& clause : rulesOf(paper, stack, faces, {}))
+    for (const Clause& clause : rulesOf(paper, stack, faces, {}, unfolded_sheets))
     {
       const bool holds = std::any_of(clause.literals.begin(), clause.literals.end(), [&](int literal) {
         return (literal > 0 ? value[literal - 1] : -value[-literal - 1]) > 0;
