@@ -596,7 +596,8 @@ private:
   std::vector<std::vector<int>> watch_;
 };
 
-/// The faces of `paper` in groups that lie flat on one another (connected by stacking).
+/// The faces of `paper` in groups that lie flat on one another (connected by stacking, and with
+/// `unfolded_sheets` by unfolded creases).
 std::vector<std::vector<int>> stacksOf(const Paper& paper, double tolerance, bool unfolded_sheets)
 {
   const int n = static_cast<int>(paper.faces.size());
