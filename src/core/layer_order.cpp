@@ -7,6 +7,7 @@
 #include <map>
 #include <numeric>
 #include <optional>
+#include <sstream>
 #include <string>
 
 #include "virtual_origami/core/face_orders.h"
@@ -164,6 +165,37 @@ struct Clause
 
 using Clauses = std::vector<Clause>;
 
+/// +1 when convex `poly` lies left of the line a→b, −1 right (by its centroid).
+int sideOf(const Vec2& a, const Vec2& b, const Polygon& poly)
+{
+  Vec2 centroid = Vec2::Zero();
+  for (const Vec2& p : poly)
+    centroid += p;
+  centroid /= static_cast<double>(poly.size());
+  return cross2(b - a, centroid - a) > 0 ? 1 : -1;
+}
+
+/// A face as the refusals name it: its id and where it lies on the sheet (the centroid of its
+/// crease-pattern polygon), "face 4 (about (0.83, 0.17) on the sheet)".
+std::string faceText(const Paper& paper, int face)
+{
+  Polygon polygon;
+  for (int v : paper.faces[face].vertices)
+    polygon.push_back(paper.vertices[v].crease_pattern);
+  Vec2 centroid = Vec2::Zero();
+  const double twice_area = 2.0 * signedArea(polygon);
+  for (size_t i = 0; i < polygon.size(); ++i)
+  {
+    const Vec2 &p = polygon[i], &q = polygon[(i + 1) % polygon.size()];
+    centroid += (p + q) * cross2(p, q);
+  }
+  centroid /= 3.0 * twice_area;
+  std::ostringstream out;
+  out.precision(2);
+  out << "face " << face << " (about (" << centroid.x() << ", " << centroid.y() << ") on the sheet)";
+  return out.str();
+}
+
 /// A face folded flat over a crease lies on the side its fold angle says; returns those creases.
 std::vector<FlatCrease> creaseRules(const Paper& paper, const StackProblem& stack, const std::vector<char>& member,
                                     Clauses& clauses)
@@ -186,11 +218,7 @@ std::vector<FlatCrease> creaseRules(const Paper& paper, const StackProblem& stac
                             (g_higher ? " above" : " below") + " face " + std::to_string(f) });
     FlatCrease crease{ static_cast<int>(e), f, g, stack.planePoint(edge.vertices[0]),
                        stack.planePoint(edge.vertices[1]) };
-    Vec2 centroid = Vec2::Zero();
-    for (const Vec2& p : stack.polygon(f))
-      centroid += p;
-    centroid /= static_cast<double>(stack.polygon(f).size());
-    crease.side = cross2(crease.b - crease.a, centroid - crease.a) > 0 ? 1 : -1;
+    crease.side = sideOf(crease.a, crease.b, stack.polygon(f));
     creases.push_back(crease);
   }
   return creases;
@@ -238,14 +266,14 @@ void transitivityRules(const StackProblem& stack, const std::vector<int>& faces,
     }
 }
 
-/// Whether the crease's line runs through the inside of `poly` (off its sides), for a length.
-bool crossesInside(const FlatCrease& c, const Polygon& poly, double tolerance)
+/// Whether the segment from `from` to `to` runs through the inside of `poly` (off its sides), for a length.
+bool crossesInside(const Vec2& from, const Vec2& to, const Polygon& poly, double tolerance)
 {
-  double t0 = 0.0, t1 = 1.0;  // the part of the crease inside poly
+  double t0 = 0.0, t1 = 1.0;  // the part of the segment inside poly
   for (size_t s = 0; s < poly.size() && t0 <= t1; ++s)
   {
     const Vec2 a = poly[s], b = poly[(s + 1) % poly.size()];
-    const double da = cross2(b - a, c.a - a), db = cross2(b - a, c.b - a);
+    const double da = cross2(b - a, from - a), db = cross2(b - a, to - a);
     if (da < 0 && db < 0)
       t1 = -1.0;
     else if (da < 0)
@@ -253,9 +281,9 @@ bool crossesInside(const FlatCrease& c, const Polygon& poly, double tolerance)
     else if (db < 0)
       t1 = std::min(t1, da / (da - db));
   }
-  if (t1 - t0 <= 0 || (t1 - t0) * (c.b - c.a).norm() <= tolerance)
+  if (t1 - t0 <= 0 || (t1 - t0) * (to - from).norm() <= tolerance)
     return false;
-  return depthInside(poly, c.a + 0.5 * (t0 + t1) * (c.b - c.a)) > tolerance;
+  return depthInside(poly, from + 0.5 * (t0 + t1) * (to - from)) > tolerance;
 }
 
 /// No layer lies between the two faces of a fold where the fold's line crosses it (taco–tortilla).
@@ -266,7 +294,7 @@ void tacoTortillaRules(const StackProblem& stack, const std::vector<int>& faces,
     for (int h : faces)
     {
       if (h == c.face || h == c.other || stack.higher(c.face, h) == 0 || stack.higher(c.other, h) == 0 ||
-          !crossesInside(c, stack.polygon(h), stack.tolerance()))
+          !crossesInside(c.a, c.b, stack.polygon(h), stack.tolerance()))
         continue;
       const std::string why =
           "face " + std::to_string(h) + " would pass through the fold at " + creaseText(stack.paper(), c.edge);
@@ -275,16 +303,22 @@ void tacoTortillaRules(const StackProblem& stack, const std::vector<int>& faces,
     }
 }
 
+/// Whether segments p and q lie on one line and overlap by more than `tolerance`.
+bool onOneLine(const Vec2& pa, const Vec2& pb, const Vec2& qa, const Vec2& qb, double tolerance)
+{
+  const Vec2 d = (pb - pa).normalized();
+  if (std::abs(cross2(d, qa - pa)) > tolerance || std::abs(cross2(d, qb - pa)) > tolerance)
+    return false;
+  const double p_end = (pb - pa).norm(), q_start = d.dot(qa - pa), q_end = d.dot(qb - pa);
+  return std::min(p_end, std::max(q_start, q_end)) - std::max(0.0, std::min(q_start, q_end)) > tolerance;
+}
+
 /// Whether two folds lie on one line, overlapping, with their faces on the same side of it.
 bool foldsOnOneSide(const FlatCrease& p, const FlatCrease& q, double tolerance)
 {
-  const Vec2 d = (p.b - p.a).normalized();
-  if (std::abs(cross2(d, q.a - p.a)) > tolerance || std::abs(cross2(d, q.b - p.a)) > tolerance)
+  if (!onOneLine(p.a, p.b, q.a, q.b, tolerance))
     return false;
-  const double pb = (p.b - p.a).norm(), qa = d.dot(q.a - p.a), qb = d.dot(q.b - p.a);
-  if (std::min(pb, std::max(qa, qb)) - std::max(0.0, std::min(qa, qb)) <= tolerance)
-    return false;
-  const int q_side = d.dot(q.b - q.a) > 0 ? q.side : -q.side;  // q.side measured along p's direction
+  const int q_side = (p.b - p.a).dot(q.b - q.a) > 0 ? q.side : -q.side;  // q.side measured along p's direction
   return q_side == p.side;
 }
 
@@ -335,9 +369,84 @@ void tacoTacoRules(const StackProblem& stack, const std::vector<FlatCrease>& cre
     }
 }
 
+/// A crease left unfolded (0°) within the stack: its two faces are one flat sheet across it.
+struct UnfoldedCrease
+{
+  int edge = -1;
+  int left = -1, right = -1;  // the faces left and right of a→b
+  Vec2 a, b;
+};
+
+std::vector<UnfoldedCrease> unfoldedCreases(const Paper& paper, const StackProblem& stack,
+                                            const std::vector<char>& member)
+{
+  std::vector<UnfoldedCrease> creases;
+  for (size_t e = 0; e < paper.edges.size(); ++e)
+  {
+    const Edge& edge = paper.edges[e];
+    if (!edge.isCrease() || std::abs(edge.fold_angle) > kFlatAngleTolerance || !member[edge.faces[0]] ||
+        !member[edge.faces[1]])
+      continue;
+    UnfoldedCrease crease{ static_cast<int>(e), edge.faces[0], edge.faces[1], stack.planePoint(edge.vertices[0]),
+                           stack.planePoint(edge.vertices[1]) };
+    if (sideOf(crease.a, crease.b, stack.polygon(crease.left)) < 0)
+      std::swap(crease.left, crease.right);
+    creases.push_back(crease);
+  }
+  return creases;
+}
+
+/// The face of `u` on the side `side` (+1: left) of the line p→q that `u` lies on.
+int faceOnSide(const UnfoldedCrease& u, const Vec2& p, const Vec2& q, int side)
+{
+  const bool same_way = (q - p).dot(u.b - u.a) > 0;
+  return (side > 0) == same_way ? u.left : u.right;
+}
+
+/// `b` lies higher than `a` exactly when `b2` lies higher than `a2`.
+void sameOrder(const StackProblem& stack, int a, int b, int a2, int b2, const std::string& why, Clauses& clauses)
+{
+  const int first = stack.higher(a, b), second = stack.higher(a2, b2);
+  if (first == 0 || second == 0)
+    return;
+  clauses.push_back({ { -first, second }, why });
+  clauses.push_back({ { first, -second }, why });
+}
+
+/// A sheet flat across an unfolded crease lies on one side of every layer it meets there
+/// (tortilla–tortilla): a layer the crease runs through lies above or below both its faces, and
+/// two sheets flat across one line keep one order on both sides of it.
+void tortillaTortillaRules(const StackProblem& stack, const std::vector<int>& faces,
+                           const std::vector<UnfoldedCrease>& unfolded, Clauses& clauses)
+{
+  const Paper& paper = stack.paper();
+  const auto sheet = [&](const UnfoldedCrease& u) {
+    return faceText(paper, u.left) + " and " + faceText(paper, u.right) + ", one flat sheet across " +
+           creaseText(paper, u.edge);
+  };
+  for (const UnfoldedCrease& u : unfolded)
+    for (int h : faces)
+      if (h != u.left && h != u.right && crossesInside(u.a, u.b, stack.polygon(h), stack.tolerance()))
+        sameOrder(stack, u.left, h, u.right, h,
+                  faceText(paper, h) + " would pass through " + sheet(u) + ": it lies above one and below the other",
+                  clauses);
+  for (size_t i = 0; i < unfolded.size(); ++i)
+    for (size_t j = i + 1; j < unfolded.size(); ++j)
+    {
+      const UnfoldedCrease &u = unfolded[i], &w = unfolded[j];
+      if (!onOneLine(u.a, u.b, w.a, w.b, stack.tolerance()))
+        continue;
+      sameOrder(stack, u.left, faceOnSide(w, u.a, u.b, 1), u.right, faceOnSide(w, u.a, u.b, -1),
+                sheet(u) + ", and " + sheet(w) +
+                    ", would pass through each other: one lies above the other on "
+                    "one side of the crease and below it on the other",
+                clauses);
+    }
+}
+
 /// Every rule of the stack as clauses.
 Clauses rulesOf(const Paper& paper, const StackProblem& stack, const std::vector<int>& faces,
-                const std::vector<FaceOrder>& kept)
+                const std::vector<FaceOrder>& kept, bool unfolded_sheets)
 {
   std::vector<char> member(paper.faces.size(), 0);
   for (int f : faces)
@@ -348,6 +457,8 @@ Clauses rulesOf(const Paper& paper, const StackProblem& stack, const std::vector
   transitivityRules(stack, faces, clauses);
   tacoTortillaRules(stack, faces, creases, clauses);
   tacoTacoRules(stack, creases, clauses);
+  if (unfolded_sheets)
+    tortillaTortillaRules(stack, faces, unfoldedCreases(paper, stack, member), clauses);
   return clauses;
 }
 
@@ -485,8 +596,9 @@ private:
   std::vector<std::vector<int>> watch_;
 };
 
-/// The faces of `paper` in groups that lie flat on one another (connected by stacking).
-std::vector<std::vector<int>> stacksOf(const Paper& paper, double tolerance)
+/// The faces of `paper` in groups that lie flat on one another (connected by stacking, and with
+/// `unfolded_sheets` by unfolded creases).
+std::vector<std::vector<int>> stacksOf(const Paper& paper, double tolerance, bool unfolded_sheets)
 {
   const int n = static_cast<int>(paper.faces.size());
   std::vector<int> parent(n);
@@ -509,9 +621,40 @@ std::vector<std::vector<int>> stacksOf(const Paper& paper, double tolerance)
   for (int f = 0; f < n; ++f)
     if (stacked[f])
       groups[root(f)].push_back(f);
-  std::vector<std::vector<int>> stacks;
+  // Faces flat across an unfolded crease are one sheet: the stacks on either side are ordered
+  // together, each stack's faces kept together (its pairs searched in the order they were alone).
+  std::map<int, int> group_of;  // a stacked face's group, by the group's place in `groups`
+  std::vector<int> group_parent;
   for (auto& [r, faces] : groups)
-    stacks.push_back(std::move(faces));
+  {
+    for (int f : faces)
+      group_of[f] = static_cast<int>(group_parent.size());
+    group_parent.push_back(static_cast<int>(group_parent.size()));
+  }
+  const std::function<int(int)> group_root = [&](int g) {
+    return group_parent[g] == g ? g : group_parent[g] = group_root(group_parent[g]);
+  };
+  for (const Edge& edge : paper.edges)
+    if (unfolded_sheets && edge.isCrease() && std::abs(edge.fold_angle) <= kFlatAngleTolerance &&
+        stacked[edge.faces[0]] && stacked[edge.faces[1]])
+    {
+      const int a = group_root(group_of[edge.faces[0]]), b = group_root(group_of[edge.faces[1]]);
+      group_parent[std::max(a, b)] = std::min(a, b);
+    }
+  std::vector<std::vector<int>> stacks;
+  std::map<int, size_t> stack_of_root;
+  int g = 0;
+  for (auto& [r, faces] : groups)
+  {
+    const int joined = group_root(g++);
+    if (!stack_of_root.count(joined))
+    {
+      stack_of_root[joined] = stacks.size();
+      stacks.emplace_back();
+    }
+    std::vector<int>& stack = stacks[stack_of_root[joined]];
+    stack.insert(stack.end(), faces.begin(), faces.end());
+  }
   return stacks;
 }
 }  // namespace
@@ -526,7 +669,7 @@ Expected<LayerOrder> solveLayerOrder(const Paper& paper, const LayerOrderOptions
                         std::to_string(options.max_paper_faces) + " whose stacks are looked for";
     return result;
   }
-  for (const std::vector<int>& faces : stacksOf(paper, options.tolerance))
+  for (const std::vector<int>& faces : stacksOf(paper, options.tolerance, options.unfolded_sheets))
   {
     if (static_cast<int>(faces.size()) > options.max_faces)
     {
@@ -536,7 +679,7 @@ Expected<LayerOrder> solveLayerOrder(const Paper& paper, const LayerOrderOptions
       continue;
     }
     const StackProblem stack(paper, faces, options.tolerance);
-    const std::vector<Clause> clauses = rulesOf(paper, stack, faces, options.kept);
+    const std::vector<Clause> clauses = rulesOf(paper, stack, faces, options.kept, options.unfolded_sheets);
     Search search(stack.variableCount(), clauses);
     bool gave_up = false;
     if (const std::optional<std::string> conflict = search.solve(options.max_guesses, gave_up))
@@ -558,11 +701,12 @@ Expected<LayerOrder> solveLayerOrder(const Paper& paper, const LayerOrderOptions
   return result;
 }
 
-std::string layerOrderViolation(const Paper& paper, const std::vector<FaceOrder>& orders, double tolerance)
+std::string layerOrderViolation(const Paper& paper, const std::vector<FaceOrder>& orders, double tolerance,
+                                bool unfolded_sheets)
 {
   Paper ordered = paper;
   ordered.face_orders = orders;
-  for (const std::vector<int>& faces : stacksOf(paper, tolerance))
+  for (const std::vector<int>& faces : stacksOf(paper, tolerance, unfolded_sheets))
   {
     const StackProblem stack(paper, faces, tolerance);
     std::vector<int> value(stack.variableCount(), 0);
@@ -574,7 +718,7 @@ std::string layerOrderViolation(const Paper& paper, const std::vector<FaceOrder>
         return "faces " + std::to_string(f) + " and " + std::to_string(g) + " lie on each other with no order recorded";
       value[k] = above * stack.facing(f);
     }
-    for (const Clause& clause : rulesOf(paper, stack, faces, {}))
+    for (const Clause& clause : rulesOf(paper, stack, faces, {}, unfolded_sheets))
     {
       const bool holds = std::any_of(clause.literals.begin(), clause.literals.end(), [&](int literal) {
         return (literal > 0 ? value[literal - 1] : -value[-literal - 1]) > 0;

@@ -162,3 +162,94 @@ TEST(LayerOrder, ReMarkingAFoldedCreaseTurnsItsFlapToTheOtherSide)
     EXPECT_LT((paper.vertices[v].folded - valley.vertices[v].folded).norm(), 1e-12);
   EXPECT_LT(paper.edges[paper.findEdge(paper.vertexAt(v2(0.5, 0)), paper.vertexAt(v2(0.5, 1)))].fold_angle, 0);
 }
+
+// Two flaps folded in from either side overlap over the middle, and a crease across the sheet is
+// left unfolded: each flap is one flat sheet across it, so the flap on top on one side of it is on
+// top on the other (tortilla–tortilla, LayerOrderOptions::unfolded_sheets). Either flap may be the
+// top one; an order kept for one side decides the other, one kept each way is refused naming the
+// faces and where they are on the sheet, and a recorded order that flips across the crease breaks
+// the layer checks.
+TEST(LayerOrder, FlapsFlatAcrossAnUnfoldedCreaseKeepOneOrderOnBothSidesOfIt)
+{
+  Paper paper = Paper::square(1.0);
+  creaseLine(paper, p3(0.3, -0.1), p3(0.3, 1.1));
+  creaseLine(paper, p3(0.7, -0.1), p3(0.7, 1.1));
+  creaseLine(paper, p3(-0.1, 0.5), p3(1.1, 0.5));
+  // The flaps x < 0.3 and x > 0.7 folded over: x in [0.3, 0.6] and [0.4, 0.7], overlapping on [0.4, 0.6].
+  const Expected<FlatFoldResult> folded =
+      flatFold(paper, { { { v2(0.3, 0), v2(0.3, 1), M_PI }, { v2(0.7, 0), v2(0.7, 1), M_PI } }, v2(0.5, 0.25) });
+  ASSERT_TRUE(folded.ok()) << folded.message();
+  const int left_top = faceContaining(paper, v2(0.1, 0.75)), left_bottom = faceContaining(paper, v2(0.1, 0.25));
+  const int right_top = faceContaining(paper, v2(0.9, 0.75)), right_bottom = faceContaining(paper, v2(0.9, 0.25));
+  LayerOrderOptions free;
+  free.unfolded_sheets = true;
+  const Expected<LayerOrder> some = solveLayerOrder(paper, free);
+  ASSERT_TRUE(some.ok()) << some.message();
+  paper.face_orders = some->orders;
+  ASSERT_NE(faceOrder(paper, left_top, right_top), 0);
+  EXPECT_EQ(faceOrder(paper, left_bottom, right_bottom), faceOrder(paper, left_top, right_top));
+  EXPECT_EQ(layerOrderViolation(paper, paper.face_orders, 1e-7, true), "");
+
+  for (const int above : { 1, -1 })
+  {
+    LayerOrderOptions options;
+    options.unfolded_sheets = true;
+    options.kept = { { left_top, right_top, above } };
+    const Expected<LayerOrder> order = solveLayerOrder(paper, options);
+    ASSERT_TRUE(order.ok()) << order.message();
+    Paper ordered = paper;
+    ordered.face_orders = order->orders;
+    EXPECT_EQ(faceOrder(ordered, left_bottom, right_bottom), above);
+    EXPECT_EQ(faceOrder(ordered, left_top, right_top), above);
+  }
+
+  LayerOrderOptions crossed;
+  crossed.unfolded_sheets = true;
+  crossed.kept = { { left_top, right_top, 1 }, { left_bottom, right_bottom, -1 } };
+  const Expected<LayerOrder> refused = solveLayerOrder(paper, crossed);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.message().find("one flat sheet across crease"), std::string::npos) << refused.message();
+  EXPECT_NE(refused.message().find("face " + std::to_string(left_top) + " (about (0.15, 0.75) on the sheet)"),
+            std::string::npos)
+      << refused.message();
+
+  Paper flipped = paper;
+  setFaceOrder(flipped, left_bottom, right_bottom, -faceOrder(paper, left_bottom, right_bottom));
+  const std::string violation = layerOrderViolation(flipped, flipped.face_orders, 1e-7, true);
+  EXPECT_NE(violation.find("would pass through each other"), std::string::npos) << violation;
+  EXPECT_NE(violation.find("(0.85, 0.25) on the sheet"), std::string::npos) << violation;
+}
+
+// A flap that is one face lies over a sheet split by an unfolded crease the flap crosses: it lies
+// above both halves or below both, never between.
+TEST(LayerOrder, AFaceAcrossAnUnfoldedCreaseOfAnotherSheetLiesOnOneSideOfBothItsHalves)
+{
+  Paper paper = Paper::square(1.0);
+  creaseLine(paper, p3(0.3, -0.1), p3(0.3, 1.1));
+  creaseLine(paper, p3(0.7, -0.1), p3(0.7, 1.1));
+  creaseLine(paper, p3(-0.1, 0.5), p3(0.7, 0.5));  // ends on x = 0.7: the right flap is one face
+  ASSERT_TRUE(
+      flatFold(paper, { { { v2(0.3, 0), v2(0.3, 1), M_PI }, { v2(0.7, 0), v2(0.7, 1), M_PI } }, v2(0.5, 0.25) }).ok());
+  const int left_top = faceContaining(paper, v2(0.1, 0.75)), left_bottom = faceContaining(paper, v2(0.1, 0.25));
+  const int right = faceContaining(paper, v2(0.9, 0.5));
+  for (const int above : { 1, -1 })
+  {
+    LayerOrderOptions options;
+    options.unfolded_sheets = true;
+    options.kept = { { left_top, right, above } };
+    const Expected<LayerOrder> order = solveLayerOrder(paper, options);
+    ASSERT_TRUE(order.ok()) << order.message();
+    Paper ordered = paper;
+    ordered.face_orders = order->orders;
+    EXPECT_EQ(faceOrder(ordered, left_bottom, right), above);
+  }
+  LayerOrderOptions between;
+  between.unfolded_sheets = true;
+  between.kept = { { left_top, right, 1 }, { left_bottom, right, -1 } };
+  const Expected<LayerOrder> refused = solveLayerOrder(paper, between);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(
+      refused.message().find("face " + std::to_string(right) + " (about (0.85, 0.5) on the sheet) would pass through"),
+      std::string::npos)
+      << refused.message();
+}

@@ -1,8 +1,11 @@
 // The layer order of a flat-folded state: which of two overlapping faces lies on top, for every
 // pair, found from what paper cannot do rather than from how it got there. A face folded flat
 // over a crease lies on the side its mountain or valley says; no layer passes through a fold
-// (taco–taco, taco–tortilla); and three overlapping layers stack one way (transitivity). The
-// pairs are boolean variables, the rules clauses, solved by unit propagation and backtracking.
+// (taco–taco, taco–tortilla); with `unfolded_sheets`, faces joined by an unfolded (0°) crease are
+// one flat sheet, which no layer passes through either: a layer lies above both or below both
+// where it meets them there, and two such sheets keep one order on both sides of their line
+// (tortilla–tortilla); and three overlapping layers stack one way (transitivity). The pairs are
+// boolean variables, the rules clauses, solved by unit propagation and backtracking.
 #pragma once
 
 #include <vector>
@@ -26,6 +29,10 @@ struct LayerOrderOptions
   int max_faces = 250;
   /// Papers of more faces than this are not searched for stacks at all (pairs grow with its square).
   int max_paper_faces = 4000;
+  /// Whether faces joined by an unfolded crease are held to be one sheet (tortilla–tortilla).
+  /// Off by default until the shipped crane and flapping bird scripts obey it: from their second
+  /// petal fold (step 13) their front and back sheets change order across the centre line.
+  bool unfolded_sheets = false;
 };
 
 struct LayerOrder
@@ -41,11 +48,13 @@ struct LayerOrder
 
 /// Orders every pair of stacked faces of `paper` (folded positions and fold angles as they are;
 /// creases within kFlatAngleTolerance of ±π count as folded flat). Fails only when no order
-/// exists (no stacking of the layers folds flat), naming a rule that clashes.
+/// exists (no stacking of the layers folds flat), naming a rule that clashes (faces by id and
+/// where they lie on the sheet, creases by id and crease-pattern ends).
 Expected<LayerOrder> solveLayerOrder(const Paper& paper, const LayerOrderOptions& options = {});
 
 /// Whether `orders` obey the rules above for `paper` (a check of any recorded order): empty when
-/// they do, else what breaks.
-std::string layerOrderViolation(const Paper& paper, const std::vector<FaceOrder>& orders, double tolerance = 1e-7);
+/// they do, else what breaks. `unfolded_sheets`: as LayerOrderOptions says.
+std::string layerOrderViolation(const Paper& paper, const std::vector<FaceOrder>& orders, double tolerance = 1e-7,
+                                bool unfolded_sheets = false);
 
 }  // namespace virtual_origami::core
