@@ -29,8 +29,14 @@ struct CurvedFollowOptions
   double max_pin_step = 0.25;
   int max_steps = 400;  // a move that would need more steps is refused
   /// The anytime frames of frame() (their release tolerance is the solve's, as solveOptionsFor
-  /// gives it).
-  AnytimeFrameOptions frames;
+  /// gives it). Corrections bound by the frame's wall-time budget alone: a pointer moves far more
+  /// per frame than the bench's drag (each correction moves a node less than half a spacing),
+  /// and on a small sheet a correction takes well under a millisecond.
+  AnytimeFrameOptions frames = [] {
+    AnytimeFrameOptions options;
+    options.max_corrections = 100;
+    return options;
+  }();
 };
 
 class CurvedSheetFollower
