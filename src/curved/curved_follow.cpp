@@ -1,6 +1,7 @@
 #include "virtual_origami/curved/curved_follow.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "virtual_origami/curved/paper_material.h"
@@ -25,6 +26,11 @@ bool sameCreasePattern(const Paper& a, const Paper& b)
 
 namespace
 {
+double steadySeconds()
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
 bool sameFoldedState(const Paper& a, const Paper& b)
 {
   const double still = 1e-12 * std::max(a.scale(), b.scale());
@@ -249,7 +255,13 @@ Expected<FrameReport> CurvedSheetFollower::frame(const std::vector<PullTarget>& 
   pins_ = pins;
   last_steps_ = 1;
   balanced_ = !report->inertial && report->max_force <= solveOptions().tolerance;
+  frame_made_ = steadySeconds();
   return report;
+}
+
+double CurvedSheetFollower::secondsSinceFrame() const
+{
+  return steadySeconds() - frame_made_;
 }
 
 Expected<CurvedReport> CurvedSheetFollower::settle()

@@ -169,12 +169,13 @@ void publishSheet(ros::Publisher& publisher, const core::CurvedMesh& mesh, const
 
 /// Whether moves of the pins and the mouse on a sheet of `vertices` are shown as anytime frames:
 /// the private parameter `anytime_frames` (true by default; false: every move solved to balance)
-/// and the sheet at least `anytime_frames_from` vertices (2,000 by default: below, a move's solve
-/// to balance takes about as long as a frame, and a balance is better than a frame).
+/// and the sheet at least `anytime_frames_from` vertices (700 by default: below, a move's solve to
+/// balance keeps up with a 30 Hz pointer — 495 vertices, p95 46 ms — and a balance is better
+/// than a frame; at 999 the solves fall behind in spells, p95 560 ms, the frames 59 ms).
 bool anytimeFrames(size_t vertices)
 {
   bool anytime = true;
-  int from = 2000;
+  int from = 700;
   ros::param::getCached("~anytime_frames", anytime);
   ros::param::getCached("~anytime_frames_from", from);
   return anytime && static_cast<long>(vertices) >= from;
@@ -369,11 +370,13 @@ void CurvedMeshSolverNode::followFrames(const ros::TimerEvent&)
   if (follower_->onFrames() || (moved && anytimeFrames(follower_->mesh().nodes.size())))
   {
     // Anytime frames: each move shown at once as one frame (anytime_frames.h), not balanced;
-    // pins standing still for kStillCycles cycles settle the sheet to the tolerance, shown then.
-    constexpr int kStillCycles = 2;
-    resumed_ = moved ? 0 : resumed_ + 1;
+    // pins standing still for kStillSeconds after the last frame settle the sheet to the
+    // tolerance, shown then (timed from the frame, not counted in cycles: after a long frame the
+    // timer's next cycle may come before the drag that arrived meanwhile).
+    constexpr double kStillSeconds = 0.1;
     if (moved)
     {
+      resumed_ = 0;
       const core::Expected<core::FrameReport> frame = follower_->frame(pins);
       if (!frame)
       {
@@ -387,8 +390,9 @@ void CurvedMeshSolverNode::followFrames(const ros::TimerEvent&)
                 1e3 * frame->seconds, frame->max_force, frame->inertial ? " (inertial)" : "");
       return;
     }
-    if (resumed_ < kStillCycles || resumed_ >= kStillCycles + kResumes)
+    if (follower_->secondsSinceFrame() < kStillSeconds || resumed_ >= kResumes)
       return;
+    ++resumed_;  // settles tried since the last frame
     const core::Expected<core::CurvedReport> settled = follower_->settle();
     if (settled)
       publish(stamp, *settled, drag_ ? "mouse, settled" : "frames, settled");

@@ -82,6 +82,8 @@ public:
   {
     return frames_live_ && !balanced_;
   }
+  /// Wall time since the last frame was made (how long the pins have stood still).
+  double secondsSinceFrame() const;
 
   bool hasSheet() const
   {
@@ -133,6 +135,7 @@ private:
   // their shape and their pins are the vertices of pins_.
   std::unique_ptr<AnytimeFrames> frames_;
   bool frames_live_ = false;
+  double frame_made_ = 0.0;  // steady-clock seconds at the end of the last frame
   Positions x_;
   std::vector<PullTarget> pins_;
   int last_steps_ = 0;
