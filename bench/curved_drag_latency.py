@@ -8,7 +8,7 @@ towards the middle and up, one move every 1/30 s, each stamped when sent), and t
 `curved_mesh` message against the move whose stamp it carries (the node stamps the sheet with
 the drag it shows). The messages are taken raw (rospy.AnyMsg) and only their first header read,
 so this side adds no deserialisation. Then the pointer stands still: the time to the settled
-sheet (a second sheet of the last move). Appends one row per move to the CSV.
+sheet (the last sheet of the last move, none coming for 10 s after it). Appends one row per move to the CSV.
 """
 import csv
 import math
@@ -104,14 +104,14 @@ def main():
         time.sleep(max(0.0, next_at - time.time()))
     last = max(sent)
     last_sent = sent[last][1]
-    # Standing still: the settled sheet is the second of the last move (the first its frame).
-    # (A frame already within the tolerance is not settled again: then a quiet 10 s ends the wait.)
-    deadline = time.time() + 120
+    # Standing still: the settled sheet is the last one of the last move (frames that lagged the
+    # pointer catch up with its stamp first) once no sheet has come for 10 s.
+    deadline = time.time() + 180
     while time.time() < deadline:
-        of_last = [a for s, a, _ in sheets.since(start_index) if s == last]
-        if len(of_last) >= (2 if frames else 1) or (of_last and time.time() - of_last[-1] > 10.0):
+        arrived = sheets.since(start_index)
+        if arrived and arrived[-1][0] == last and time.time() - arrived[-1][1] > 10.0:
             break
-        time.sleep(0.01)
+        time.sleep(0.05)
     arrivals = sheets.since(start_index)
     of_last = [a for s, a, _ in arrivals if s == last]
     settled = (of_last[-1] - last_sent) if of_last else float("nan")

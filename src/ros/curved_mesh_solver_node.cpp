@@ -167,6 +167,15 @@ void publishSheet(ros::Publisher& publisher, const core::CurvedMesh& mesh, const
   publisher.publish(sheetMarkers(mesh, positions, header));
 }
 
+/// Whether `pins` hold other vertices than `shown`, or one farther than `still` from where it was.
+bool pinsMoved(const std::vector<core::PullTarget>& pins, const std::vector<core::PullTarget>& shown, double still)
+{
+  bool moved = pins.size() != shown.size();
+  for (size_t i = 0; !moved && i < pins.size(); ++i)
+    moved = pins[i].vertex != shown[i].vertex || (pins[i].position - shown[i].position).norm() > still;
+  return moved;
+}
+
 /// Whether moves of the pins and the mouse on a sheet of `vertices` are shown as anytime frames:
 /// the private parameter `anytime_frames` (true by default; false: every move solved to balance)
 /// and the sheet at least `anytime_frames_from` vertices (700 by default: below, a move's solve to
@@ -361,11 +370,7 @@ void CurvedMeshSolverNode::followFrames(const ros::TimerEvent&)
   }
   // A frame standing still leaves a balanced sheet as it is; a sheet its solve's budget
   // stopped short of balance is solved on from where it is, a few times, before it is shown.
-  const double still = 1e-9 * follower_->paper().scale();
-  bool moved = pins.size() != follower_->pins().size();
-  for (size_t i = 0; !moved && i < pins.size(); ++i)
-    moved = pins[i].vertex != follower_->pins()[i].vertex ||
-            (pins[i].position - follower_->pins()[i].position).norm() > still;
+  const bool moved = pinsMoved(pins, follower_->pins(), 1e-9 * follower_->paper().scale());
   constexpr int kResumes = 5;
   if (follower_->onFrames() || (moved && anytimeFrames(follower_->mesh().nodes.size())))
   {
@@ -424,8 +429,14 @@ bool CurvedMeshSolverNode::keepBend(std_srvs::Trigger::Request&, std_srvs::Trigg
   }
   if (follower_->onFrames())
   {
-    // The frame shown is not balanced: the sheet kept is the converged one at the frame's pins.
-    const core::Expected<core::CurvedReport> settled = follower_->settle();
+    // The frame shown is not balanced: the sheet kept is the converged one, at the pins as they
+    // are now (frames that lag the pointer catch up by a full solve).
+    std::vector<core::PullTarget> pins;
+    ros::Time stamp;
+    std::string error;
+    const bool lagging =
+        currentPins(pins, stamp, error) && pinsMoved(pins, follower_->pins(), 1e-9 * follower_->paper().scale());
+    const core::Expected<core::CurvedReport> settled = lagging ? follower_->follow(pins) : follower_->settle();
     if (!settled || !settled->converged)
     {
       res.message = "the bent sheet did not settle to balance (" +
