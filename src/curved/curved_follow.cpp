@@ -224,19 +224,9 @@ Expected<FrameReport> CurvedSheetFollower::frame(const std::vector<PullTarget>& 
     return Failure::failure("no state to follow pins on yet");
   if (const Status checked = checkPins(*paper_, pins); !checked)
     return Failure::failure(checked.message());
-  // Each pin at most max_frame_pin_step spacings from where its node lies.
-  std::vector<PullTarget> shown = pins;
   std::vector<CurvedPin> at;
-  const double reach = options_.max_frame_pin_step * mesh_->spacing;
-  for (PullTarget& pin : shown)
-  {
-    const int node = mesh_->vertex_nodes[pin.vertex];
-    const Vec3 from = x_.col(node);
-    const double far = (pin.position - from).norm();
-    if (reach > 0 && far > reach * (1 + 1e-9))  // (within rounding of the reach: at the point)
-      pin.position = from + (reach / far) * (pin.position - from);
-    at.push_back({ node, pin.position });
-  }
+  for (const PullTarget& pin : pins)
+    at.push_back({ mesh_->vertex_nodes[pin.vertex], pin.position });
   bool same_vertices = frames_live_ && pins.size() == pins_.size();
   for (size_t k = 0; same_vertices && k < pins.size(); ++k)
     same_vertices = pins[k].vertex == pins_[k].vertex;
@@ -262,7 +252,7 @@ Expected<FrameReport> CurvedSheetFollower::frame(const std::vector<PullTarget>& 
   if (!report)
     return report;
   x_ = frames_->positions();
-  pins_ = std::move(shown);
+  pins_ = pins;
   last_steps_ = 1;
   balanced_ = !report->inertial && report->max_force <= solveOptions().tolerance;
   frame_made_ = steadySeconds();

@@ -430,13 +430,13 @@ bool CurvedMeshSolverNode::keepBend(std_srvs::Trigger::Request&, std_srvs::Trigg
   if (follower_->onFrames())
   {
     // The frame shown is not balanced: the sheet kept is the converged one, at the pins as they
-    // are now (frames that lag the pointer catch up by a full solve).
+    // are now (moved since the last frame: a full solve from the frame to them).
     std::vector<core::PullTarget> pins;
     ros::Time stamp;
     std::string error;
-    const bool lagging =
+    const bool moved =
         currentPins(pins, stamp, error) && pinsMoved(pins, follower_->pins(), 1e-9 * follower_->paper().scale());
-    const core::Expected<core::CurvedReport> settled = lagging ? follower_->follow(pins) : follower_->settle();
+    const core::Expected<core::CurvedReport> settled = moved ? follower_->follow(pins) : follower_->settle();
     if (!settled || !settled->converged)
     {
       res.message = "the bent sheet did not settle to balance (" +

@@ -32,9 +32,6 @@ struct CurvedFollowOptions
   /// gives it). Corrections bound by the frame's wall-time budget alone: a pointer moves far more
   /// per frame than the bench's drag (each correction moves a node less than half a spacing),
   /// and on a small sheet a correction takes well under a millisecond.
-  /// A frame moves no pin farther than this many mesh spacings (a frame cannot follow a pin
-  /// that jumps farther: its corrections move no node more than 0.4 of a spacing).
-  double max_frame_pin_step = 0.5;
   AnytimeFrameOptions frames = [] {
     AnytimeFrameOptions options;
     options.max_corrections = 100;
@@ -72,9 +69,7 @@ public:
   /// corrected within the frames' budget, not balanced (balanced() false unless the frame's force
   /// is within the tolerance). The frames start from the sheet as it lies, on its first call and
   /// whenever the pinned vertices change (a vertex grabbed or let go) or another call changed the
-  /// sheet. A pin farther than max_frame_pin_step spacings from its node goes that far towards
-  /// its point in this frame (pins() says where: the frames catch up over the next calls with the
-  /// same pins). Fails, changing nothing, before any state or for pins solveState would refuse.
+  /// sheet. Fails, changing nothing, before any state or for pins solveState would refuse.
   Expected<FrameReport> frame(const std::vector<PullTarget>& pins);
 
   /// The pins stand still: the anytime frames' shape is brought to the solve's tolerance at the
