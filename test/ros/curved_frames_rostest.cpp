@@ -2,7 +2,8 @@
 // the fourth dragged on `curved_drag` as the interaction drags it: every sheet shown for a move
 // holds the pins and the dragged vertex exactly where they are; the pointer standing still, the
 // sheet settles to the solve's tolerance; a bend kept while the frames still move is committed
-// balanced (the node settles it first).
+// balanced (the node settles it first); a vertex pinned on a moving tf frame is followed in
+// frames the same way.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include <optional>
 
 #include <std_srvs/Trigger.h>
+#include <tf2_ros/transform_broadcaster.h>
 #include <visualization_msgs/MarkerArray.h>
 #include <virtual_origami/PinVertex.h>
 #include <virtual_origami/VertexTarget.h>
@@ -192,6 +194,70 @@ TEST_F(CurvedFrames, ABendKeptWhileTheFramesMoveIsCommittedBalanced)
   std::printf("curved_frames: kept at force %.3g\n", force(x, sent.at(last)));
   ASSERT_TRUE(client_.trigger("undo").response.success);
   letGo();
+}
+TEST_F(CurvedFrames, APinOnAMovingTfFrameIsFollowedInFramesAndSettles)
+{
+  tf2_ros::TransformBroadcaster tf;
+  const auto place = [&](const core::Vec3& p) {
+    geometry_msgs::TransformStamped t;
+    t.header.stamp = ros::Time::now();
+    t.header.frame_id = state_.header.frame_id;
+    t.child_frame_id = "curved_frames_hand";
+    t.transform.translation.x = p.x();
+    t.transform.translation.y = p.y();
+    t.transform.translation.z = p.z();
+    t.transform.rotation.w = 1;
+    tf.sendTransform(t);
+    return t.header.stamp;
+  };
+  // The hand at the corner, then the corner pinned on it.
+  for (int k = 0; k < 10; ++k)
+  {
+    place(lifted(0.0));
+    ros::WallDuration(0.05).sleep();
+  }
+  PinVertex::Request pin;
+  pin.vertex = corner_;
+  pin.frame_id = "curved_frames_hand";
+  const PinVertex::Response pinned = client_.call<PinVertex>("pin", pin).response;
+  ASSERT_TRUE(pinned.success) << pinned.message;
+  ASSERT_TRUE(waitFor([&] { return client_.state().pins.size() == 4; }, 10));
+  const size_t before = sheets_.size();
+  std::map<ros::Time, core::Vec3> sent;
+  const int moves = 15;
+  for (int k = 1; k <= moves; ++k)
+  {
+    const core::Vec3 to = lifted(static_cast<double>(k) / moves);
+    sent[place(to)] = to;
+    ros::WallDuration(1.0 / 30).sleep();
+    ros::spinOnce();
+  }
+  // The hand stands still (tf keeps its last place): the sheet settles with the corner there.
+  std::optional<core::Positions> settled;
+  ASSERT_TRUE(waitFor(
+      [&] {
+        settled = nodePositions(sheets_.back(), mesh_);
+        return settled && core::Vec3(settled->col(mesh_.vertex_nodes[corner_])) == lifted(1.0) &&
+               force(*settled, lifted(1.0)) <= config_.tolerance;
+      },
+      8))
+      << "the sheet does not settle on the hand's last place";
+  int frames = 0;
+  for (size_t k = before; k < sheets_.size(); ++k)
+    if (const auto move = sent.find(sheets_[k].header.stamp); move != sent.end())
+    {
+      const std::optional<core::Positions> x = nodePositions(sheets_[k], mesh_);
+      ASSERT_TRUE(x);
+      EXPECT_EQ(core::Vec3(x->col(mesh_.vertex_nodes[corner_])), move->second);
+      for (const core::CurvedPin& p : pins_)
+        EXPECT_EQ(core::Vec3(x->col(p.node)), p.position);
+      ++frames;
+    }
+  EXPECT_GT(frames, 1) << "no sheet was shown while the hand moved";
+  std::printf("curved_frames: %d sheets stamped with the hand's %d places, settled at force %.3g\n", frames, moves,
+              force(*settled, lifted(1.0)));
+  pin.release = true;
+  EXPECT_TRUE(client_.call<PinVertex>("pin", pin).response.success);
 }
 }  // namespace
 }  // namespace virtual_origami::test
