@@ -437,13 +437,14 @@ bool CurvedMeshSolverNode::keepBend(std_srvs::Trigger::Request&, std_srvs::Trigg
     const bool moved =
         currentPins(pins, stamp, error) && pinsMoved(pins, follower_->pins(), 1e-9 * follower_->paper().scale());
     const core::Expected<core::CurvedReport> settled = moved ? follower_->follow(pins) : follower_->settle();
+    if (settled)
+      publish(drag_ ? drag_stamp_ : last_state_->header.stamp, *settled, "kept, settled");
     if (!settled || !settled->converged)
     {
       res.message = "the bent sheet did not settle to balance (" +
                     (settled ? "force " + std::to_string(settled->max_force) : settled.message()) + "): nothing kept";
       return true;
     }
-    publish(drag_ ? drag_stamp_ : last_state_->header.stamp, *settled, "kept, settled");
   }
   const core::BentSheet sheet = core::bentSheetOf(follower_->mesh(), follower_->positions());
   KeepBend srv;
