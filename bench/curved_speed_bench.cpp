@@ -14,7 +14,7 @@
 // (e) the drag as a person sees it (issue 37): anytime frames (anytime_frames.h) at 30 Hz, one
 // per pointer step, each frame's wall and thread CPU time, its distance to the tight balance
 // for the same pointer (solved afresh after the drag, force 1e-10), the snaps' time to their
-// branch and the release's to 1e-8.
+// branch and the release's to 1e-8; the same drag solved to 1e-8 at every step beside them.
 //
 //   curved_speed_bench [out_dir] [pulls|stability|scaling|methods|frames]   writes curved_speed.csv
 //   and curved_drag_accuracy.csv, curved_stability.csv, curved_scaling.csv, curved_methods.csv,
@@ -317,9 +317,15 @@ void frames(const std::string& dir, int n, int count, int stride, const std::str
     options.frame_seconds = INFINITY;
   }
   AnytimeFrames anytime(sheet.mesh, sheet.scene.paper, {}, {}, options);
+  // newton: the converged solver beside the frames, each pointer step solved to 1e-8 from the
+  // last balance (predicted start), as the node's full solve does; one row per solve.
+  const bool converged_solves = budget == "newton";
+  CurvedSolver newton(sheet.mesh, sheet.scene.paper);
+  newton.options().tolerance = 1e-8;
+  Positions solved = sheet.rest;
   const std::string load_before = loadAverage();
   double t = now(), cpu = threadCpuNow();
-  if (!anytime.start(sheet.rest, sheet.pins))
+  if (converged_solves ? !newton.solve(solved, sheet.pins).converged : !anytime.start(sheet.rest, sheet.pins))
     return;
   std::printf("%zu vertices, budget %s: start (first factorisation) %.0f ms wall, %.0f ms cpu; inertial density %.3g; "
               "load %s\n",
@@ -345,6 +351,20 @@ void frames(const std::string& dir, int n, int count, int stride, const std::str
       std::this_thread::sleep_for(std::chrono::duration<double>(due - now()));
     sheet.pullTo(s += 5e-4);
     const double frame_cpu = threadCpuNow();
+    if (converged_solves)
+    {
+      const double solve_start = now();
+      const CurvedReport solve = newton.solve(solved, sheet.pins);
+      FrameReport r;
+      r.seconds = now() - solve_start;
+      r.max_force = solve.max_force;
+      r.corrections = solve.iterations;
+      r.refused = solve.converged ? 0 : 1;
+      rows.push_back({ r, threadCpuNow() - frame_cpu, NAN, sheet.pins });
+      if (k % stride == 0)
+        kept.emplace_back(k - 1, solved);
+      continue;
+    }
     const Expected<FrameReport> r = anytime.frame(sheet.pins);
     if (!r)
     {
@@ -359,7 +379,7 @@ void frames(const std::string& dir, int n, int count, int stride, const std::str
   const double drag_factor_cpu = anytime.factorCpuSeconds() - factor_cpu_start;
   const int drag_factorizations = anytime.factorizations();
   t = now();
-  const ReleaseReport release = anytime.release();
+  const ReleaseReport release = converged_solves ? ReleaseReport{} : anytime.release();
   const double release_wall = now() - t;
   const std::string load_after = loadAverage();
   // The tight balances, after the drag (not in its time).
@@ -433,10 +453,19 @@ void frames(const std::string& dir, int n, int count, int stride, const std::str
               "all checked (%zu) max %.3g\n",
               steady_errors.size(), percentile(steady_errors, 0.5), percentile(steady_errors, 0.95),
               percentile(steady_errors, 1.0), all_errors.size(), percentile(all_errors, 1.0));
-  std::printf("  release: %s at force %.3g in %.3f s (%d corrections, %d factorisations, %d Newton iterations); "
-              "load %s\n",
-              release.converged ? "converged" : "NOT converged", release.max_force, release_wall, release.corrections,
-              release.factorizations, release.newton_iterations, load_after.c_str());
+  if (converged_solves)
+  {
+    int unconverged = 0;
+    for (const Row& row : rows)
+      unconverged += row.report.refused;
+    std::printf("  newton: %d of %zu solves not converged to 1e-8; load %s\n", unconverged, rows.size(),
+                load_after.c_str());
+  }
+  else
+    std::printf("  release: %s at force %.3g in %.3f s (%d corrections, %d factorisations, %d Newton iterations); "
+                "load %s\n",
+                release.converged ? "converged" : "NOT converged", release.max_force, release_wall, release.corrections,
+                release.factorizations, release.newton_iterations, load_after.c_str());
   std::fflush(stdout);
 }
 
@@ -603,7 +632,8 @@ int main(int argc, char** argv)
   {
     // curved_speed_bench dir frames [grid side, 100] [frames, 200] [every how many frames checked, 2]
     //   [wall|cpu|sync: the frames' budget counted in wall time (default) or in the frame thread's
-    //   CPU time; sync: the factor made in every frame, six corrections, no budget]
+    //   CPU time; sync: the factor made in every frame, six corrections, no budget; newton: each
+    //   pointer step solved to 1e-8 by Newton instead, the converged solver beside the frames]
     frames(dir, argc > 3 ? std::stoi(argv[3]) : 100, argc > 4 ? std::stoi(argv[4]) : 200,
            argc > 5 ? std::stoi(argv[5]) : 2, argc > 6 ? argv[6] : "wall");
   }

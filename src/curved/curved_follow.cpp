@@ -1,6 +1,7 @@
 #include "virtual_origami/curved/curved_follow.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "virtual_origami/curved/paper_material.h"
@@ -25,6 +26,11 @@ bool sameCreasePattern(const Paper& a, const Paper& b)
 
 namespace
 {
+double steadySeconds()
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
 bool sameFoldedState(const Paper& a, const Paper& b)
 {
   const double still = 1e-12 * std::max(a.scale(), b.scale());
@@ -87,10 +93,12 @@ Status CurvedSheetFollower::setMaterial(const CurvedMaterial& material, const Su
       return checked;
   options_.material = material;
   options_.surroundings = surroundings;
-  // The same mesh, a solver for the new paper; the sheet solves on from where it lies.
+  // The same mesh, a solver for the new paper; the sheet solves on from where it lies (frames
+  // too: made anew at the next one).
+  frames_.reset();
+  frames_live_ = false;
   if (mesh_)
-    solver_ = std::make_unique<CurvedSolver>(*mesh_, *paper_, options_.material, options_.contact,
-                                             solveOptionsFor(options_.material, options_.solve, *mesh_),
+    solver_ = std::make_unique<CurvedSolver>(*mesh_, *paper_, options_.material, options_.contact, solveOptions(),
                                              options_.surroundings);
   return success();
 }
@@ -129,6 +137,9 @@ Expected<CurvedReport> CurvedSheetFollower::solveState(const Paper& paper, const
                                                     options_.surroundings);
   Positions next_x = placeNodes(*next_mesh, *next_paper);
 
+  // The frames hold the old paper and mesh: they go first.
+  frames_.reset();
+  frames_live_ = false;
   std::swap(paper_, next_paper);
   std::swap(mesh_, next_mesh);
   std::swap(solver_, next_solver);
@@ -197,7 +208,79 @@ Expected<CurvedReport> CurvedSheetFollower::moveTo(const std::vector<PullTarget>
   pins_ = pins;
   last_steps_ = steps;
   balanced_ = total.converged;
+  frames_live_ = false;
   return total;
+}
+
+CurvedSolveOptions CurvedSheetFollower::solveOptions() const
+{
+  return solveOptionsFor(options_.material, options_.solve, *mesh_);
+}
+
+Expected<FrameReport> CurvedSheetFollower::frame(const std::vector<PullTarget>& pins)
+{
+  using Failure = Expected<FrameReport>;
+  if (!hasSheet())
+    return Failure::failure("no state to follow pins on yet");
+  if (const Status checked = checkPins(*paper_, pins); !checked)
+    return Failure::failure(checked.message());
+  std::vector<CurvedPin> at;
+  for (const PullTarget& pin : pins)
+    at.push_back({ mesh_->vertex_nodes[pin.vertex], pin.position });
+  bool same_vertices = frames_live_ && pins.size() == pins_.size();
+  for (size_t k = 0; same_vertices && k < pins.size(); ++k)
+    same_vertices = pins[k].vertex == pins_[k].vertex;
+  if (!same_vertices)
+  {
+    // The frames start where the sheet lies, every pinned node held where it is; the frame
+    // then moves them to their pins.
+    if (!frames_)
+    {
+      AnytimeFrameOptions options = options_.frames;
+      options.release_tolerance = solveOptions().tolerance;
+      frames_ = std::make_unique<AnytimeFrames>(*mesh_, *paper_, options_.material, options_.contact, options,
+                                                options_.surroundings);
+    }
+    std::vector<CurvedPin> here = at;
+    for (CurvedPin& pin : here)
+      pin.position = x_.col(pin.node);
+    if (const Status started = frames_->start(x_, here); !started)
+      return Failure::failure(started.message());
+    frames_live_ = true;
+  }
+  Expected<FrameReport> report = frames_->frame(at);
+  if (!report)
+    return report;
+  x_ = frames_->positions();
+  pins_ = pins;
+  last_steps_ = 1;
+  balanced_ = !report->inertial && report->max_force <= solveOptions().tolerance;
+  frame_made_ = steadySeconds();
+  return report;
+}
+
+double CurvedSheetFollower::secondsSinceFrame() const
+{
+  return steadySeconds() - frame_made_;
+}
+
+Expected<CurvedReport> CurvedSheetFollower::settle()
+{
+  if (!hasSheet())
+    return Expected<CurvedReport>::failure("no state to settle yet");
+  CurvedReport report;
+  report.converged = balanced_;
+  if (!onFrames())
+    return report;
+  const ReleaseReport released = frames_->release();
+  x_ = frames_->positions();
+  balanced_ = released.converged;
+  report.converged = released.converged;
+  report.max_force = released.max_force;
+  report.iterations = released.corrections + released.newton_iterations;
+  report.factorizations = released.factorizations;
+  report.seconds = released.seconds;
+  return report;
 }
 
 }  // namespace virtual_origami::core

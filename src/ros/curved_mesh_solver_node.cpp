@@ -158,6 +158,37 @@ visualization_msgs::MarkerArray sheetMarkers(const core::CurvedMesh& mesh, const
   markers.markers = { triangles, back, edges };
   return markers;
 }
+
+/// The sheet at `positions` on `curved_mesh`, in the state's frame, stamped `stamp`.
+void publishSheet(ros::Publisher& publisher, const core::CurvedMesh& mesh, const core::Positions& positions,
+                  std_msgs::Header header, const ros::Time& stamp)
+{
+  header.stamp = stamp;
+  publisher.publish(sheetMarkers(mesh, positions, header));
+}
+
+/// Whether `pins` hold other vertices than `shown`, or one farther than `still` from where it was.
+bool pinsMoved(const std::vector<core::PullTarget>& pins, const std::vector<core::PullTarget>& shown, double still)
+{
+  bool moved = pins.size() != shown.size();
+  for (size_t i = 0; !moved && i < pins.size(); ++i)
+    moved = pins[i].vertex != shown[i].vertex || (pins[i].position - shown[i].position).norm() > still;
+  return moved;
+}
+
+/// Whether moves of the pins and the mouse on a sheet of `vertices` are shown as anytime frames:
+/// the private parameter `anytime_frames` (true by default; false: every move solved to balance)
+/// and the sheet at least `anytime_frames_from` vertices (700 by default: below, a move's solve to
+/// balance keeps up with a 30 Hz pointer — 495 vertices, p95 46 ms — and a balance is better
+/// than a frame; at 999 the solves fall behind in spells, p95 560 ms, the frames 59 ms).
+bool anytimeFrames(size_t vertices)
+{
+  bool anytime = true;
+  int from = 700;
+  ros::param::getCached("~anytime_frames", anytime);
+  ros::param::getCached("~anytime_frames_from", from);
+  return anytime && static_cast<long>(vertices) >= from;
+}
 }  // namespace
 
 CurvedMeshSolverNode::CurvedMeshSolverNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
@@ -339,12 +370,39 @@ void CurvedMeshSolverNode::followFrames(const ros::TimerEvent&)
   }
   // A frame standing still leaves a balanced sheet as it is; a sheet its solve's budget
   // stopped short of balance is solved on from where it is, a few times, before it is shown.
-  const double still = 1e-9 * follower_->paper().scale();
-  bool moved = pins.size() != follower_->pins().size();
-  for (size_t i = 0; !moved && i < pins.size(); ++i)
-    moved = pins[i].vertex != follower_->pins()[i].vertex ||
-            (pins[i].position - follower_->pins()[i].position).norm() > still;
+  const bool moved = pinsMoved(pins, follower_->pins(), 1e-9 * follower_->paper().scale());
   constexpr int kResumes = 5;
+  if (follower_->onFrames() || (moved && anytimeFrames(follower_->mesh().nodes.size())))
+  {
+    // Anytime frames: each move shown at once as one frame (anytime_frames.h), not balanced;
+    // pins standing still for kStillSeconds after the last frame settle the sheet to the
+    // tolerance, shown then (timed from the frame, not counted in cycles: after a long frame the
+    // timer's next cycle may come before the drag that arrived meanwhile).
+    constexpr double kStillSeconds = 0.1;
+    if (moved)
+    {
+      resumed_ = 0;
+      const core::Expected<core::FrameReport> frame = follower_->frame(pins);
+      if (!frame)
+      {
+        ROS_WARN_THROTTLE(5.0, "curved_mesh_solver: a frame after the pins' frames%s: %s",
+                          drag_ ? " and the mouse" : "", frame.message().c_str());
+        return;
+      }
+      publishSheet(mesh_pub_, follower_->mesh(), follower_->positions(), last_state_->header, stamp);
+      ROS_DEBUG("curved_mesh_solver: state %lu, frame of %zu nodes, %d corrections in %.1f ms, force %g%s",
+                static_cast<unsigned long>(last_state_->revision), follower_->mesh().nodes.size(), frame->corrections,
+                1e3 * frame->seconds, frame->max_force, frame->inertial ? " (inertial)" : "");
+      return;
+    }
+    if (follower_->secondsSinceFrame() < kStillSeconds || resumed_ >= kResumes)
+      return;
+    ++resumed_;  // settles tried since the last frame
+    const core::Expected<core::CurvedReport> settled = follower_->settle();
+    if (settled)
+      publish(stamp, *settled, drag_ ? "mouse, settled" : "frames, settled");
+    return;
+  }
   if (!moved && (follower_->balanced() || resumed_ >= kResumes))
     return;
   resumed_ = moved ? 0 : resumed_ + 1;
@@ -369,6 +427,25 @@ bool CurvedMeshSolverNode::keepBend(std_srvs::Trigger::Request&, std_srvs::Trigg
     res.message = "no bent sheet is shown: nothing to keep";
     return true;
   }
+  if (follower_->onFrames())
+  {
+    // The frame shown is not balanced: the sheet kept is the converged one, at the pins as they
+    // are now (moved since the last frame: a full solve from the frame to them).
+    std::vector<core::PullTarget> pins;
+    ros::Time stamp;
+    std::string error;
+    const bool moved =
+        currentPins(pins, stamp, error) && pinsMoved(pins, follower_->pins(), 1e-9 * follower_->paper().scale());
+    const core::Expected<core::CurvedReport> settled = moved ? follower_->follow(pins) : follower_->settle();
+    if (settled)
+      publish(drag_ ? drag_stamp_ : last_state_->header.stamp, *settled, "kept, settled");
+    if (!settled || !settled->converged)
+    {
+      res.message = "the bent sheet did not settle to balance (" +
+                    (settled ? "force " + std::to_string(settled->max_force) : settled.message()) + "): nothing kept";
+      return true;
+    }
+  }
   const core::BentSheet sheet = core::bentSheetOf(follower_->mesh(), follower_->positions());
   KeepBend srv;
   for (const core::Vec2& p : sheet.points)
@@ -391,9 +468,7 @@ bool CurvedMeshSolverNode::keepBend(std_srvs::Trigger::Request&, std_srvs::Trigg
 
 void CurvedMeshSolverNode::publish(const ros::Time& stamp, const core::CurvedReport& report, const char* what)
 {
-  std_msgs::Header header = last_state_->header;
-  header.stamp = stamp;
-  mesh_pub_.publish(sheetMarkers(follower_->mesh(), follower_->positions(), header));
+  publishSheet(mesh_pub_, follower_->mesh(), follower_->positions(), last_state_->header, stamp);
   if (!report.converged)
     ROS_WARN_THROTTLE(5.0, "curved_mesh_solver: state %lu (%s): not balanced after %d iterations (force %g)",
                       static_cast<unsigned long>(last_state_->revision), what, report.iterations, report.max_force);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "test_models.h"
+#include "virtual_origami/curved/anytime_frames.h"
 #include "virtual_origami/curved/bubble_mesh.h"
 #include "virtual_origami/curved/curved_follow.h"
 #include "virtual_origami/curved/curved_metrics.h"
@@ -113,6 +114,74 @@ TEST(CurvedFollow, BadPinsAreRefusedAndChangeNothing)
   refused({ { 1, Vec3(1e6, 0, 0) } });  // thousands of steps
   ASSERT_EQ(follower.pins().size(), 1u);
   EXPECT_EQ(follower.pins()[0].vertex, 0);
+  // Frames too.
+  EXPECT_FALSE(follower.frame({ { 99, Vec3::Zero() } }));
+  EXPECT_FALSE(follower.frame({ { 1, Vec3(NAN, 0, 0) } }));
+  EXPECT_EQ(follower.positions(), before);
+  EXPECT_FALSE(follower.onFrames());
+}
+
+// The drag at the mouse (curved_mesh_solver): a corner grabbed, three held, and lifted in
+// towards the middle in anytime frames, one per move, each holding the pins exactly; standing
+// still, the sheet settles on the balance that solving every move to the tolerance reaches.
+TEST(CurvedFollow, FramesAtTheMouseSettleOnTheBalanceEachMoveSolvedReaches)
+{
+  const Paper paper = Paper::square(1.0);
+  const int corner = paper.vertexAt({ 0, 0 });
+  std::vector<PullTarget> held;
+  for (const Vec2& at : { Vec2(1, 0), Vec2(1, 1), Vec2(0, 1) })
+    held.push_back({ paper.vertexAt(at), paper.vertices[paper.vertexAt(at)].folded });
+  const auto lifted = [](double t) { return Vec3(0.1 * t, 0.1 * t, 0.2 * t); };
+  const auto pins = [&](double t) {
+    std::vector<PullTarget> p = held;
+    p.push_back({ corner, lifted(t) });
+    return p;
+  };
+  CurvedFollowOptions options;
+  options.frames.background = false;  // the same frames every run
+  CurvedSheetFollower frames = makeFollower(options), solved = makeFollower();
+  EXPECT_FALSE(frames.frame(pins(0.0))) << "no state yet";
+  ASSERT_TRUE(frames.solveState(paper, held));
+  ASSERT_TRUE(solved.solveState(paper, held));
+  EXPECT_FALSE(frames.onFrames());
+  const int node = frames.mesh().vertex_nodes[corner];
+  const int moves = 20;  // 0.012 of the side a move
+  for (int k = 1; k <= moves; ++k)
+  {
+    const double t = static_cast<double>(k) / moves;
+    const Expected<FrameReport> frame = frames.frame(pins(t));  // the corner grabbed at the first
+    ASSERT_TRUE(frame) << frame.message();
+    EXPECT_EQ(frames.positions().col(node), lifted(t)) << "move " << k;
+    for (const PullTarget& pin : held)
+      EXPECT_EQ(frames.positions().col(frames.mesh().vertex_nodes[pin.vertex]), pin.position);
+    EXPECT_EQ(frames.pins().size(), 4u);
+    EXPECT_TRUE(frames.positions().allFinite());
+    ASSERT_TRUE(solved.follow(pins(t)));
+  }
+  const Expected<CurvedReport> settled = frames.settle();
+  ASSERT_TRUE(settled) << settled.message();
+  EXPECT_TRUE(settled->converged);
+  EXPECT_LE(settled->max_force, 1e-8);
+  EXPECT_TRUE(frames.balanced());
+  EXPECT_FALSE(frames.onFrames());
+  ASSERT_TRUE(solved.balanced());
+  EXPECT_EQ(frames.positions().col(node), lifted(1.0));
+  // Two balances to the same tolerance of the same pins: a hundred thousandth of the side apart
+  // at most (the soft bending modes move that far under forces of the tolerance).
+  const double apart = (frames.positions() - solved.positions()).colwise().norm().maxCoeff();
+  EXPECT_LT(apart, 1e-5);
+  std::printf("frames settled %.3g from the balance of every move solved (%d iterations, %.3f s)\n", apart,
+              settled->iterations, settled->seconds);
+  // Settled, it stays: settling again changes nothing.
+  const Positions balanced = frames.positions();
+  ASSERT_TRUE(frames.settle());
+  EXPECT_EQ(frames.positions(), balanced);
+  // Let go of the corner: the frames start again with the three held corners, which hold.
+  const Expected<FrameReport> let_go = frames.frame(held);
+  ASSERT_TRUE(let_go) << let_go.message();
+  EXPECT_EQ(frames.pins().size(), 3u);
+  for (const PullTarget& pin : held)
+    EXPECT_EQ(frames.positions().col(frames.mesh().vertex_nodes[pin.vertex]), pin.position);
 }
 
 }  // namespace

@@ -1,7 +1,9 @@
 // A curved sheet that follows its pins as they move (a gripper's frame): the mesh and the last
 // balance are kept from one solve to the next, so each move starts from where the paper lies
 // instead of from its rigid faces. A long move is split into short ones: Newton, started a
-// whole half circle away from the answer, does not find it.
+// whole half circle away from the answer, does not find it. Moves made at the mouse can instead
+// be shown as anytime frames (anytime_frames.h): one frame per move within a wall-time budget,
+// and the shape polished to balance when the pins stand still (settle).
 #pragma once
 
 #include <functional>
@@ -9,6 +11,7 @@
 #include <vector>
 
 #include "virtual_origami/core/pull.h"
+#include "virtual_origami/curved/anytime_frames.h"
 #include "virtual_origami/curved/curved_solver.h"
 
 namespace virtual_origami::core
@@ -25,6 +28,15 @@ struct CurvedFollowOptions
   /// equal steps, each solved from the last.
   double max_pin_step = 0.25;
   int max_steps = 400;  // a move that would need more steps is refused
+  /// The anytime frames of frame() (their release tolerance is the solve's, as solveOptionsFor
+  /// gives it). Corrections bound by the frame's wall-time budget alone: a pointer moves far more
+  /// per frame than the bench's drag (each correction moves a node less than half a spacing),
+  /// and on a small sheet a correction takes well under a millisecond.
+  AnytimeFrameOptions frames = [] {
+    AnytimeFrameOptions options;
+    options.max_corrections = 100;
+    return options;
+  }();
 };
 
 class CurvedSheetFollower
@@ -52,6 +64,26 @@ public:
   /// The pins of the current state moved: the same as solveState with the current state.
   /// Fails, changing nothing, before any state.
   Expected<CurvedReport> follow(const std::vector<PullTarget>& pins);
+
+  /// The pins of the current state moved, shown as one anytime frame: the shape carried on and
+  /// corrected within the frames' budget, not balanced (balanced() false unless the frame's force
+  /// is within the tolerance). The frames start from the sheet as it lies, on its first call and
+  /// whenever the pinned vertices change (a vertex grabbed or let go) or another call changed the
+  /// sheet. Fails, changing nothing, before any state or for pins solveState would refuse.
+  Expected<FrameReport> frame(const std::vector<PullTarget>& pins);
+
+  /// The pins stand still: the anytime frames' shape is brought to the solve's tolerance at the
+  /// frames' last pins (AnytimeFrames::release). A sheet that is not on frames is left as it is
+  /// (its report says whether it is balanced). Fails before any state.
+  Expected<CurvedReport> settle();
+
+  /// Whether the sheet shown is an anytime frame not yet settled.
+  bool onFrames() const
+  {
+    return frames_live_ && !balanced_;
+  }
+  /// Wall time since the last frame was made (how long the pins have stood still).
+  double secondsSinceFrame() const;
 
   bool hasSheet() const
   {
@@ -89,6 +121,8 @@ public:
 private:
   Status checkPins(const Paper& paper, const std::vector<PullTarget>& pins) const;
   Expected<CurvedReport> moveTo(const std::vector<PullTarget>& pins);
+  /// The solve options of the current mesh.
+  CurvedSolveOptions solveOptions() const;
 
   CurvedMesher mesher_;
   CurvedFollowOptions options_;
@@ -97,6 +131,11 @@ private:
   std::unique_ptr<Paper> paper_;
   std::unique_ptr<CurvedMesh> mesh_;
   std::unique_ptr<CurvedSolver> solver_;
+  // The anytime frames on the same paper and mesh (made at the first frame); live while x_ is
+  // their shape and their pins are the vertices of pins_.
+  std::unique_ptr<AnytimeFrames> frames_;
+  bool frames_live_ = false;
+  double frame_made_ = 0.0;  // steady-clock seconds at the end of the last frame
   Positions x_;
   std::vector<PullTarget> pins_;
   int last_steps_ = 0;
