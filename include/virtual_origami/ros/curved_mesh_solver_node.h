@@ -3,10 +3,11 @@
 // vertices with the curved-paper solver, and publishes the bent sheet for rviz. Pins on tf
 // frames are looked up at `pin_rate` and the sheet follows them from its last balance, also
 // where the rigid faces of the model cannot (one face does not bend); so does a vertex the
-// mouse drags where the rigid faces cannot follow (`curved_drag`). It never writes back into
-// the model: the rigid faces stay the committed state, the mesh shows how real paper would
-// bend between them, until a client keeps the sheet shown (`keep_bend`): then the model takes it
-// (paper_model's `keep_bend`).
+// mouse drags where the rigid faces cannot follow (`curved_drag`); on large sheets each such move
+// is shown at once as an anytime frame and settled to balance once the pins stand still. It
+// never writes back into the model: the rigid faces stay the committed state, the mesh shows
+// how real paper would bend between them, until a client keeps the sheet shown (`keep_bend`):
+// then the model takes it (paper_model's `keep_bend`).
 #pragma once
 
 #include <optional>
