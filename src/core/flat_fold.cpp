@@ -336,7 +336,8 @@ Status checkNoLayerPassedThrough(const Paper& paper, const FoldPlan& plan, const
             cp += paper.vertices[v].crease_pattern;
           cp /= static_cast<double>(paper.faces[f].vertices.size());
           std::ostringstream text;
-          text << "face " << f << " (at (" << cp.x() << ", " << cp.y() << ") on the sheet)";
+          text.precision(2);
+          text << "face " << f << " (about (" << cp.x() << ", " << cp.y() << ") on the sheet)";
           return text.str();
         };
         return failure("the fold would pass " + at(m) + " through " + at(s) +
