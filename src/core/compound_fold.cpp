@@ -501,11 +501,30 @@ std::vector<Directed> foldDirections(const Paper& paper, const CompoundOutcome& 
   for (size_t e = 0; e < paper.edges.size(); ++e)
     angles[e] = paper.edges[e].fold_angle;
   std::vector<int> choose;  // the creases it folds, whose direction is chosen
+  std::vector<char> changing(paper.edges.size(), 0);
   for (size_t k = 0; k < outcome.edges.size(); ++k)
   {
     angles[outcome.edges[k]] = outcome.folded[k] ? M_PI : 0.0;
+    changing[outcome.edges[k]] = 1;
     if (outcome.folded[k])
       choose.push_back(outcome.edges[k]);
+  }
+  // A reverse fold that turns the tip in between the layers turns its spine inside out: the
+  // folded creases of the part that turns, at the line's inner vertices, may fold either way.
+  std::vector<int> reversible;
+  if (outcome.from_line && !outcome.patch)
+  {
+    const std::vector<char> stays =
+        walkFaces(paper, faceContaining(paper, fixed_point), {}, [&](int e) { return !changing[e]; });
+    for (int e : outcome.edges)
+      for (int v : paper.edges[e].vertices)
+        if (incidence.inner[v])
+          for (int c : incidence.creases[v])
+            if (!changing[c] && isFolded(paper.edges[c].fold_angle) && !stays[paper.edges[c].faces[0]] &&
+                !stays[paper.edges[c].faces[1]] &&
+                std::find(reversible.begin(), reversible.end(), c) == reversible.end())
+              reversible.push_back(c);
+    choose.insert(choose.end(), reversible.begin(), reversible.end());
   }
   const auto maekawa = [&](int v) {
     if (!incidence.inner[v])
@@ -548,6 +567,13 @@ std::vector<Directed> foldDirections(const Paper& paper, const CompoundOutcome& 
         request.creases.push_back(CreaseLineAngle{ paper.vertices[edge.vertices[0]].crease_pattern,
                                                    paper.vertices[edge.vertices[1]].crease_pattern, angles[e] });
       }
+      for (int e : reversible)
+        if (angles[e] != paper.edges[e].fold_angle)
+        {
+          const Edge& edge = paper.edges[e];
+          request.creases.push_back(CreaseLineAngle{ paper.vertices[edge.vertices[0]].crease_pattern,
+                                                     paper.vertices[edge.vertices[1]].crease_pattern, angles[e] });
+        }
       Paper folded = paper;
       const Expected<FlatFoldResult> result = flatFold(folded, request);
       if (!result)
@@ -695,12 +721,15 @@ Expected<CompoundFolds::Resolved> CompoundFolds::resolve(size_t index)
     return *resolved_[index];
   }
   const bool reverse = outcome.from_line && !outcome.patch;
-  // A reverse fold turns the tip in between the layers (the most faces tucked); a squash folds
+  // A reverse fold turns the tip in between the layers (the most faces tucked); a squash keeps
+  // the flap on the side it was pressed from (not wrapped round the other layers), then folds
   // its new creases one way (the flap's sides both under it); and the flap stays on the side it
   // was pressed from.
   const auto better = [&](const Directed& a, const Directed& b) {
     if (reverse && a.tucked != b.tucked)
       return a.tucked > b.tucked;
+    if (!outcome.from_line && a.covered != b.covered)
+      return a.covered < b.covered;
     if (!outcome.from_line && oneWay(a.request) != oneWay(b.request))
       return oneWay(a.request);
     return a.covered < b.covered;

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "virtual_origami/core/face_orders.h"
+#include "virtual_origami/core/flat_sheet_orders.h"
 #include "virtual_origami/core/flat_vertices.h"
 #include "virtual_origami/core/kinematics.h"
 #include "virtual_origami/core/layer_order.h"
@@ -112,23 +113,115 @@ std::vector<std::vector<int>> turnsFromFixedFace(const Paper& paper, const FoldP
   return turns;
 }
 
-/// The layer order after the fold: the orders of layers that turned together hold, the rest
-/// follow from the creases (layer_order.h). Fails when no order of the layers folds flat.
+/// A layer order that also keeps every flat sheet whole across its unfolded creases
+/// (flat_sheet_orders.h), which solveLayerOrder's rules do not say: each clash its order leaves
+/// is settled one way, then the other, as a kept order, and the layers ordered again (at most
+/// `tries` solves in all). Fails naming the clash when no settling clears it.
+Expected<LayerOrder> solveKeepingSheetsWhole(const Paper& next, const LayerOrderOptions& options, int& tries)
+{
+  Expected<LayerOrder> order = solveLayerOrder(next, options);
+  if (!order || !order->complete)
+    return order;
+  Paper ordered = next;
+  ordered.face_orders = order->orders;
+  const std::vector<SheetOrderClash> clashes = sheetOrderClashes(ordered, options.tolerance);
+  if (clashes.empty())
+    return order;
+  const SheetOrderClash& clash = clashes.front();
+  const int first = faceOrder(ordered, clash.face, clash.other);
+  const int second = faceOrder(ordered, clash.face2, clash.other2);
+  for (const FaceOrder& settle : { FaceOrder{ clash.face2, clash.other2, clash.relation * first },
+                                   FaceOrder{ clash.face, clash.other, clash.relation * second } })
+  {
+    if (--tries < 0)
+      break;
+    LayerOrderOptions settled = options;
+    settled.kept.push_back(settle);
+    Expected<LayerOrder> again = solveKeepingSheetsWhole(next, settled, tries);
+    if (again)
+      return again;
+  }
+  return Expected<LayerOrder>::failure("no order of the layers folds flat: " + clash.message);
+}
+
+/// The layers the fold moves as one rigid piece: moved faces joined through creases it leaves as
+/// they are, one id per piece (-1 for the faces that stay).
+std::vector<int> rigidPieces(const Paper& paper, const std::vector<double>& angles, const std::vector<char>& moved)
+{
+  std::vector<int> piece(paper.faces.size(), -1);
+  int pieces = 0;
+  for (size_t start = 0; start < paper.faces.size(); ++start)
+  {
+    if (!moved[start] || piece[start] >= 0)
+      continue;
+    piece[start] = pieces;
+    walkFaces(
+        paper, static_cast<int>(start), [&](int, int, int g) { piece[g] = pieces; },
+        [&](int e) {
+          const Edge& edge = paper.edges[e];
+          return angles[e] == edge.fold_angle && moved[edge.faces[0]] && moved[edge.faces[1]];
+        });
+    ++pieces;
+  }
+  return piece;
+}
+
+/// For each moved layer and each layer it lay on before and lies on after (not moving with it as
+/// one piece, whose order holds anyway): the same side of it as before, along the fixed face's
+/// normal. The creases alone leave open whether a reverse fold's tip goes in between the layers
+/// or round them; the layers of the tip that lay on each other keep their sides, and so the tip
+/// goes in between.
+std::vector<FaceOrder> sidesAsBefore(const Paper& next, const Paper& before, const std::vector<char>& moved,
+                                     const std::vector<int>& piece, int root, double tolerance)
+{
+  const Vec3 up = before.faceNormal(root);
+  const auto along = [&](const Paper& paper, int face) { return paper.faceNormal(face).dot(up) > 0 ? 1 : -1; };
+  std::vector<FaceOrder> sides;
+  for (const FaceOrder& o : before.face_orders)
+  {
+    if (o.face < 0 || o.other < 0 || o.face >= static_cast<int>(moved.size()) ||
+        o.other >= static_cast<int>(moved.size()) || o.above == 0 || (!moved[o.face] && !moved[o.other]) ||
+        (piece[o.face] >= 0 && piece[o.face] == piece[o.other]) || !facesStacked(next, o.face, o.other, tolerance))
+      continue;
+    const int above_up = o.above * along(before, o.face);
+    sides.push_back({ o.face, o.other, above_up * along(next, o.face) });
+  }
+  return sides;
+}
+
+/// The layer order after the fold: the orders of layers that turned together or as one piece
+/// hold, the rest follow from the creases (layer_order.h) and no flat sheet changes sides of a
+/// layer across an unfolded crease (flat_sheet_orders.h); of those orders, one that keeps the
+/// moved layers' sides (sidesAsBefore) when there is one. Fails when no order of the layers folds
+/// flat.
 Status orderLayers(Paper& next, const Paper& before, const std::vector<std::vector<int>>& turns,
-                   const std::vector<char>& moved, double tolerance)
+                   const std::vector<char>& moved, const std::vector<int>& piece, int root, double tolerance)
 {
   LayerOrderOptions options;
   options.tolerance = tolerance;
   for (const FaceOrder& o : before.face_orders)
     if (o.face >= 0 && o.other >= 0 && o.face < static_cast<int>(turns.size()) &&
-        o.other < static_cast<int>(turns.size()) && turns[o.face] == turns[o.other])
+        o.other < static_cast<int>(turns.size()) &&
+        (turns[o.face] == turns[o.other] || (piece[o.face] >= 0 && piece[o.face] == piece[o.other])))
       options.kept.push_back(o);
-  Expected<LayerOrder> order = solveLayerOrder(next, options);
+  constexpr int kSheetTries = 256;
+  int tries = kSheetTries;
+  Expected<LayerOrder> order = Expected<LayerOrder>::failure("no order of the layers folds flat");
+  if (const std::vector<FaceOrder> sides = sidesAsBefore(next, before, moved, piece, root, tolerance); !sides.empty())
+  {
+    LayerOrderOptions sided = options;
+    sided.kept.insert(sided.kept.end(), sides.begin(), sides.end());
+    order = solveKeepingSheetsWhole(next, sided, tries);
+    tries = kSheetTries;
+  }
+  if (!order)
+    order = solveKeepingSheetsWhole(next, options, tries);
   if (!order && !options.kept.empty())
   {
     // Orders recorded before may not have been complete or right: what the creases allow decides.
     options.kept.clear();
-    order = solveLayerOrder(next, options);
+    tries = kSheetTries;
+    order = solveKeepingSheetsWhole(next, options, tries);
   }
   if (!order)
     return failure(order.message());
@@ -140,6 +233,118 @@ Status orderLayers(Paper& next, const Paper& before, const std::vector<std::vect
     return success();
   }
   next.face_orders = order->orders;
+  return success();
+}
+
+/// Each face's rigid motion from where it lies now to `fraction` of the way through the fold:
+/// every crease's angle `fraction` of the way to the plan's (`shortest`: the way round that turns
+/// it less, which ends where the other does, −180° to 90° by −90°, not by 270°: a flap turned
+/// about one hinge turns by one angle, whatever the creases' angles were), the faces placed by the
+/// turns along the walk from the fixed face (which does not move); `depth`: creases crossed from
+/// it.
+struct FaceMotions
+{
+  std::vector<Eigen::Isometry3d> motion;
+  std::vector<int> depth;
+};
+
+FaceMotions faceMotions(const Paper& paper, const FoldPlan& plan, double fraction, bool shortest = false)
+{
+  const size_t faces = paper.faces.size(), edges = paper.edges.size();
+  std::vector<double> now(edges), then(edges);
+  for (size_t e = 0; e < edges; ++e)
+  {
+    now[e] = paper.edges[e].fold_angle;
+    double change = plan.angles[e] - now[e];
+    if (shortest)
+      change = std::remainder(change, 2 * M_PI);
+    then[e] = now[e] + fraction * change;
+  }
+  const int root = plan.root;
+  const Eigen::Isometry3d root_pose = facePose(paper, root);
+  std::vector<Eigen::Isometry3d> pose0(faces, root_pose), pose_t(faces, root_pose);
+  FaceMotions out{ std::vector<Eigen::Isometry3d>(faces, Eigen::Isometry3d::Identity()), std::vector<int>(faces, -1) };
+  out.depth[root] = 0;
+  walkFaces(paper, root, [&](int f, int e, int g) {
+    pose0[g] = pose0[f] * hingeTransform(paper, e, f, now[e]);
+    pose_t[g] = pose_t[f] * hingeTransform(paper, e, f, then[e]);
+    out.depth[g] = out.depth[f] + 1;
+  });
+  for (size_t f = 0; f < faces; ++f)
+    if (static_cast<int>(f) != root)
+      out.motion[f] = pose_t[f] * pose0[f].inverse();
+  return out;
+}
+
+/// Whether the creases the fold changes lie on one line of the folded paper: a hinge the moving
+/// layers turn about together (a flap to a right angle), where the fold's path is a turn.
+bool onOneHinge(const Paper& paper, const FoldPlan& plan, double tolerance)
+{
+  if (plan.changed_edges.empty())
+    return false;
+  const Edge& first = paper.edges[plan.changed_edges.front()];
+  const Vec3 a = paper.vertices[first.vertices[0]].folded, b = paper.vertices[first.vertices[1]].folded;
+  const Vec3 d = (b - a).normalized();
+  for (int e : plan.changed_edges)
+    for (int v : paper.edges[e].vertices)
+    {
+      const Vec3 r = paper.vertices[v].folded - a;
+      if ((r - r.dot(d) * d).norm() > tolerance)
+        return false;
+    }
+  return true;
+}
+
+/// Paper cannot pass through paper: a face the fold turns about one hinge may not set off
+/// through a layer that stays, stacked on it (its recorded order says which side that layer is
+/// on). The turning face's first motion (a millionth of the fold) must not go towards it. Names
+/// the two faces, where they lie on the sheet, when it does. A fold of creases on several lines at
+/// once (a squash, a petal fold) is no turn in between (flatFoldFrame); its layers are the layer
+/// order's to check (orderLayers).
+Status checkNoLayerPassedThrough(const Paper& paper, const FoldPlan& plan, const std::vector<char>& moved)
+{
+  const double tolerance = 1e-7 * paper.scale();
+  if (!onOneHinge(paper, plan, tolerance))
+    return success();
+  const FaceMotions start = faceMotions(paper, plan, 1e-6, true);
+  for (const FaceOrder& o : paper.face_orders)
+    for (const auto& [m, s] : { std::pair{ o.face, o.other }, std::pair{ o.other, o.face } })
+    {
+      if (m < 0 || s < 0 || m >= static_cast<int>(moved.size()) || s >= static_cast<int>(moved.size()) || !moved[m] ||
+          moved[s] || !facesStacked(paper, m, s, tolerance))
+        continue;
+      const int side = faceOrder(paper, m, s);  // where s lies from m, along m's front normal
+      if (side == 0)
+        continue;
+      const Vec3 towards = side * paper.faceNormal(m);
+      double moves = 0.0, most = -INFINITY, least = INFINITY;
+      std::vector<Vec3> points{ paper.faceCentroid(m) };
+      for (int v : paper.faces[m].vertices)
+        points.push_back(paper.vertices[v].folded);
+      for (const Vec3& p : points)
+      {
+        const Vec3 d = start.motion[m] * p - p;
+        moves = std::max(moves, d.norm());
+        most = std::max(most, towards.dot(d));
+        least = std::min(least, towards.dot(d));
+      }
+      if (moves > 0.0 && most > 1e-3 * moves && least > -1e-6 * moves)
+      {
+        const auto at = [&](int f) {
+          Vec2 cp = Vec2::Zero();
+          for (int v : paper.faces[f].vertices)
+            cp += paper.vertices[v].crease_pattern;
+          cp /= static_cast<double>(paper.faces[f].vertices.size());
+          std::ostringstream text;
+          text.precision(2);
+          text << "face " << f << " (about (" << cp.x() << ", " << cp.y() << ") on the sheet)";
+          return text.str();
+        };
+        return failure("the fold would pass " + at(m) + " through " + at(s) +
+                       ", which lies on it and stays: paper cannot go through paper; fold the layers in "
+                       "its way first, or the other way");
+      }
+    }
   return success();
 }
 }  // namespace
@@ -179,13 +384,16 @@ Expected<FlatFoldResult> flatFold(Paper& paper, const FlatFoldRequest& request)
       if ((next.vertices[v].folded - paper.vertices[v].folded).norm() > tolerance)
         moved[f] = 1;
   }
+  if (const Status through = checkNoLayerPassedThrough(paper, *plan, moved); !through)
+    return Failure::failure(through.message());
   for (size_t f = 0; f < moved.size(); ++f)
     if (moved[f])
       result.moved_faces.push_back(static_cast<int>(f));
   for (size_t e = 0; e < next.edges.size(); ++e)
     next.edges[e].fold_angle = angles[e];  // the branch to measure against
   updateFoldAngles(next);
-  if (const Status layers = orderLayers(next, paper, turns, moved, 1e-7 * paper.scale()); !layers)
+  const std::vector<int> piece = rigidPieces(paper, angles, moved);
+  if (const Status layers = orderLayers(next, paper, turns, moved, piece, root, 1e-7 * paper.scale()); !layers)
     return Failure::failure("the chosen creases do not fold flat: " + layers.message());
   paper = std::move(next);
   return result;
@@ -213,30 +421,12 @@ Expected<Paper> flatFoldFrame(const Paper& paper, const FlatFoldRequest& request
   if (!plan)
     return Failure::failure(plan.message());
 
-  // Each face's pose by the walk from the fixed face, now (0) and at `fraction` (t), relative
-  // to the fixed face's pose; depth: creases crossed from the fixed face.
+  // Each face's motion from its current place by the walk from the fixed face.
   const size_t faces = paper.faces.size(), edges = paper.edges.size();
-  std::vector<double> now(edges), then(edges);
-  for (size_t e = 0; e < edges; ++e)
-  {
-    now[e] = paper.edges[e].fold_angle;
-    then[e] = now[e] + fraction * (plan->angles[e] - now[e]);
-  }
   const int root = plan->root;
-  const Eigen::Isometry3d root_pose = facePose(paper, root);
-  std::vector<Eigen::Isometry3d> pose0(faces, root_pose), pose_t(faces, root_pose);
-  std::vector<int> depth(faces, -1);
-  depth[root] = 0;
-  walkFaces(paper, root, [&](int f, int e, int g) {
-    pose0[g] = pose0[f] * hingeTransform(paper, e, f, now[e]);
-    pose_t[g] = pose_t[f] * hingeTransform(paper, e, f, then[e]);
-    depth[g] = depth[f] + 1;
-  });
-  // The motion of each face from its current place (the fixed face: none).
-  std::vector<Eigen::Isometry3d> motion(faces, Eigen::Isometry3d::Identity());
-  for (size_t f = 0; f < faces; ++f)
-    if (static_cast<int>(f) != root)
-      motion[f] = pose_t[f] * pose0[f].inverse();
+  const FaceMotions motions = faceMotions(paper, *plan, fraction);
+  const std::vector<Eigen::Isometry3d>& motion = motions.motion;
+  const std::vector<int>& depth = motions.depth;
 
   Paper frame = std::move(folded);
   std::vector<int> nearest(paper.vertices.size(), std::numeric_limits<int>::max());
@@ -257,7 +447,7 @@ Expected<Paper> flatFoldFrame(const Paper& paper, const FlatFoldRequest& request
   for (int v : paper.faces[root].vertices)
     frame.vertices[v].folded = paper.vertices[v].folded;  // exactly where it was
   for (size_t e = 0; e < edges; ++e)
-    frame.edges[e].fold_angle = then[e];
+    frame.edges[e].fold_angle = paper.edges[e].fold_angle + fraction * (plan->angles[e] - paper.edges[e].fold_angle);
   std::vector<char> moved(faces, 0);
   for (int f : result->moved_faces)
     moved[f] = 1;

@@ -18,8 +18,10 @@ test/ros/crane_by_mouse_rostest.cpp does with synthesized feedback:
     lower layer as the table says, and one drag of the flap from the point the table names to
     where the reference folding puts it;
   - the wings (20-21): key 3 (fold mode), clicks beside each hinge crease (Tab for the layer
-    below: a click picks the top crease, clicks cycle valley, mountain, unfold), then under the
-    Interact tool "Keep the face here" (and "Next layer down") and "Fold to a right angle".
+    below: a click picks the top crease, clicks cycle valley, mountain, unfold; where the last
+    crease picked lay in the lower half of its stack, the wheel turned towards the user instead,
+    which picks the bottom crease and walks up), then under the Interact tool "Keep the face here"
+    (and "Next layer down") and "Fold to a right angle".
 Each step is checked on `state`: exactly one new revision, the crease pattern the reference
 folding has after that step (fold_sequence runs the same steps in core), and every folded vertex
 where that folding puts it, within 1e-6 m after a rigid fit (proper rotation and translation);
@@ -502,6 +504,7 @@ class Folder:
         self.last_click = None  # (time, pixel)
         self.told = 0.0
         self.pick = None  # where the last crease pick was clicked
+        self.from_below = False  # the last crease picked lay in the lower half of its stack
         self.sheet_presses = 0  # presses rviz gave to the sheet (not to the fold slider's handle)
         rospy.Subscriber('/origami/interaction/feedback', InteractiveMarkerFeedback, self._feedback)
         self.guide = None  # the crease drag's line as the interaction draws it (snapped)
@@ -594,6 +597,17 @@ class Folder:
         before = len(self.tool_events)
         xdotool('key', name)
         self.settle(before, ToolEvent.KEY, what)
+
+    def wheel(self, at, away, what):
+        """One notch of the Fold tool's wheel with the pointer at `at`: away from the user (the next
+        layer down) or towards (the next layer up; with nothing picked there, the bottom layer)."""
+        if not self.tool:
+            raise Failure('%s: the wheel without the Fold tool' % what)
+        self.mouse.move(self.mouse.pixel(at))
+        time.sleep(0.1)
+        before = len(self.tool_events)
+        xdotool('click', 4 if away else 5)
+        self.settle(before, ToolEvent.WHEEL, what)
 
     def use_tool(self, fold_tool):
         """Key F over the view: the Fold tool, or back to the Interact tool. Another key (x, which
@@ -885,6 +899,18 @@ class Folder:
             spot = [spot] + self.beside(a, b, spot, [(5, 0), (-5, 0)])
             if self.marked(edge) == wanted:
                 return True
+            if self.tool and self.from_below and not (self.pick is not None and self.pick == spot[0]) and \
+                    (self.pick is None or norm(sub(spot[0], self.pick)) > SNAP_RADIUS + 0.005):
+                # The wing underneath: its creases lie low in their stacks, so the wheel turned
+                # towards the user picks the bottom one there, and walks up to the crease.
+                self.wheel(spot[0], False, 'the wheel towards you (crease %d)' % edge)
+                while not picked() and self.status.picked_layer > 1:
+                    layer = self.status.picked_layer
+                    self.wheel(spot[0], False, 'the wheel towards you (crease %d)' % edge)
+                    wait_for(lambda: self.status.picked_layer != layer, 2, 'the wheel picked no layer above')
+                self.pick = spot[0]
+                if not picked():
+                    self.let_go()
             if not (self.pick is not None and self.pick == spot[0] and self.status.picked_edge >= 0):
                 # A click near the pick would mark the crease picked there: let go of it first.
                 if self.pick is not None and self.status.picked_edge >= 0 and \
@@ -903,6 +929,8 @@ class Folder:
                 if not self.down_to(picked, spot, 'crease %d' % edge) or not picked():
                     raise Failure('crease %d is not among the creases under (%.3f, %.3f, %.3f): %s' %
                                   ((edge,) + spot[0] + (self.status.message,)))
+            if self.tool:
+                self.from_below = 2 * self.status.picked_layer > self.status.layers + 1
             for _ in range(4):
                 if self.marked(edge) == wanted:
                     return True

@@ -97,7 +97,7 @@ TEST(CompoundFold, DraggingABirdBaseFlapsTipUpAndOutReverseFoldsItInside)
 {
   expectTheReferenceFold(15, Vec2(0.6911, 0.0589), CompoundKind::InsideReverse);  // the neck
   expectTheReferenceFold(17, Vec2(0.0589, 0.6911), CompoundKind::InsideReverse);  // the tail
-  expectTheReferenceFold(19, Vec2(0.9917, 0.06), CompoundKind::Reverse);          // the head
+  expectTheReferenceFold(19, Vec2(0.9917, 0.06), CompoundKind::InsideReverse);    // the head
 }
 
 TEST(CompoundFold, AnInsideReverseFoldHasTheOutsideOneAlongTheSameCreases)
@@ -111,11 +111,17 @@ TEST(CompoundFold, AnInsideReverseFoldHasTheOutsideOneAlongTheSameCreases)
   ASSERT_TRUE(chosen->second.outside.has_value());
   const FlatFoldRequest& inside = chosen->second.request;
   const FlatFoldRequest& outside = *chosen->second.outside;
-  ASSERT_EQ(outside.creases.size(), inside.creases.size());
-  for (size_t k = 0; k < inside.creases.size(); ++k)
+  // The inside one turns the flap's spine inside out as well (its fold from the line to the tip,
+  // (0.65, 0.35)–(1, 0)); the outside one folds the same creases on the line, the spine as it
+  // was: the tip turned round the layers, none of it between them.
+  ASSERT_EQ(inside.creases.size(), outside.creases.size() + 1);
+  const CreaseLineAngle& spine = inside.creases.back();
+  EXPECT_LT((spine.start - Vec2(1, 0)).norm(), 1e-9);
+  EXPECT_LT((spine.end - Vec2(1 - std::sqrt(0.125), std::sqrt(0.125))).norm(), 1e-9);
+  for (size_t k = 0; k < outside.creases.size(); ++k)
   {
     EXPECT_EQ(outside.creases[k].start, inside.creases[k].start);
-    EXPECT_EQ(outside.creases[k].angle, -inside.creases[k].angle);  // each crease the other way
+    EXPECT_EQ(outside.creases[k].end, inside.creases[k].end);
   }
   // The same places, the layers stacked otherwise.
   Paper in = crane()[14], out = crane()[14];

@@ -52,7 +52,7 @@ TEST(FlappingBird, DraggingTheBirdBasesLowerFlapsUpAndOutReverseFoldsThemInside)
 {
   expectTheScriptsFold(script(), bird(), 15, Vec2(0.6911, 0.0589), CompoundKind::InsideReverse);  // the neck
   expectTheScriptsFold(script(), bird(), 17, Vec2(0.0589, 0.6911), CompoundKind::InsideReverse);  // the tail
-  expectTheScriptsFold(script(), bird(), 19, Vec2(0.9917, 0.06), CompoundKind::Reverse);          // the head
+  expectTheScriptsFold(script(), bird(), 19, Vec2(0.9917, 0.06), CompoundKind::InsideReverse);    // the head
 }
 
 TEST(FlappingBird, EachWingIsLoweredToARightAngleOnItsOwnSide)

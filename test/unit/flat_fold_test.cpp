@@ -145,3 +145,43 @@ TEST(FlatFold, InsideReverseFoldMirrorsTheTipAndFlipsItsSpine)
   EXPECT_EQ(layerCount(paper, p3(0.5, 0.05)), 4);
   EXPECT_EQ(layerCount(paper, p3(0.8, 0.1)), 2);
 }
+
+// Paper cannot pass through paper: the sheet folded in half (the right half on top, face down)
+// and creased through both layers at a quarter; a quarter of the bottom layer turned a right
+// angle up would go through the top layer's quarter lying on it, and one of the top layer
+// turned down through the bottom's. Each the other way is a fold.
+TEST(FlatFold, ALayerTurnedThroughTheLayerOnItIsRefusedAndTheOtherWayFolds)
+{
+  Paper paper = Paper::square(1.0);
+  creaseLine(paper, p3(0.5, 0), p3(0.5, 1));
+  RotateRequest half;
+  half.click = p3(0.75, 0.5);
+  half.angle = M_PI;  // valley: the right half over onto the left, face down
+  ASSERT_TRUE(rotate(paper, half).ok());
+  creaseLine(paper, p3(0.25, -0.1), p3(0.25, 1.1));
+  ASSERT_EQ(layerCount(paper, p3(0.1, 0.5)), 2);
+  const Paper before = paper;
+
+  // The bottom layer's quarter (the crease pattern's [0, 0.25]) up, a valley, through the top.
+  Paper up = paper;
+  const Expected<FlatFoldResult> through = flatFold(up, { { { v2(0.25, 0), v2(0.25, 1), M_PI / 2 } }, v2(0.4, 0.5) });
+  ASSERT_FALSE(through.ok());
+  EXPECT_NE(through.message().find("paper cannot go through paper"), std::string::npos) << through.message();
+  EXPECT_TRUE(up == before);
+  // Down, a mountain: away from the top layer.
+  Paper down = paper;
+  const Expected<FlatFoldResult> away = flatFold(down, { { { v2(0.25, 0), v2(0.25, 1), -M_PI / 2 } }, v2(0.4, 0.5) });
+  ASSERT_TRUE(away.ok()) << away.message();
+  EXPECT_LT(foldedAt(down, v2(0, 0)).z(), -0.2);
+
+  // The top layer's quarter (the crease pattern's [0.75, 1], face down): a valley turns it
+  // towards its front, down through the bottom layer; a mountain up, away from it.
+  Paper top_down = paper;
+  ASSERT_FALSE(flatFold(top_down, { { { v2(0.75, 0), v2(0.75, 1), M_PI / 2 } }, v2(0.6, 0.5) }).ok());
+  EXPECT_TRUE(top_down == before);
+  Paper top_up = paper;
+  const Expected<FlatFoldResult> lifted =
+      flatFold(top_up, { { { v2(0.75, 0), v2(0.75, 1), -M_PI / 2 } }, v2(0.6, 0.5) });
+  ASSERT_TRUE(lifted.ok()) << lifted.message();
+  EXPECT_GT(foldedAt(top_up, v2(1, 0)).z(), 0.2);
+}

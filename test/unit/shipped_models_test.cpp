@@ -136,10 +136,11 @@ TEST(ShippedCrane, EndsInACraneWithNeckTailHeadAndWings)
   EXPECT_LT((head - (2 * foot - unfolded_tip)).norm(), 1e-12);
   EXPECT_NEAR((head - crown).norm(), 0.12, 1e-12);
   EXPECT_NEAR((head - crown).normalized().dot(neck_direction), std::cos(M_PI / 4), 1e-12);
-  // Wings: the petals' points half a unit off the body plane, on opposite sides.
+  // Wings: the petals' points half a unit off the body plane, on opposite sides, each turned
+  // away from the body: the front flap (corner (0, 0), all its layers on top) up, the back down.
   const Vec3 wing_a = foldedAt(crane, Vec2(0, 0)), wing_b = foldedAt(crane, Vec2(1, 1));
-  EXPECT_LT((wing_a - (slit_top - Vec3(0, 0, 0.5))).norm(), 1e-12);
-  EXPECT_LT((wing_b - (slit_top + Vec3(0, 0, 0.5))).norm(), 1e-12);
+  EXPECT_LT((wing_a - (slit_top + Vec3(0, 0, 0.5))).norm(), 1e-12);
+  EXPECT_LT((wing_b - (slit_top - Vec3(0, 0, 0.5))).norm(), 1e-12);
   EXPECT_LT(wing_a.z() * wing_b.z(), 0.0);
   EXPECT_NEAR((wing_a - wing_b).norm(), 1.0, 1e-12);
   // Layers: 4 in the neck and the tail (the flaps' four layers), 8 in the body below the
