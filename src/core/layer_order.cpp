@@ -157,10 +157,14 @@ private:
   std::vector<std::pair<int, int>> pairs_;
 };
 
+/// Why a clause holds, in words: written only when the clause is the one that fails (writing it
+/// for every clause, with the creases' coordinates, took a third of a flap drag's time).
+using Why = std::function<std::string()>;
+
 struct Clause
 {
   std::vector<int> literals;
-  std::string why;
+  Why why;
 };
 
 using Clauses = std::vector<Clause>;
@@ -213,9 +217,10 @@ std::vector<FlatCrease> creaseRules(const Paper& paper, const StackProblem& stac
     if (literal == 0)
       continue;
     const bool g_higher = (edge.fold_angle > 0) == (stack.facing(f) > 0);
-    clauses.push_back({ { g_higher ? literal : -literal },
-                        "crease " + std::to_string(e) + " puts face " + std::to_string(g) +
-                            (g_higher ? " above" : " below") + " face " + std::to_string(f) });
+    clauses.push_back({ { g_higher ? literal : -literal }, [e, f, g, g_higher] {
+                         return "crease " + std::to_string(e) + " puts face " + std::to_string(g) +
+                                (g_higher ? " above" : " below") + " face " + std::to_string(f);
+                       } });
     FlatCrease crease{ static_cast<int>(e), f, g, stack.planePoint(edge.vertices[0]),
                        stack.planePoint(edge.vertices[1]) };
     crease.side = sideOf(crease.a, crease.b, stack.polygon(f));
@@ -235,9 +240,10 @@ void keptRules(const StackProblem& stack, const std::vector<char>& member, const
       continue;
     const int literal = stack.higher(o.face, o.other);
     if (literal != 0)
-      clauses.push_back(
-          { { o.above * stack.facing(o.face) > 0 ? literal : -literal },
-            "faces " + std::to_string(o.face) + " and " + std::to_string(o.other) + " keep their order" });
+      clauses.push_back({ { o.above * stack.facing(o.face) > 0 ? literal : -literal }, [o] {
+                           return "faces " + std::to_string(o.face) + " and " + std::to_string(o.other) +
+                                  " keep their order";
+                         } });
   }
 }
 
@@ -258,8 +264,10 @@ void transitivityRules(const StackProblem& stack, const std::vector<int>& faces,
         if (stack.higher(f, h) == 0 || stack.higher(g, h) == 0 ||
             area(clipConvex(fg, stack.polygon(h))) <= tolerance * tolerance)
           continue;
-        const std::string why = "faces " + std::to_string(f) + ", " + std::to_string(g) + " and " + std::to_string(h) +
-                                " overlap in one place";
+        const Why why = [f, g, h] {
+          return "faces " + std::to_string(f) + ", " + std::to_string(g) + " and " + std::to_string(h) +
+                 " overlap in one place";
+        };
         clauses.push_back({ { -stack.higher(f, g), -stack.higher(g, h), -stack.higher(h, f) }, why });
         clauses.push_back({ { -stack.higher(g, f), -stack.higher(h, g), -stack.higher(f, h) }, why });
       }
@@ -296,8 +304,9 @@ void tacoTortillaRules(const StackProblem& stack, const std::vector<int>& faces,
       if (h == c.face || h == c.other || stack.higher(c.face, h) == 0 || stack.higher(c.other, h) == 0 ||
           !crossesInside(c.a, c.b, stack.polygon(h), stack.tolerance()))
         continue;
-      const std::string why =
-          "face " + std::to_string(h) + " would pass through the fold at " + creaseText(stack.paper(), c.edge);
+      const Why why = [&paper = stack.paper(), h, edge = c.edge] {
+        return "face " + std::to_string(h) + " would pass through the fold at " + creaseText(paper, edge);
+      };
       clauses.push_back({ { -stack.higher(c.face, h), -stack.higher(h, c.other) }, why });
       clauses.push_back({ { -stack.higher(c.other, h), -stack.higher(h, c.face) }, why });
     }
@@ -325,7 +334,7 @@ bool foldsOnOneSide(const FlatCrease& p, const FlatCrease& q, double tolerance)
 /// The clauses forbidding every order of the four faces of two folds on one line that
 /// interleaves them, over the six pairs' literals (pair (x, y) of faces4, x < y, in the order
 /// (0,1), (0,2), (0,3), (1,2), (1,3), (2,3)).
-void forbidInterleaving(const std::vector<int>& literals, const std::string& why, Clauses& clauses)
+void forbidInterleaving(const std::vector<int>& literals, const Why& why, Clauses& clauses)
 {
   for (int mask = 0; mask < 64; ++mask)
   {
@@ -362,10 +371,13 @@ void tacoTacoRules(const StackProblem& stack, const std::vector<FlatCrease>& cre
           literals.push_back(stack.higher(faces4[x], faces4[y]));
       if (std::find(literals.begin(), literals.end(), 0) != literals.end())
         continue;  // two of the faces do not overlap
-      forbidInterleaving(literals,
-                         creaseText(stack.paper(), p.edge) + " and " + creaseText(stack.paper(), q.edge) +
-                             " fold on one line: their layers cannot interleave",
-                         clauses);
+      forbidInterleaving(
+          literals,
+          [&paper = stack.paper(), p = p.edge, q = q.edge] {
+            return creaseText(paper, p) + " and " + creaseText(paper, q) +
+                   " fold on one line: their layers cannot interleave";
+          },
+          clauses);
     }
 }
 
@@ -404,7 +416,7 @@ int faceOnSide(const UnfoldedCrease& u, const Vec2& p, const Vec2& q, int side)
 }
 
 /// `b` lies higher than `a` exactly when `b2` lies higher than `a2`.
-void sameOrder(const StackProblem& stack, int a, int b, int a2, int b2, const std::string& why, Clauses& clauses)
+void sameOrder(const StackProblem& stack, int a, int b, int a2, int b2, const Why& why, Clauses& clauses)
 {
   const int first = stack.higher(a, b), second = stack.higher(a2, b2);
   if (first == 0 || second == 0)
@@ -420,27 +432,34 @@ void tortillaTortillaRules(const StackProblem& stack, const std::vector<int>& fa
                            const std::vector<UnfoldedCrease>& unfolded, Clauses& clauses)
 {
   const Paper& paper = stack.paper();
-  const auto sheet = [&](const UnfoldedCrease& u) {
+  const auto sheet = [](const Paper& paper, const UnfoldedCrease& u) {
     return faceText(paper, u.left) + " and " + faceText(paper, u.right) + ", one flat sheet across " +
            creaseText(paper, u.edge);
   };
   for (const UnfoldedCrease& u : unfolded)
     for (int h : faces)
       if (h != u.left && h != u.right && crossesInside(u.a, u.b, stack.polygon(h), stack.tolerance()))
-        sameOrder(stack, u.left, h, u.right, h,
-                  faceText(paper, h) + " would pass through " + sheet(u) + ": it lies above one and below the other",
-                  clauses);
+        sameOrder(
+            stack, u.left, h, u.right, h,
+            [&paper, sheet, u, h] {
+              return faceText(paper, h) + " would pass through " + sheet(paper, u) +
+                     ": it lies above one and below the other";
+            },
+            clauses);
   for (size_t i = 0; i < unfolded.size(); ++i)
     for (size_t j = i + 1; j < unfolded.size(); ++j)
     {
       const UnfoldedCrease &u = unfolded[i], &w = unfolded[j];
       if (!onOneLine(u.a, u.b, w.a, w.b, stack.tolerance()))
         continue;
-      sameOrder(stack, u.left, faceOnSide(w, u.a, u.b, 1), u.right, faceOnSide(w, u.a, u.b, -1),
-                sheet(u) + ", and " + sheet(w) +
-                    ", would pass through each other: one lies above the other on "
-                    "one side of the crease and below it on the other",
-                clauses);
+      sameOrder(
+          stack, u.left, faceOnSide(w, u.a, u.b, 1), u.right, faceOnSide(w, u.a, u.b, -1),
+          [&paper, sheet, u, w] {
+            return sheet(paper, u) + ", and " + sheet(paper, w) +
+                   ", would pass through each other: one lies above the other on one side of the crease and "
+                   "below it on the other";
+          },
+          clauses);
     }
 }
 
@@ -487,10 +506,10 @@ public:
     std::vector<Guess> guesses;
     for (const Clause& clause : clauses_)
       if (clause.literals.size() == 1 && !assign(clause.literals[0], trail))
-        return clause.why;
+        return clause.why();
     std::optional<int> conflict = propagate(trail, 0);
     if (conflict)
-      return clauses_[*conflict].why;
+      return clauses_[*conflict].why();
     long count = 0;
     for (;;)
     {
@@ -514,7 +533,7 @@ public:
           guesses.pop_back();
         }
         if (guesses.empty())
-          return clauses_[*conflict].why;
+          return clauses_[*conflict].why();
         Guess& guess = guesses.back();
         undo(trail, guess.trail_length);
         guess.literal = -guess.literal;
@@ -724,7 +743,7 @@ std::string layerOrderViolation(const Paper& paper, const std::vector<FaceOrder>
         return (literal > 0 ? value[literal - 1] : -value[-literal - 1]) > 0;
       });
       if (!holds)
-        return clause.why;
+        return clause.why();
     }
   }
   return {};
