@@ -1,6 +1,9 @@
 #include "virtual_origami/numerics/spd_factorization.h"
 
+#include <dlfcn.h>
+
 #include <algorithm>
+#include <cstdlib>
 #include <mutex>
 
 #include <Eigen/CholmodSupport>
@@ -16,7 +19,10 @@ class SupernodalLLT : public Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<dou
 {
 public:
   /// The symbolic factor right after analyzePattern (before any numeric factorisation).
-  const cholmod_factor* factor() const { return m_cholmodFactor; }
+  const cholmod_factor* factor() const
+  {
+    return m_cholmodFactor;
+  }
   /// Takes a copy of another analysis of the same pattern in place of analyzePattern.
   bool adopt(const cholmod_factor* symbolic)
   {
@@ -35,7 +41,10 @@ public:
 class SpdFactorization::SharedAnalysis
 {
 public:
-  SharedAnalysis() { cholmod_start(&common_); }
+  SharedAnalysis()
+  {
+    cholmod_start(&common_);
+  }
   ~SharedAnalysis()
   {
     if (symbolic_)
@@ -48,7 +57,10 @@ public:
   std::mutex mutex;
   Eigen::SparseMatrix<double> pattern;
 
-  const cholmod_factor* symbolic() const { return symbolic_; }
+  const cholmod_factor* symbolic() const
+  {
+    return symbolic_;
+  }
   void keep(const Eigen::SparseMatrix<double>& analysed, const cholmod_factor* symbolic)
   {
     if (symbolic_)
@@ -62,9 +74,39 @@ private:
   cholmod_factor* symbolic_ = nullptr;
 };
 
+namespace
+{
+using SetInt = void (*)(int);
+
+/// Debian's CHOLMOD runs parts of its supernodal factorisation on four OpenMP threads whatever
+/// the cores (its num_threads clause ignores OMP_NUM_THREADS). On the 2 cores the nodes and rviz
+/// share, they spun and switched: a 1,681-vertex Miura-ori's turn preview spent 45 % of its CPU
+/// time in libgomp and the kernel's futexes, and took half the CPU time on one thread. So the
+/// threads that factorise keep to one core (no nested OpenMP level), unless OMP_NUM_THREADS asks
+/// for more. Per thread (OpenMP's settings are), once; looked up in the process, where CHOLMOD
+/// loaded libgomp (absent: a CHOLMOD without OpenMP, nothing to do).
+void keepFactorisationsOnOneCore()
+{
+  thread_local bool done = false;
+  if (done)
+    return;
+  done = true;
+  const char* asked = std::getenv("OMP_NUM_THREADS");
+  if (asked && std::atoi(asked) > 1)
+    return;
+  static const auto set_max_active_levels = reinterpret_cast<SetInt>(dlsym(RTLD_DEFAULT, "omp_set_max_active_levels"));
+  static const auto set_num_threads = reinterpret_cast<SetInt>(dlsym(RTLD_DEFAULT, "omp_set_num_threads"));
+  if (set_max_active_levels)
+    set_max_active_levels(0);
+  if (set_num_threads)
+    set_num_threads(1);
+}
+}  // namespace
+
 std::unique_lock<std::mutex> lockBlas()
 {
   static std::mutex blas;
+  keepFactorisationsOnOneCore();
   return std::unique_lock<std::mutex>(blas);
 }
 
@@ -78,7 +120,10 @@ struct SpdFactorization::Impl
   SupernodalLLT llt;
   Eigen::SparseMatrix<double> pattern;  // the matrix the analysis was done for (values unused)
   // Not positive definite is an answer here (the damping then rises), not a warning to print.
-  Impl() { llt.cholmod().print = 0; }
+  Impl()
+  {
+    llt.cholmod().print = 0;
+  }
 };
 
 namespace
@@ -91,7 +136,8 @@ bool samePattern(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix
 }
 }  // namespace
 
-SpdFactorization::SpdFactorization() : impl_(std::make_unique<Impl>()) {}
+SpdFactorization::SpdFactorization() : impl_(std::make_unique<Impl>())
+{}
 SpdFactorization::~SpdFactorization() = default;
 
 bool SpdFactorization::factorize(const Eigen::SparseMatrix<double>& a, double shift)
@@ -105,8 +151,7 @@ bool SpdFactorization::factorize(const Eigen::SparseMatrix<double>& a, double sh
     if (shared_)
     {
       shared_lock = std::unique_lock<std::mutex>(shared_->mutex);
-      if (shared_->symbolic() && samePattern(impl_->pattern, shared_->pattern) &&
-          impl_->llt.adopt(shared_->symbolic()))
+      if (shared_->symbolic() && samePattern(impl_->pattern, shared_->pattern) && impl_->llt.adopt(shared_->symbolic()))
       {
         shared_lock.unlock();
         return finishFactorize(a, shift);
