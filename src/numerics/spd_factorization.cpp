@@ -19,10 +19,7 @@ class SupernodalLLT : public Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<dou
 {
 public:
   /// The symbolic factor right after analyzePattern (before any numeric factorisation).
-  const cholmod_factor* factor() const
-  {
-    return m_cholmodFactor;
-  }
+  const cholmod_factor* factor() const { return m_cholmodFactor; }
   /// Takes a copy of another analysis of the same pattern in place of analyzePattern.
   bool adopt(const cholmod_factor* symbolic)
   {
@@ -41,10 +38,7 @@ public:
 class SpdFactorization::SharedAnalysis
 {
 public:
-  SharedAnalysis()
-  {
-    cholmod_start(&common_);
-  }
+  SharedAnalysis() { cholmod_start(&common_); }
   ~SharedAnalysis()
   {
     if (symbolic_)
@@ -57,10 +51,7 @@ public:
   std::mutex mutex;
   Eigen::SparseMatrix<double> pattern;
 
-  const cholmod_factor* symbolic() const
-  {
-    return symbolic_;
-  }
+  const cholmod_factor* symbolic() const { return symbolic_; }
   void keep(const Eigen::SparseMatrix<double>& analysed, const cholmod_factor* symbolic)
   {
     if (symbolic_)
@@ -120,10 +111,7 @@ struct SpdFactorization::Impl
   SupernodalLLT llt;
   Eigen::SparseMatrix<double> pattern;  // the matrix the analysis was done for (values unused)
   // Not positive definite is an answer here (the damping then rises), not a warning to print.
-  Impl()
-  {
-    llt.cholmod().print = 0;
-  }
+  Impl() { llt.cholmod().print = 0; }
 };
 
 namespace
@@ -136,8 +124,7 @@ bool samePattern(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix
 }
 }  // namespace
 
-SpdFactorization::SpdFactorization() : impl_(std::make_unique<Impl>())
-{}
+SpdFactorization::SpdFactorization() : impl_(std::make_unique<Impl>()) {}
 SpdFactorization::~SpdFactorization() = default;
 
 bool SpdFactorization::factorize(const Eigen::SparseMatrix<double>& a, double shift)
@@ -151,7 +138,8 @@ bool SpdFactorization::factorize(const Eigen::SparseMatrix<double>& a, double sh
     if (shared_)
     {
       shared_lock = std::unique_lock<std::mutex>(shared_->mutex);
-      if (shared_->symbolic() && samePattern(impl_->pattern, shared_->pattern) && impl_->llt.adopt(shared_->symbolic()))
+      if (shared_->symbolic() && samePattern(impl_->pattern, shared_->pattern) &&
+          impl_->llt.adopt(shared_->symbolic()))
       {
         shared_lock.unlock();
         return finishFactorize(a, shift);
