@@ -479,8 +479,8 @@ Expected<RotateResult> rotate(Paper& paper, const RotateRequest& request, ShapeS
     const Paper* from_paper = &paper;
     double from = 0.0;
     if (start.paper && start.face == result.face && start.axis_edge == result.axis_edge &&
-        start.paper->vertices.size() == paper.vertices.size() &&
-        start.paper->edges.size() == paper.edges.size() && start.paper->faces.size() == paper.faces.size())
+        start.paper->vertices.size() == paper.vertices.size() && start.paper->edges.size() == paper.edges.size() &&
+        start.paper->faces.size() == paper.faces.size())
     {
       const double start_turn = hinge.faces[0] == result.face ? start.angle : -start.angle;
       if (start_turn * turn > 0 && std::abs(turn - start_turn) < std::abs(turn))

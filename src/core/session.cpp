@@ -372,9 +372,17 @@ Session::Session(History history) : history_(std::move(history))
 
 Workspace Session::workspace() const
 {
-  Workspace workspace{
-    history_.paper, history_.revision, solver_, snap_settings_, held_, driver_, preview_driver_, {}, turn_driver_, {}, {}
-  };
+  Workspace workspace{ history_.paper,
+                       history_.revision,
+                       solver_,
+                       snap_settings_,
+                       held_,
+                       driver_,
+                       preview_driver_,
+                       {},
+                       turn_driver_,
+                       {},
+                       {} };
   if (preview_ && preview_kind_ == Operation::Kind::AssignmentFold)
     workspace.assignment_preview = *preview_;
   if (preview_ && preview_kind_ == Operation::Kind::Rotate && preview_held_ == held_)

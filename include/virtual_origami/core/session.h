@@ -122,8 +122,7 @@ struct Workspace
 Expected<Computed<CreaseResult>> computeCrease(Workspace workspace, const CreaseRequest& request);
 /// `preview` true: a drag's preview, which goes on from the workspace's rotate_preview of the
 /// same turn; a commit always solves from the committed paper (what a replay does).
-Expected<Computed<RotateResult>> computeRotate(Workspace workspace, const RotateRequest& request,
-                                               bool preview = false);
+Expected<Computed<RotateResult>> computeRotate(Workspace workspace, const RotateRequest& request, bool preview = false);
 /// Refused when the paper is flat already (pressing it would change nothing).
 Expected<Computed<SquashResult>> computeSquash(Workspace workspace);
 Expected<Computed<PullResult>> computePull(Workspace workspace, const std::vector<PullTarget>& targets);
