@@ -87,10 +87,12 @@ Expected<Computed<RotateResult>> computeRotate(Workspace workspace, const Rotate
     if (v >= 0 && v < static_cast<int>(workspace.paper.vertices.size()))
       held_at.emplace_back(v, workspace.paper.vertices[v].folded);
   // A big model's turn starts its solver where a crease driver took the turned creases
-  // (rotate.h, TurnGuide); the guide's driver is a clone, its stiffness its own.
+  // (rotate.h, TurnGuide); the guide's driver is a clone, its stiffness its own. Previews share
+  // the session's turn driver, whose last frames predict the next; a commit takes a fresh clone,
+  // so that it ends bit for bit where its replay (with no previews before it) ends.
   TurnGuide guide;
   std::unique_ptr<CreaseDriver> guide_driver;
-  if (workspace.turn_driver && workspace.paper.vertices.size() >= guide.min_vertices)
+  if (preview && workspace.turn_driver && workspace.paper.vertices.size() >= guide.min_vertices)
     guide.driver = workspace.turn_driver.get();
   else if (workspace.driver && workspace.paper.vertices.size() >= guide.min_vertices)
   {

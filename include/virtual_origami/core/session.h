@@ -107,9 +107,9 @@ struct Workspace
   /// The last fold-by-assignment preview on this revision: the next preview goes on from it
   /// (one solve from the last frame), while a commit starts from `paper`.
   std::optional<Paper> assignment_preview;
-  /// The crease driver that guides turns (rotate.h, TurnGuide), kept across calls so that a
-  /// drag's previews reuse its factorisation and follow its last frames; without one, each turn
-  /// guides with a fresh clone of `driver`.
+  /// The crease driver that guides turn previews (rotate.h, TurnGuide), kept across calls so
+  /// that a drag's previews follow its last frames; commits (and previews without one) guide
+  /// with a fresh clone of `driver`.
   std::shared_ptr<CreaseDriver> turn_driver;
   /// The last turn preview on this revision with the held vertices as now, and what made it
   /// (face and axis resolved): a preview of the same turn goes on from it (rotate.h, TurnStart).
