@@ -405,5 +405,39 @@ TEST(Rotate, APreviewGoingOnFromTheLastEndsWhereTheTurnFromThePaperEnds)
   ASSERT_TRUE(rotate(other_side, request, &solver, {}, {}, TurnStart{ &last, 6 * kDeg, 0, axis }).ok());
   EXPECT_TRUE(other_side == alone_back);
 }
+
+/// Near the flat sheet a Miura-ori's balance is nearly singular and Newton creeps towards it at a
+/// few percent per step from a strain of some 10⁻¹²: asked for 10⁻¹² it cannot get there within
+/// its 200 iterations, and says so once its pace shows it (it used to spend all 200). The turn is
+/// refused with the paper untouched; at the default tolerance the same turn is exact.
+TEST(Rotate, ANewtonSolveTooSlowForItsToleranceStopsAndIsRefused)
+{
+  const Paper start = tessellationWithVertices(TessellationKind::Miura, 400).value().paper;
+  int axis = -1;
+  for (int e : start.faces[0].edges)
+    if (start.edges[e].isCrease() && std::abs(start.vertices[start.edges[e].vertices[1]].crease_pattern.y() -
+                                              start.vertices[start.edges[e].vertices[0]].crease_pattern.y()) > 1e-9)
+      axis = e;
+  ASSERT_GE(axis, 0);
+  RotateRequest request;
+  request.face = 0;
+  request.axis_edge = axis;
+  request.angle = 10 * kDeg;
+  NewtonSolver strict;
+  SolveLimits limits = strict.limits();
+  limits.tolerance = 1e-12;
+  strict.setLimits(limits);
+  Paper refused = start;
+  const Expected<RotateResult> r = rotate(refused, request, &strict);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.message().find("too slow to converge"), std::string::npos) << r.message();
+  EXPECT_TRUE(refused == start);
+
+  NewtonSolver solver;
+  Paper turned = start;
+  const Expected<RotateResult> t = rotate(turned, request, &solver);
+  ASSERT_TRUE(t) << t.message();
+  EXPECT_LE(t->solve.max_strain, solver.limits().tolerance);
+}
 }  // namespace
 }  // namespace virtual_origami::core
