@@ -263,17 +263,19 @@ double largestCreaseChange(const Paper& before, const Paper& after)
 
 /// Follows the turn with the solver in stages of at most kMaxStage, each solve started from
 /// the shape the one before found, so one call ends where the same turn in small calls does.
+/// The stages start from `start`, the model turned `from` of the way (the model itself at 0).
 /// `turnedBy(paper, angle)` places the turning faces `angle` of the way. Fails, returning no
 /// paper, when a stage does not converge; `report` sums the stages' iterations and time.
-Expected<Paper> solveInStages(const Paper& paper, double turn,
+Expected<Paper> solveInStages(const Paper& start, double from, double turn,
                               const std::function<Paper(const Paper&, double)>& turnedBy, ShapeSolver& solver,
                               const std::vector<char>& fixed, SolveReport& report,
                               const std::function<void(const Paper&, double, Paper&)>& guide = {})
 {
-  const int stages = std::max(1, static_cast<int>(std::ceil(std::abs(turn) / kMaxStage - 1e-9)));
-  Paper current = paper;
-  double done = 0.0;  // the part of `turn` the stages have followed
-  double step = turn / stages;
+  const double remaining = turn - from;
+  const int stages = std::max(1, static_cast<int>(std::ceil(std::abs(remaining) / kMaxStage - 1e-9)));
+  Paper current = start;
+  double done = from;  // the part of `turn` the stages have followed
+  double step = remaining / stages;
   int iterations = 0;
   double seconds = 0.0;
   do  // at least once: a turn by 0 still settles the model
@@ -303,7 +305,7 @@ Expected<Paper> solveInStages(const Paper& paper, double turn,
     current = std::move(attempt);
     report = stage;
     done = to;
-    step = std::abs(2 * step) < std::abs(turn) / stages ? 2 * step : turn / stages;  // back up after a retry
+    step = std::abs(2 * step) < std::abs(remaining) / stages ? 2 * step : remaining / stages;  // back up after a retry
   } while (done != turn);
   report.iterations = iterations;
   report.seconds = seconds;
@@ -368,7 +370,7 @@ std::vector<int> flapOf(const Paper& paper, int face, int axis_edge)
 }
 
 Expected<RotateResult> rotate(Paper& paper, const RotateRequest& request, ShapeSolver* solver,
-                              const std::vector<int>& held, const TurnGuide& turn_guide)
+                              const std::vector<int>& held, const TurnGuide& turn_guide, const TurnStart& start)
 {
   const auto resolved = resolveFaceAndAxis(paper, request);
   if (!resolved)
@@ -456,10 +458,13 @@ Expected<RotateResult> rotate(Paper& paper, const RotateRequest& request, ShapeS
             anchor[v] = 1;
         CreaseDriver& driver = *turn_guide.driver;
         const double stiffness = driver.faceStiffness();
-        driver.setFaceStiffness(turn_guide.face_stiffness);
+        // A driver kept for turns has the guide's stiffness already (and may be shared).
+        if (stiffness != turn_guide.face_stiffness)
+          driver.setFaceStiffness(turn_guide.face_stiffness);
         Paper guess = current;
         const SolveReport report = driver.drive(guess, target, anchor);
-        driver.setFaceStiffness(stiffness);
+        if (stiffness != turn_guide.face_stiffness)
+          driver.setFaceStiffness(stiffness);
         if (!report.converged)
           return;
         // A start only where it agrees with the turn: the turning faces where it puts them.
@@ -470,7 +475,21 @@ Expected<RotateResult> rotate(Paper& paper, const RotateRequest& request, ShapeS
           if (!fixed[v])
             attempt.vertices[v].folded = guess.vertices[v].folded;
       };
-    Expected<Paper> solved = solveInStages(paper, turn, turnedBy, *solver, fixed, result.solve, guide);
+    // A solved state of this turn on the way (a drag's last preview): the stages go on from it.
+    const Paper* from_paper = &paper;
+    double from = 0.0;
+    if (start.paper && start.face == result.face && start.axis_edge == result.axis_edge &&
+        start.paper->vertices.size() == paper.vertices.size() && start.paper->edges.size() == paper.edges.size() &&
+        start.paper->faces.size() == paper.faces.size())
+    {
+      const double start_turn = hinge.faces[0] == result.face ? start.angle : -start.angle;
+      if (start_turn * turn > 0 && std::abs(turn - start_turn) < std::abs(turn))
+      {
+        from_paper = start.paper;
+        from = start_turn;
+      }
+    }
+    Expected<Paper> solved = solveInStages(*from_paper, from, turn, turnedBy, *solver, fixed, result.solve, guide);
     if (!solved)
       return Failure::failure(solved.message());
     next = std::move(*solved);

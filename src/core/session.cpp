@@ -80,23 +80,33 @@ Expected<Computed<CreaseResult>> computeCrease(Workspace workspace, const Crease
   return Computed<CreaseResult>{ std::move(*result), std::move(change) };
 }
 
-Expected<Computed<RotateResult>> computeRotate(Workspace workspace, const RotateRequest& request)
+Expected<Computed<RotateResult>> computeRotate(Workspace workspace, const RotateRequest& request, bool preview)
 {
   std::vector<std::pair<int, Vec3>> held_at;
   for (int v : workspace.held)
     if (v >= 0 && v < static_cast<int>(workspace.paper.vertices.size()))
       held_at.emplace_back(v, workspace.paper.vertices[v].folded);
   // A big model's turn starts its solver where a crease driver took the turned creases
-  // (rotate.h, TurnGuide); the guide's driver is a clone, its stiffness its own.
+  // (rotate.h, TurnGuide); the guide's driver is a clone, its stiffness its own. Previews share
+  // the session's turn driver, whose last frames predict the next; a commit takes a fresh clone,
+  // so that it ends bit for bit where its replay (with no previews before it) ends.
   TurnGuide guide;
   std::unique_ptr<CreaseDriver> guide_driver;
-  if (workspace.driver && workspace.paper.vertices.size() >= guide.min_vertices)
+  if (preview && workspace.turn_driver && workspace.paper.vertices.size() >= guide.min_vertices)
+    guide.driver = workspace.turn_driver.get();
+  else if (workspace.driver && workspace.paper.vertices.size() >= guide.min_vertices)
   {
     guide_driver = workspace.driver->clone();
     guide.driver = guide_driver.get();
   }
+  // A drag's preview goes on from the last one of the same turn (rotate() checks that the
+  // request resolves to that preview's face and axis).
+  TurnStart start;
+  const RotateRequest& last = workspace.rotate_preview_request;
+  if (preview && workspace.rotate_preview && request.carry_stack == last.carry_stack)
+    start = TurnStart{ &*workspace.rotate_preview, last.angle, last.face, last.axis_edge };
   Expected<RotateResult> result =
-      core::rotate(workspace.paper, request, workspace.solver.get(), workspace.held, guide);
+      core::rotate(workspace.paper, request, workspace.solver.get(), workspace.held, guide, start);
   if (!result)
     return Expected<Computed<RotateResult>>::failure(result.message());
   for (const auto& [v, at] : held_at)
@@ -364,9 +374,24 @@ Session::Session(History history) : history_(std::move(history))
 
 Workspace Session::workspace() const
 {
-  Workspace workspace{ history_.paper, history_.revision, solver_, snap_settings_, held_, driver_, preview_driver_, {} };
+  Workspace workspace{ history_.paper,
+                       history_.revision,
+                       solver_,
+                       snap_settings_,
+                       held_,
+                       driver_,
+                       preview_driver_,
+                       {},
+                       turn_driver_,
+                       {},
+                       {} };
   if (preview_ && preview_kind_ == Operation::Kind::AssignmentFold)
     workspace.assignment_preview = *preview_;
+  if (preview_ && preview_kind_ == Operation::Kind::Rotate && preview_held_ == held_)
+  {
+    workspace.rotate_preview = *preview_;
+    workspace.rotate_preview_request = preview_rotate_;
+  }
   return workspace;
 }
 
@@ -447,6 +472,8 @@ bool Session::setPreview(Change change)
     return false;
   preview_ = std::move(change.next);
   preview_kind_ = change.operation.kind;
+  preview_rotate_ = change.operation.rotate;
+  preview_held_ = held_;
   return true;
 }
 
@@ -479,7 +506,7 @@ Expected<CreaseResult> Session::crease(const CreaseRequest& request)
 
 Expected<RotateResult> Session::rotate(const RotateRequest& request, bool commit_it)
 {
-  auto computed = computeRotate(workspace(), request);
+  auto computed = computeRotate(workspace(), request, !commit_it);
   if (!computed)
     return Expected<RotateResult>::failure(computed.message());
   if (commit_it)

@@ -1,6 +1,9 @@
 #include "virtual_origami/numerics/spd_factorization.h"
 
+#include <dlfcn.h>
+
 #include <algorithm>
+#include <cstdlib>
 #include <mutex>
 
 #include <Eigen/CholmodSupport>
@@ -62,9 +65,39 @@ private:
   cholmod_factor* symbolic_ = nullptr;
 };
 
+namespace
+{
+using SetInt = void (*)(int);
+
+/// Debian's CHOLMOD runs parts of its supernodal factorisation on four OpenMP threads whatever
+/// the cores (its num_threads clause ignores OMP_NUM_THREADS). On the 2 cores the nodes and rviz
+/// share, they spun and switched: a 1,681-vertex Miura-ori's turn preview spent 45 % of its CPU
+/// time in libgomp and the kernel's futexes, and took half the CPU time on one thread. So the
+/// threads that factorise keep to one core (no nested OpenMP level), unless OMP_NUM_THREADS asks
+/// for more. Per thread (OpenMP's settings are), once; looked up in the process, where CHOLMOD
+/// loaded libgomp (absent: a CHOLMOD without OpenMP, nothing to do).
+void keepFactorisationsOnOneCore()
+{
+  thread_local bool done = false;
+  if (done)
+    return;
+  done = true;
+  const char* asked = std::getenv("OMP_NUM_THREADS");
+  if (asked && std::atoi(asked) > 1)
+    return;
+  static const auto set_max_active_levels = reinterpret_cast<SetInt>(dlsym(RTLD_DEFAULT, "omp_set_max_active_levels"));
+  static const auto set_num_threads = reinterpret_cast<SetInt>(dlsym(RTLD_DEFAULT, "omp_set_num_threads"));
+  if (set_max_active_levels)
+    set_max_active_levels(0);
+  if (set_num_threads)
+    set_num_threads(1);
+}
+}  // namespace
+
 std::unique_lock<std::mutex> lockBlas()
 {
   static std::mutex blas;
+  keepFactorisationsOnOneCore();
   return std::unique_lock<std::mutex>(blas);
 }
 

@@ -572,8 +572,8 @@ bool PaperModelNode::rotate(Rotate::Request& req, Rotate::Response& res)
   request.angle = req.angle;
   request.carry_stack = !req.picked_layers_only;
   const auto result = computeAndCommit<core::RotateResult>(
-      [&](core::Workspace workspace) { return core::computeRotate(std::move(workspace), request); }, req.commit,
-      "rotated", res.revision);
+      [&](core::Workspace workspace) { return core::computeRotate(std::move(workspace), request, !req.commit); },
+      req.commit, "rotated", res.revision);
   res.success = result.ok();
   res.message = result ? (req.commit ? "rotated" : "preview") : result.message();
   res.face = result ? result->result.face : req.face;

@@ -291,6 +291,14 @@ struct NewtonSolver::Setup
   }
 };
 
+namespace
+{
+/// The pace of the last kPaceWindow iterations is judged once within kPaceNear times the
+/// tolerance (further out, a damped start may still turn into Newton's quadratic steps).
+constexpr int kPaceWindow = 25;
+constexpr double kPaceNear = 100.0;
+}  // namespace
+
 NewtonSolver::NewtonSolver(NewtonOptions options) : options_(options)
 {
   limits_.max_iterations = 200;
@@ -315,6 +323,7 @@ SolveReport NewtonSolver::solve(Paper& paper, const std::vector<char>& fixed)
 
   RigidFit fit = fitRigidFaces(faces, x);
   std::string stuck;
+  std::vector<double> distances;  // how far from the tolerance each iteration started (1: there)
   bool factored = false;
   bool diverged = !std::isfinite(fit.energy);
   while (!diverged)
@@ -327,6 +336,24 @@ SolveReport NewtonSolver::solve(Paper& paper, const std::vector<char>& fixed)
     }
     if (budget.exhausted(report.iterations))
       break;
+    // Near the tolerance, a pace that cannot reach it within the iteration limit ends the solve
+    // now: a near-singular balance (a large Miura-ori turned near the flat sheet) otherwise spent
+    // its 200 factorisations creeping at a few percent per step and was refused all the same.
+    const double distance =
+        std::max(report.max_strain / limits_.tolerance, fit.max_residual / std::max(residual_tolerance, 1e-300));
+    distances.push_back(distance);
+    if (static_cast<int>(distances.size()) > kPaceWindow && distance < kPaceNear)
+    {
+      const double then = distances[distances.size() - 1 - kPaceWindow];
+      const double pace = std::pow(distance / then, 1.0 / kPaceWindow);
+      const int left = limits_.max_iterations - report.iterations;
+      if (!(pace < 1.0) || distance * std::pow(pace, left) > 1.0)
+      {
+        stuck = "too slow to converge (at the pace of its last " + std::to_string(kPaceWindow) +
+                " iterations it would not reach the tolerance within its iteration limit)";
+        break;
+      }
+    }
     ++report.iterations;
     const Eigen::VectorXd g = gradient(faces, fit, x, free_index, free_count);
     double mu = std::max(options_.min_damping, options_.damping * g.norm() / paper.scale());

@@ -354,5 +354,90 @@ TEST(Rotate, AGuidedTurnEndsWhereTheSolverAloneEnds)
     EXPECT_NEAR(guided.edges[e].fold_angle, alone.edges[e].fold_angle, 1e-8) << "edge " << e;
   EXPECT_NEAR(guided.edges[axis].fold_angle, 30 * M_PI / 180, 1e-9);
 }
+
+/// A drag's preview goes on from its last one (TurnStart) and ends where the same turn from the
+/// paper ends (a Miura-ori has one degree of freedom), the faces as exact; a start another turn
+/// made, or one on the other side of the paper, is not taken.
+TEST(Rotate, APreviewGoingOnFromTheLastEndsWhereTheTurnFromThePaperEnds)
+{
+  const Paper start = miuraTessellation(8, 8).value().paper;
+  int axis = -1;
+  for (int e : start.faces[0].edges)
+    if (start.edges[e].isCrease() && std::abs(start.vertices[start.edges[e].vertices[1]].crease_pattern.y() -
+                                              start.vertices[start.edges[e].vertices[0]].crease_pattern.y()) > 1e-9)
+      axis = e;
+  ASSERT_GE(axis, 0);
+  NewtonSolver solver;
+  const std::unique_ptr<CreaseDriver> driver = makeCreaseDriver("quasi_newton");
+  TurnGuide guide;
+  guide.driver = driver.get();
+  guide.min_vertices = 0;
+  RotateRequest request;
+  request.face = 0;
+  request.axis_edge = axis;
+  request.angle = 6 * kDeg;
+  Paper last = start;
+  ASSERT_TRUE(rotate(last, request, &solver, {}, guide).ok());
+  request.angle = 8 * kDeg;
+  Paper fresh = start, went_on = start;
+  const Expected<RotateResult> f = rotate(fresh, request, &solver, {}, guide);
+  const Expected<RotateResult> w = rotate(went_on, request, &solver, {}, guide, TurnStart{ &last, 6 * kDeg, 0, axis });
+  ASSERT_TRUE(f) << f.message();
+  ASSERT_TRUE(w) << w.message();
+  EXPECT_LE(w->solve.max_strain, 1e-9);
+  EXPECT_LT(edgeStrain(went_on).max, 1e-9);
+  EXPECT_NEAR(went_on.edges[axis].fold_angle, start.edges[axis].fold_angle + 8 * kDeg, 1e-12);
+  for (size_t v = 0; v < start.vertices.size(); ++v)
+    EXPECT_LE((went_on.vertices[v].folded - fresh.vertices[v].folded).norm(), 1e-8) << "vertex " << v;
+  EXPECT_LT(largestFoldAngleDifference(went_on, fresh), 1e-8);
+  expectValid(went_on);
+
+  // Not taken (the solver alone, which ends the same way from the same start): made by another
+  // face's turn, or on the other side of the paper.
+  Paper alone = start;
+  ASSERT_TRUE(rotate(alone, request, &solver).ok());
+  Paper other_face = start;
+  ASSERT_TRUE(rotate(other_face, request, &solver, {}, {}, TurnStart{ &last, 6 * kDeg, 1, axis }).ok());
+  EXPECT_TRUE(other_face == alone);
+  Paper other_side = start, alone_back = start;
+  request.angle = -8 * kDeg;
+  ASSERT_TRUE(rotate(alone_back, request, &solver).ok());
+  ASSERT_TRUE(rotate(other_side, request, &solver, {}, {}, TurnStart{ &last, 6 * kDeg, 0, axis }).ok());
+  EXPECT_TRUE(other_side == alone_back);
+}
+
+/// Near the flat sheet a Miura-ori's balance is nearly singular and Newton creeps towards it at a
+/// few percent per step from a strain of some 10⁻¹²: asked for 10⁻¹² it cannot get there within
+/// its 200 iterations, and says so once its pace shows it (it used to spend all 200). The turn is
+/// refused with the paper untouched; at the default tolerance the same turn is exact.
+TEST(Rotate, ANewtonSolveTooSlowForItsToleranceStopsAndIsRefused)
+{
+  const Paper start = tessellationWithVertices(TessellationKind::Miura, 400).value().paper;
+  int axis = -1;
+  for (int e : start.faces[0].edges)
+    if (start.edges[e].isCrease() && std::abs(start.vertices[start.edges[e].vertices[1]].crease_pattern.y() -
+                                              start.vertices[start.edges[e].vertices[0]].crease_pattern.y()) > 1e-9)
+      axis = e;
+  ASSERT_GE(axis, 0);
+  RotateRequest request;
+  request.face = 0;
+  request.axis_edge = axis;
+  request.angle = 10 * kDeg;
+  NewtonSolver strict;
+  SolveLimits limits = strict.limits();
+  limits.tolerance = 1e-12;
+  strict.setLimits(limits);
+  Paper refused = start;
+  const Expected<RotateResult> r = rotate(refused, request, &strict);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.message().find("too slow to converge"), std::string::npos) << r.message();
+  EXPECT_TRUE(refused == start);
+
+  NewtonSolver solver;
+  Paper turned = start;
+  const Expected<RotateResult> t = rotate(turned, request, &solver);
+  ASSERT_TRUE(t) << t.message();
+  EXPECT_LE(t->solve.max_strain, solver.limits().tolerance);
+}
 }  // namespace
 }  // namespace virtual_origami::core

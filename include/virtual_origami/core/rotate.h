@@ -47,6 +47,17 @@ struct TurnGuide
   double face_stiffness = 100.0;
 };
 
+/// A solved state of the same turn (`face` about `axis_edge` as rotate() resolves the request,
+/// the same carry_stack and held vertices) at the request angle `angle`: a drag's last preview.
+/// The solver's stages go on from it instead of from the model where it lies on the way (same
+/// sign, nearer the turn than the model): a preview solves the mouse's last step, not the turn.
+struct TurnStart
+{
+  const Paper* paper = nullptr;
+  double angle = 0.0;
+  int face = -1, axis_edge = -1;  // the turn it was made by
+};
+
 /// Turns the face about its axis. When the creases collinear with the axis cut the sheet in
 /// two, the face's whole side (every layer connected to it there) turns rigidly, which is
 /// exact; with `carry_stack`, so do the layers stacked on that side in the turn's way, each
@@ -59,7 +70,8 @@ struct TurnGuide
 /// order (face_orders) follows: faces folded flat onto others lie on the side they came
 /// from, and entries of faces no longer stacked are dropped. On failure `paper` is untouched.
 Expected<RotateResult> rotate(Paper& paper, const RotateRequest& request, ShapeSolver* solver = nullptr,
-                              const std::vector<int>& held = {}, const TurnGuide& guide = {});
+                              const std::vector<int>& held = {}, const TurnGuide& guide = {},
+                              const TurnStart& start = {});
 
 /// The faces rotate() turns with `face` about `axis_edge` by the request angle `angle` (its sign
 /// decides which layers a turn carries): its side with the layers carried where the axis parts it

@@ -107,12 +107,22 @@ struct Workspace
   /// The last fold-by-assignment preview on this revision: the next preview goes on from it
   /// (one solve from the last frame), while a commit starts from `paper`.
   std::optional<Paper> assignment_preview;
+  /// The crease driver that guides turn previews (rotate.h, TurnGuide), kept across calls so
+  /// that a drag's previews follow its last frames; commits (and previews without one) guide
+  /// with a fresh clone of `driver`.
+  std::shared_ptr<CreaseDriver> turn_driver;
+  /// The last turn preview on this revision with the held vertices as now, and what made it
+  /// (face and axis resolved): a preview of the same turn goes on from it (rotate.h, TurnStart).
+  std::optional<Paper> rotate_preview;
+  RotateRequest rotate_preview_request;
 };
 
 /// The operations as functions of a workspace; none touches a session. A rotation's change is
 /// its preview too.
 Expected<Computed<CreaseResult>> computeCrease(Workspace workspace, const CreaseRequest& request);
-Expected<Computed<RotateResult>> computeRotate(Workspace workspace, const RotateRequest& request);
+/// `preview` true: a drag's preview, which goes on from the workspace's rotate_preview of the
+/// same turn; a commit always solves from the committed paper (what a replay does).
+Expected<Computed<RotateResult>> computeRotate(Workspace workspace, const RotateRequest& request, bool preview = false);
 /// Refused when the paper is flat already (pressing it would change nothing).
 Expected<Computed<SquashResult>> computeSquash(Workspace workspace);
 Expected<Computed<PullResult>> computePull(Workspace workspace, const std::vector<PullTarget>& targets);
@@ -180,6 +190,12 @@ public:
   {
     driver_ = std::move(driver);
     preview_driver_ = std::move(preview_driver);
+    turn_driver_.reset();
+    if (driver_)
+    {
+      turn_driver_ = driver_->clone();
+      turn_driver_->setFaceStiffness(TurnGuide{}.face_stiffness);
+    }
   }
 
   Expected<CreaseResult> crease(const CreaseRequest& request);
@@ -237,6 +253,9 @@ private:
   History history_;
   std::optional<Paper> preview_;
   Operation::Kind preview_kind_ = Operation::Kind::Rotate;  // what made preview_
+  RotateRequest preview_rotate_;                            // a turn preview's request, resolved
+  std::vector<int> preview_held_;                           // the held vertices preview_ kept
+  std::shared_ptr<CreaseDriver> turn_driver_;               // a clone of driver_ (Workspace)
   std::shared_ptr<ShapeSolver> solver_;
   std::shared_ptr<CreaseDriver> driver_, preview_driver_;
   SnapSettings snap_settings_;

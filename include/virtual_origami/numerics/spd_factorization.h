@@ -15,6 +15,8 @@ namespace virtual_origami::numerics
 /// The BLAS the supernodal factorisations call (Debian's serial OpenBLAS) keeps its work
 /// buffers in globals without locks: two threads in it at once get each other's buffers and
 /// wrong factors. Every supernodal factorisation and solve in the process holds this lock.
+/// It also keeps the calling thread's OpenMP (CHOLMOD's threads) to one core, unless
+/// OMP_NUM_THREADS asks for more (spd_factorization.cpp says why).
 std::unique_lock<std::mutex> lockBlas();
 
 class SpdFactorization
