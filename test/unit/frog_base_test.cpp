@@ -2,10 +2,9 @@
 // creased through all layers, and each of the four flaps squashed by one drag (compound_fold.h) —
 // the first on its outer layer, the others on their inner layer, one of them under another
 // flap's layers — then the petal folds' creases through all layers and each squashed flap petal
-// folded by one drag, against the script to 1e-6; every state's layers consistent (flatFold's
-// sheet check); the kite of the squashes and the frog base
-// against their closed forms; docs/INTERACTION.md's walkthrough ("## Fold a frog base") against
-// the script.
+// folded by one drag, against the script to 1e-6; no state's sheets passing through each other
+// (flat_sheet_orders.h); the kite of the squashes and the frog base against their closed forms;
+// docs/INTERACTION.md's walkthrough ("## Fold a frog base") against the script.
 #include <gtest/gtest.h>
 
 #include <algorithm>
