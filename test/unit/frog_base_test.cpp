@@ -14,6 +14,7 @@
 #include "reference_fold_checks.h"
 #include "virtual_origami/core/chosen_creases.h"
 #include "virtual_origami/core/flat_sheet_orders.h"
+#include "virtual_origami/core/layer_order.h"
 #include "virtual_origami/core/layer_pick.h"
 #include "walkthrough_checks.h"
 
@@ -199,11 +200,17 @@ TEST(FrogBase, TheFourPetalFoldsMakeTheFrogBase)
 TEST(FrogBase, EveryStepKeepsEachSheetOnOneSideOfEveryLayer)
 {
   // flatFold refuses a fold whose layers pass through each other (flat_sheet_orders.h): every
-  // state of the script (modelStates folds them by it) has none of those clashes, the square base
-  // (step 8's midlines valleys, as step 7's) and the frog base included.
+  // state of the script, the creases through all layers' too, has none of those clashes, the
+  // square base (step 8's midlines valleys, as step 7's) and the frog base included; and its
+  // recorded orders obey layer_order.h's rules with faces joined by an unfolded crease held to be
+  // one sheet (before, the squash folds 12-14 left two pairs of sheets in one order on one side of
+  // the centre line and in the other order on the other).
   ASSERT_EQ(frog().size(), script().steps.size() + 1);
   for (size_t i = 1; i < frog().size(); ++i)
+  {
     EXPECT_TRUE(sheetOrderClashes(frog()[i], 1e-7).empty()) << "after step " << i;
+    EXPECT_EQ(layerOrderViolation(frog()[i], frog()[i].face_orders, 1e-7, true), "") << "after step " << i;
+  }
 }
 
 TEST(FrogBase, TheWalkthroughNamesTheScriptsFoldsAndItsGesturesAddUp)
