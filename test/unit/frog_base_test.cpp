@@ -1,10 +1,10 @@
 // The traditional frog base (test/data/frog_base_reference.json): the square base, the squash lines
 // creased through all layers, and each of the four flaps squashed by one drag (compound_fold.h) —
-// the front flaps pressed from above, the back ones on the bottom layer, one of them under another
+// the first on its outer layer, the others on their inner layer, one of them under another
 // flap's layers — then the petal folds' creases through all layers and each squashed flap petal
-// folded by one drag, against the script to 1e-6; the kite of the squashes and the frog base
-// against their closed forms; docs/INTERACTION.md's walkthrough ("## Fold a frog base") against
-// the script.
+// folded by one drag, against the script to 1e-6; no state's sheets passing through each other
+// (flat_sheet_orders.h); the kite of the squashes and the frog base against their closed forms;
+// docs/INTERACTION.md's walkthrough ("## Fold a frog base") against the script.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,6 +13,8 @@
 #include "model_reference.h"
 #include "reference_fold_checks.h"
 #include "virtual_origami/core/chosen_creases.h"
+#include "virtual_origami/core/flat_sheet_orders.h"
+#include "virtual_origami/core/layer_order.h"
 #include "virtual_origami/core/layer_pick.h"
 #include "walkthrough_checks.h"
 
@@ -95,17 +97,15 @@ TEST(FrogBase, DraggingEachFlapOpenAcrossTheCentreLineSquashesIt)
   // The front left flap, on top.
   EXPECT_EQ(layerOf(11, Vec2(0.4, 0.1)).first, 1);
   expectTheScriptsFold(script(), frog(), 11, Vec2(0.4, 0.1), CompoundKind::Squash);
-  // The back left flap: the bottom layer (the paper turned over).
-  const auto [back_left, left_layers] = layerOf(12, Vec2(0.9, 0.4));
-  EXPECT_EQ(back_left, left_layers);
+  // The back left flap: its inner layer, on top where the first squash uncovered it.
+  EXPECT_EQ(layerOf(12, Vec2(0.9, 0.4)).first, 1);
   expectTheScriptsFold(script(), frog(), 12, Vec2(0.9, 0.4), CompoundKind::Squash);
   // The front right flap: its inner layer (the outer one is held at the centre line by the first
   // squash), picked one layer down.
   EXPECT_EQ(layerOf(13, Vec2(0.1, 0.6)).first, 2);
   expectTheScriptsFold(script(), frog(), 13, Vec2(0.1, 0.6), CompoundKind::Squash);
-  // The back right flap, at the bottom again.
-  const auto [back_right, right_layers] = layerOf(14, Vec2(0.4, 0.9));
-  EXPECT_EQ(back_right, right_layers);
+  // The back right flap: its inner layer, on top where the third squash uncovered it.
+  EXPECT_EQ(layerOf(14, Vec2(0.4, 0.9)).first, 1);
   expectTheScriptsFold(script(), frog(), 14, Vec2(0.4, 0.9), CompoundKind::Squash);
 }
 
@@ -148,10 +148,16 @@ TEST(FrogBase, LiftingEachSquashedFlapsRawEdgeUpOverTheLineThroughItsSidePointsP
 {
   // Pressed on the squashed flap's top layer below the line through its side points, beside the
   // centre line, and dragged up to where the fold puts that point; the flaps alike a quarter turn
-  // apart on the sheet (the front left flap on top, then the back left, back right and front
-  // right ones, each pressed on its own layer).
-  for (int k = 0; k < 4; ++k)
-    expectTheScriptsFold(script(), frog(), kSquashed + 6 + k, quarterTurned(Vec2(0.47, 0.06), k), CompoundKind::Petal);
+  // apart on the sheet (the front left flap, then the back left, front right and back right
+  // ones, each pressed on its own layer). The back right flap's kite lies on top and wraps the
+  // others' layers on one side of the centre line: its petal fold comes last.
+  const std::pair<int, Vec2> petals[] = { { 20, Vec2(0.47, 0.06) },
+                                          { 21, quarterTurned(Vec2(0.47, 0.06), 1) },
+                                          { 22, quarterTurned(Vec2(0.53, 0.06), 3) },
+                                          { 23, quarterTurned(Vec2(0.47, 0.06), 2) } };
+  for (const auto& [step, cp] : petals)
+    expectTheScriptsFold(script(), frog(), step, cp, CompoundKind::Petal);
+  EXPECT_EQ(layerOf(23, petals[3].second).first, 1);
 }
 
 TEST(FrogBase, TheFourPetalFoldsMakeTheFrogBase)
@@ -177,7 +183,8 @@ TEST(FrogBase, TheFourPetalFoldsMakeTheFrogBase)
     // The sides collapsed in: the squash lines' ends (the kite's side points before) on the
     // centre line, their distance from B (1/2 - tan(22.5°)/2) laid along it from B.
     for (const Vec2& end : { Vec2(0.5 - 0.5 * kTan, 0), Vec2(0.5 + 0.5 * kTan, 0) })
-      EXPECT_LE((foldedAt(base, quarterTurned(end, k)) - (b - (0.5 - 0.5 * kTan) * axis)).norm(), 1e-9) << end.transpose();
+      EXPECT_LE((foldedAt(base, quarterTurned(end, k)) - (b - (0.5 - 0.5 * kTan) * axis)).norm(), 1e-9)
+          << end.transpose();
     // The side points stay: on the hinge, tan(22.5°) of it either side of the centre line.
     for (const Vec2& q : { Vec2(hinge, 0.5 - hinge), Vec2(1 - hinge, 0.5 - hinge) })
     {
@@ -188,6 +195,22 @@ TEST(FrogBase, TheFourPetalFoldsMakeTheFrogBase)
   }
   // Nothing sticks out of the kite; its widest, at the side points, is what the squashes made.
   expectWithinTheKite(base, c, b, 0.5, 0.5 * kTan);
+}
+
+TEST(FrogBase, EveryStepKeepsEachSheetOnOneSideOfEveryLayer)
+{
+  // flatFold refuses a fold whose layers pass through each other (flat_sheet_orders.h): every
+  // state of the script, the creases through all layers' too, has none of those clashes, the
+  // square base (step 8's midlines valleys, as step 7's) and the frog base included; and its
+  // recorded orders obey layer_order.h's rules with faces joined by an unfolded crease held to be
+  // one sheet (before, the squash folds 12-14 left two pairs of sheets in one order on one side of
+  // the centre line and in the other order on the other).
+  ASSERT_EQ(frog().size(), script().steps.size() + 1);
+  for (size_t i = 1; i < frog().size(); ++i)
+  {
+    EXPECT_TRUE(sheetOrderClashes(frog()[i], 1e-7).empty()) << "after step " << i;
+    EXPECT_EQ(layerOrderViolation(frog()[i], frog()[i].face_orders, 1e-7, true), "") << "after step " << i;
+  }
 }
 
 TEST(FrogBase, TheWalkthroughNamesTheScriptsFoldsAndItsGesturesAddUp)
