@@ -447,7 +447,8 @@ def reference_states(out):
 
 class Row:
     """A row of the walkthrough's table: its steps, its gestures, and for each fold step made by a
-    drag the point pressed, the layers down (Next layer down) and the fold it names."""
+    drag the point pressed, the layers down (Next layer down; negative: up, Next layer up) and the
+    fold it names."""
 
     def __init__(self, first, last, gestures, how):
         self.first, self.last, self.gestures, self.how = first, last, gestures, how
@@ -458,9 +459,11 @@ class Row:
             press = re.search(r'press at \(([-0-9.]+), ([-0-9.]+)\)', said)
             kind = re.search(r'\*((?:squash|petal|inside reverse|outside reverse|reverse) fold)\*', said)
             if press and kind:
-                down = re.search(r'\*Next layer down\* (once|twice|([0-9]+) times)', said)
-                layers = 0 if not down else 1 if down.group(1) == 'once' else 2 if down.group(1) == 'twice' \
-                    else int(down.group(2))
+                walk = re.search(r'\*Next layer (down|up)\* (once|twice|([0-9]+) times)', said)
+                layers = 0 if not walk else 1 if walk.group(2) == 'once' else 2 if walk.group(2) == 'twice' \
+                    else int(walk.group(3))
+                if walk and walk.group(1) == 'up':
+                    layers = -layers
                 self.drags[int(n.group(1))] = ((float(press.group(1)), float(press.group(2))), layers, kind.group(1))
 
 
@@ -997,8 +1000,8 @@ class Folder:
         return self.committed(revision, 'the fold on the marked creases')
 
     def flap(self, drag, now, after, revision, shot=None):
-        """Flap mode (key 5): Tab at the point the walkthrough names as often as it says (and on
-        until that point's face is picked), then one drag of the flap from there to where the
+        """Flap mode (key 5): Tab (or Shift+Tab, from the bottom) at the point the walkthrough names as
+        often as it says (and on down until that point's face is picked), then one drag of the flap from there to where the
         reference folding puts that point, the face the interaction keeps (compound_fold's
         farthest face) where it lies now (crane_by_mouse's flapFold)."""
         (x, y), layers, kind = drag
@@ -1010,7 +1013,11 @@ class Folder:
         at = now.point_at(face, (x, y))
         for _ in range(layers):
             self.key('Tab', at, 'Tab (the flap below)')
-        if layers:
+        for _ in range(-layers):  # from the bottom up
+            self.key('shift+Tab', at, 'Shift+Tab (the flap above)')
+        if layers < 0 and self.status.picked_face != face:
+            raise Failure('the layer of (%.2f, %.2f) was not picked from below: %s' % (x, y, self.status.message))
+        if layers > 0:
             self.down_to(lambda: self.status.picked_face == face, [at], 'the flap below')
             if self.status.picked_face != face:
                 raise Failure('the layer of (%.2f, %.2f) was never picked: %s' % (x, y, self.status.message))

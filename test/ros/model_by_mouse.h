@@ -542,11 +542,14 @@ protected:
       menu("Next layer down", at);
   }
 
-  /// The next layer up under `at`: the Fold tool's wheel turned towards the user.
+  /// The next layer up under `at` (with nothing picked there, the bottom layer): *Next layer up*,
+  /// or the Fold tool's wheel turned towards the user.
   void layerUp(const core::Vec3& at)
   {
-    ASSERT_EQ(driver_, MouseDriver::Tool) << "the sheet marker's menu has no layer up";
-    wheel(at, false);
+    if (driver_ == MouseDriver::Tool)
+      wheel(at, false);
+    else
+      menu("Next layer up", at);
   }
 
   /// Expects the gesture to have made one new revision.
@@ -824,8 +827,9 @@ protected:
   }
 
   /// A fold by one drag, as the walkthrough's text says: the flap pressed at `named`'s point (the
-  /// layer there picked by the next layer down when it is not on top) and dragged to where the
-  /// reference puts that point.
+  /// layer there picked, when it is not on top, by the next layer down from the top or the next
+  /// layer up from the bottom, whichever takes fewer) and dragged to where the reference puts
+  /// that point.
   void flapFold(const FlapDragNamed& named, const core::Paper& after)
   {
     mode("flap");
@@ -837,8 +841,11 @@ protected:
     const std::vector<int> under = core::facesUnder(now, at, kFromAbove);
     if (under.empty() || under[0] != face)
     {
-      for (int down = 0; status_.picked_face != face && down < 16 && !HasFatalFailure(); ++down)
-        layerDown(at);
+      const auto layer = std::find(under.begin(), under.end(), face);
+      ASSERT_NE(layer, under.end()) << "the flap's face is not under its point";
+      const long downs = layer - under.begin(), ups = under.end() - layer;
+      for (int notch = 0; status_.picked_face != face && notch < 16 && !HasFatalFailure(); ++notch)
+        ups < downs ? layerUp(at) : layerDown(at);
       ASSERT_EQ(status_.picked_face, face) << "the flap's layer was never picked";
     }
     // The face the interaction keeps in place is the one compound_fold keeps.
