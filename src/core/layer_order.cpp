@@ -463,6 +463,28 @@ void tortillaTortillaRules(const StackProblem& stack, const std::vector<int>& fa
     }
 }
 
+/// A sheet flat across an unfolded crease cannot lie between the two faces of a fold on the same
+/// line (taco–tortilla where the tortilla's crease meets the fold).
+void tacoUnfoldedRules(const StackProblem& stack, const std::vector<FlatCrease>& creases,
+                       const std::vector<UnfoldedCrease>& unfolded, Clauses& clauses)
+{
+  for (const FlatCrease& c : creases)
+    for (const UnfoldedCrease& u : unfolded)
+    {
+      if (!onOneLine(c.a, c.b, u.a, u.b, stack.tolerance()))
+        continue;
+      const int h = faceOnSide(u, c.a, c.b, c.side);
+      if (h == c.face || h == c.other || stack.higher(c.face, h) == 0 || stack.higher(c.other, h) == 0)
+        continue;
+      const Why why = [&paper = stack.paper(), h, sheet = u.edge, fold = c.edge] {
+        return faceText(paper, h) + ", flat across " + creaseText(paper, sheet) + ", would pass through the fold at " +
+               creaseText(paper, fold);
+      };
+      clauses.push_back({ { -stack.higher(c.face, h), -stack.higher(h, c.other) }, why });
+      clauses.push_back({ { -stack.higher(c.other, h), -stack.higher(h, c.face) }, why });
+    }
+}
+
 /// Every rule of the stack as clauses.
 Clauses rulesOf(const Paper& paper, const StackProblem& stack, const std::vector<int>& faces,
                 const std::vector<FaceOrder>& kept, bool unfolded_sheets)
@@ -477,7 +499,11 @@ Clauses rulesOf(const Paper& paper, const StackProblem& stack, const std::vector
   tacoTortillaRules(stack, faces, creases, clauses);
   tacoTacoRules(stack, creases, clauses);
   if (unfolded_sheets)
-    tortillaTortillaRules(stack, faces, unfoldedCreases(paper, stack, member), clauses);
+  {
+    const std::vector<UnfoldedCrease> unfolded = unfoldedCreases(paper, stack, member);
+    tortillaTortillaRules(stack, faces, unfolded, clauses);
+    tacoUnfoldedRules(stack, creases, unfolded, clauses);
+  }
   return clauses;
 }
 

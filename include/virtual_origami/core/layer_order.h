@@ -3,8 +3,9 @@
 // over a crease lies on the side its mountain or valley says; no layer passes through a fold
 // (taco–taco, taco–tortilla); with `unfolded_sheets`, faces joined by an unfolded (0°) crease are
 // one flat sheet, which no layer passes through either: a layer lies above both or below both
-// where it meets them there, and two such sheets keep one order on both sides of their line
-// (tortilla–tortilla); and three overlapping layers stack one way (transitivity). The pairs are
+// where it meets them there, two such sheets keep one order on both sides of their line
+// (tortilla–tortilla), and such a sheet does not lie between the two faces of a fold on its line;
+// and three overlapping layers stack one way (transitivity). The pairs are
 // boolean variables, the rules clauses, solved by unit propagation and backtracking.
 #pragma once
 
@@ -30,8 +31,9 @@ struct LayerOrderOptions
   /// Papers of more faces than this are not searched for stacks at all (pairs grow with its square).
   int max_paper_faces = 4000;
   /// Whether faces joined by an unfolded crease are held to be one sheet (tortilla–tortilla).
-  /// Off by default until the shipped crane and flapping bird scripts obey it: from their second
-  /// petal fold (step 13) their front and back sheets change order across the centre line.
+  /// flatFold holds them so (the crane, flapping bird and frog base scripts obey it); off by
+  /// default for the other callers (fold by assignment's flat results), not yet tried on the
+  /// patterns they fold.
   bool unfolded_sheets = false;
 };
 
