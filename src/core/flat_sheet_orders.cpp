@@ -92,18 +92,6 @@ bool onOneLine(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, doubl
   return std::min((b - a).norm(), std::max(c_at, d_at)) - std::max(0.0, std::min(c_at, d_at)) > tolerance;
 }
 
-std::string faceText(const Paper& paper, int face)
-{
-  Vec2 centroid = Vec2::Zero();
-  for (int v : paper.faces[face].vertices)
-    centroid += paper.vertices[v].crease_pattern;
-  centroid /= static_cast<double>(paper.faces[face].vertices.size());
-  std::ostringstream out;
-  out.precision(2);
-  out << "face " << face << " (about (" << centroid.x() << ", " << centroid.y() << ") on the sheet)";
-  return out.str();
-}
-
 std::string sheetText(const Paper& paper, const UnfoldedCrease& u)
 {
   return faceText(paper, u.left) + " and " + faceText(paper, u.right) + ", one flat sheet across " +

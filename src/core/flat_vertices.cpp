@@ -4,6 +4,10 @@
 #include <cmath>
 #include <optional>
 #include <sstream>
+#include <string>
+#include <vector>
+
+#include "virtual_origami/core/planar_geometry.h"
 
 namespace virtual_origami::core
 {
@@ -216,6 +220,26 @@ std::string creaseText(const Paper& paper, int edge)
   const Edge& e = paper.edges[edge];
   return "crease " + std::to_string(edge) + " " + pointText(paper.vertices[e.vertices[0]].crease_pattern) + "–" +
          pointText(paper.vertices[e.vertices[1]].crease_pattern);
+}
+
+std::string faceText(const Paper& paper, int face)
+{
+  if (face < 0 || face >= static_cast<int>(paper.faces.size()))
+    return "face " + std::to_string(face);
+  std::vector<Vec2> polygon;
+  for (int v : paper.faces[face].vertices)
+    polygon.push_back(paper.vertices[v].crease_pattern);
+  Vec2 centroid = Vec2::Zero();
+  for (size_t i = 0; i < polygon.size(); ++i)
+  {
+    const Vec2 &p = polygon[i], &q = polygon[(i + 1) % polygon.size()];
+    centroid += (p + q) * cross2(p, q);
+  }
+  centroid /= 6.0 * signedArea(polygon);
+  std::ostringstream out;
+  out.precision(2);
+  out << "face " << face << " (about (" << centroid.x() << ", " << centroid.y() << ") on the sheet)";
+  return out.str();
 }
 
 Status checkFlatVertices(const Paper& paper, const std::vector<double>& angles, const std::vector<int>& around_edges)

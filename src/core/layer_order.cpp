@@ -179,27 +179,6 @@ int sideOf(const Vec2& a, const Vec2& b, const Polygon& poly)
   return cross2(b - a, centroid - a) > 0 ? 1 : -1;
 }
 
-/// A face as the refusals name it: its id and where it lies on the sheet (the centroid of its
-/// crease-pattern polygon), "face 4 (about (0.83, 0.17) on the sheet)".
-std::string faceText(const Paper& paper, int face)
-{
-  Polygon polygon;
-  for (int v : paper.faces[face].vertices)
-    polygon.push_back(paper.vertices[v].crease_pattern);
-  Vec2 centroid = Vec2::Zero();
-  const double twice_area = 2.0 * signedArea(polygon);
-  for (size_t i = 0; i < polygon.size(); ++i)
-  {
-    const Vec2 &p = polygon[i], &q = polygon[(i + 1) % polygon.size()];
-    centroid += (p + q) * cross2(p, q);
-  }
-  centroid /= 3.0 * twice_area;
-  std::ostringstream out;
-  out.precision(2);
-  out << "face " << face << " (about (" << centroid.x() << ", " << centroid.y() << ") on the sheet)";
-  return out.str();
-}
-
 /// A face folded flat over a crease lies on the side its fold angle says; returns those creases.
 std::vector<FlatCrease> creaseRules(const Paper& paper, const StackProblem& stack, const std::vector<char>& member,
                                     Clauses& clauses)

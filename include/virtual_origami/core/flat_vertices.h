@@ -28,4 +28,8 @@ Status checkFlatVertices(const Paper& paper, const std::vector<double>& angles,
 /// "crease 7 (0.5, 0.5)–(1, 0.5)", so that a user who sees no ids finds it on the paper.
 std::string creaseText(const Paper& paper, int edge);
 
+/// A face as the layer checks' refusals name it: its id and where it lies on the sheet (the
+/// centroid of its crease-pattern polygon), "face 4 (about (0.83, 0.17) on the sheet)".
+std::string faceText(const Paper& paper, int face);
+
 }  // namespace virtual_origami::core
