@@ -103,7 +103,7 @@ def main():
         next_at += 1.0 / 30
         time.sleep(max(0.0, next_at - time.time()))
     last = max(sent)
-    last_sent = sent[last][1]
+    first_sent, last_sent = sent[min(sent)][1], sent[last][1]
     # Standing still: the settled sheet is the last one of the last move (frames that lagged the
     # pointer catch up with its stamp first) once no sheet has come for 10 s.
     deadline = time.time() + 180
@@ -132,12 +132,12 @@ def main():
     with open(out, "a", newline="") as f:
         w = csv.writer(f)
         if new:
-            w.writerow(["vertices", "mode", "move", "sent_s", "latency_ms", "message_bytes"])
+            w.writerow(["vertices", "mode", "move", "sent_after_first_s", "latency_ms", "message_bytes"])
         for stamp, (k, at) in sorted(sent.items()):
             row = shown.get(stamp)
-            w.writerow([vertices, "frames" if frames else "full_solve", k, "%.4f" % (at - last_sent),
+            w.writerow([vertices, "frames" if frames else "full_solve", k, "%.4f" % (at - first_sent),
                         "%.2f" % ((row[0] - at) * 1e3) if row else "", row[1] if row else ""])
-        w.writerow([vertices, ("frames" if frames else "full_solve") + "_settled", moves, "0", "%.2f" % (settled * 1e3), ""])
+        w.writerow([vertices, ("frames" if frames else "full_solve") + "_settled", moves, "%.4f" % (last_sent - first_sent), "%.2f" % (settled * 1e3), ""])
     rospy.loginfo(
         "curved_drag_latency: %d vertices, %s: %d of %d moves shown; pointer event -> curved_mesh p50 %.1f / p95 %.1f / "
         "max %.1f ms; between sheets p50 %.1f / p95 %.1f ms; message %.1f MB; last move -> settled sheet %.0f ms",
