@@ -323,11 +323,7 @@ namespace
 TEST(Rotate, AGuidedTurnEndsWhereTheSolverAloneEnds)
 {
   const Paper start = miuraTessellation(8, 8).value().paper;
-  int axis = -1;
-  for (int e : start.faces[0].edges)
-    if (start.edges[e].isCrease() && std::abs(start.vertices[start.edges[e].vertices[1]].crease_pattern.y() -
-                                              start.vertices[start.edges[e].vertices[0]].crease_pattern.y()) > 1e-9)
-      axis = e;
+  const int axis = test::slantedCreaseOf(start, 0);
   ASSERT_GE(axis, 0);
   Paper alone = start, guided = start;
   NewtonSolver solver;
@@ -361,11 +357,7 @@ TEST(Rotate, AGuidedTurnEndsWhereTheSolverAloneEnds)
 TEST(Rotate, APreviewGoingOnFromTheLastEndsWhereTheTurnFromThePaperEnds)
 {
   const Paper start = miuraTessellation(8, 8).value().paper;
-  int axis = -1;
-  for (int e : start.faces[0].edges)
-    if (start.edges[e].isCrease() && std::abs(start.vertices[start.edges[e].vertices[1]].crease_pattern.y() -
-                                              start.vertices[start.edges[e].vertices[0]].crease_pattern.y()) > 1e-9)
-      axis = e;
+  const int axis = test::slantedCreaseOf(start, 0);
   ASSERT_GE(axis, 0);
   NewtonSolver solver;
   const std::unique_ptr<CreaseDriver> driver = makeCreaseDriver("quasi_newton");
@@ -413,11 +405,7 @@ TEST(Rotate, APreviewGoingOnFromTheLastEndsWhereTheTurnFromThePaperEnds)
 TEST(Rotate, ANewtonSolveTooSlowForItsToleranceStopsAndIsRefused)
 {
   const Paper start = tessellationWithVertices(TessellationKind::Miura, 400).value().paper;
-  int axis = -1;
-  for (int e : start.faces[0].edges)
-    if (start.edges[e].isCrease() && std::abs(start.vertices[start.edges[e].vertices[1]].crease_pattern.y() -
-                                              start.vertices[start.edges[e].vertices[0]].crease_pattern.y()) > 1e-9)
-      axis = e;
+  const int axis = test::slantedCreaseOf(start, 0);
   ASSERT_GE(axis, 0);
   RotateRequest request;
   request.face = 0;

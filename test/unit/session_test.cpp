@@ -291,11 +291,7 @@ TEST(Session, ATurnCommittedAfterItsPreviewsIsTheTurnCommittedAtOnce)
 {
   const Paper flat = tessellationWithVertices(TessellationKind::Miura, 1100).value().paper;
   ASSERT_GE(flat.vertices.size(), TurnGuide{}.min_vertices);
-  int axis = -1;
-  for (int e : flat.faces[0].edges)
-    if (flat.edges[e].isCrease() && std::abs(flat.vertices[flat.edges[e].vertices[1]].crease_pattern.y() -
-                                             flat.vertices[flat.edges[e].vertices[0]].crease_pattern.y()) > 1e-9)
-      axis = e;
+  const int axis = test::slantedCreaseOf(flat, 0);
   ASSERT_GE(axis, 0);
   Session dragged(flat), at_once(flat);
   for (Session* session : { &dragged, &at_once })

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "virtual_origami/core/crease.h"
 #include "virtual_origami/core/geometry.h"
 #include "virtual_origami/core/rotate.h"
@@ -56,6 +58,18 @@ inline void foldStack(Paper& paper, const Vec3& a, const Vec3& b, const Vec3& si
 }
 
 inline Vec2 v2(double x, double y) { return Vec2(x, y); }
+
+/// A crease of `face` across the sheet's x axis (not along it): on a Miura-ori's corner face, a
+/// zigzag crease to turn the face about. −1 when it has none.
+inline int slantedCreaseOf(const Paper& paper, int face)
+{
+  int axis = -1;
+  for (int e : paper.faces[face].edges)
+    if (paper.edges[e].isCrease() && std::abs(paper.vertices[paper.edges[e].vertices[1]].crease_pattern.y() -
+                                              paper.vertices[paper.edges[e].vertices[0]].crease_pattern.y()) > 1e-9)
+      axis = e;
+  return axis;
+}
 
 /// The unit square creased along both diagonals and both midlines.
 inline Paper creasedSquare()
