@@ -1,5 +1,7 @@
 #include "virtual_origami/curved/curved_forces.h"
 
+#include "virtual_origami/core/compliant_faces.h"
+
 #include "virtual_origami/curved/plate_bending.h"
 
 #include <cmath>
@@ -202,10 +204,18 @@ CurvedTerms curvedTerms(const CurvedMesh& mesh, const Paper& paper, const Curved
     }
     const int face_left = mesh.triangles[e.triangles[0]].face, face_right = mesh.triangles[e.triangles[1]].face;
     b.crease = face_left != face_right;
-    if (material.plate_bending && (!b.crease || material.crease > 0))
+    // A facet of a kept bend is paper, not a crease: it bends as stiffly as the paper does, back
+    // towards the bend it was kept with (a hinge free there would let the kept shape fall away).
+    const bool facet = b.crease && e.paper_edge >= 0 && isFacet(paper.edges[e.paper_edge]);
+    if (material.plate_bending && !facet && (!b.crease || material.crease > 0))
       continue;  // bent by the plate terms of its triangles
     double modulus = material.bend;
-    if (b.crease)
+    if (facet)
+    {
+      b.crease = false;
+      b.rest = paper.edges[e.paper_edge].fold_angle;
+    }
+    else if (b.crease)
     {
       modulus *= material.crease;
       b.rest = e.paper_edge >= 0 ? paper.edges[e.paper_edge].fold_angle : 0.0;
