@@ -65,10 +65,10 @@ core::Expected<core::PaperMaterial> physicalPaper(const CurvedMeshSolverConfig& 
   take(config.poisson_ratio, paper.poisson_ratio);
   take(config.areal_density, paper.areal_density);
   if (const core::Status checked = core::checkPaperMaterial(paper); !checked)
-    return Failure::failure(checked.message() +
-                            (config.material == "custom" ? " (a custom paper needs thickness, youngs_modulus, "
-                                                           "poisson_ratio and areal_density)" :
-                                                           ""));
+    return Failure::failure(checked.message() + (config.material == "custom" ? " (a custom paper needs thickness, "
+                                                                               "youngs_modulus, "
+                                                                               "poisson_ratio and areal_density)" :
+                                                                               ""));
   return paper;
 }
 
@@ -85,6 +85,7 @@ core::Expected<core::CurvedFollowOptions> curvedFollowOptions(const CurvedMeshSo
       return Failure::failure(paper.message());
     options.material = *core::curvedMaterial(*paper);
   }
+  options.material.crease = config.crease_memory;
   if (const core::Status checked = core::checkCurvedMaterial(options.material); !checked)
     return Failure::failure(checked.message());
   options.surroundings.gravity = config.gravity;
@@ -226,14 +227,14 @@ void CurvedMeshSolverNode::reconfigure(CurvedMeshSolverConfig& config, uint32_t)
   const double thickness = curvedFollowOptions(config)->material.thickness;
   if (last_state_)
     if (const core::Expected<core::Paper> paper = fromMessage(*last_state_); paper)
-      if (const core::Status thin = core::checkThicknessAgainstSpacing(thickness, config.spacing * paper->scale()); !thin)
+      if (const core::Status thin = core::checkThicknessAgainstSpacing(thickness, config.spacing * paper->scale());
+          !thin)
         return refuse(thin.message());
   config_ = config;
   follower_.emplace(std::move(*follower));  // a new mesh and solver with the new parameters
   ROS_INFO("curved_mesh_solver: %s, %s mesh, spacing %g of the sheet, tolerance %g, %s paper%s%s",
-           config_.method.c_str(), config_.mesher.c_str(), config_.spacing, config_.tolerance,
-           config_.material.c_str(), config_.gravity > 0 || config_.table ? ", weight and table" : "",
-           config_.enabled ? "" : " (disabled)");
+           config_.method.c_str(), config_.mesher.c_str(), config_.spacing, config_.tolerance, config_.material.c_str(),
+           config_.gravity > 0 || config_.table ? ", weight and table" : "", config_.enabled ? "" : " (disabled)");
   if (last_state_)
     solveAndPublish();
 }
@@ -260,11 +261,13 @@ void CurvedMeshSolverNode::onDrag(const VertexTarget::ConstPtr& drag)
     return;
   }
   const core::Vec3 position = toVec3(drag->position);
-  if (!position.allFinite() || (last_state_ && !drag->header.frame_id.empty() &&
-                                drag->header.frame_id != last_state_->header.frame_id))
+  if (!position.allFinite() ||
+      (last_state_ && !drag->header.frame_id.empty() && drag->header.frame_id != last_state_->header.frame_id))
   {
-    ROS_WARN_THROTTLE(5.0, "curved_mesh_solver: a drag of vertex %d to a point that is not finite or not in the "
-                      "paper's frame (%s) is ignored", drag->vertex, drag->header.frame_id.c_str());
+    ROS_WARN_THROTTLE(5.0,
+                      "curved_mesh_solver: a drag of vertex %d to a point that is not finite or not in the "
+                      "paper's frame (%s) is ignored",
+                      drag->vertex, drag->header.frame_id.c_str());
     return;
   }
   drag_ = core::PullTarget{ drag->vertex, position };
