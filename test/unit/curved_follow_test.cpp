@@ -9,6 +9,7 @@
 #include "virtual_origami/curved/bubble_mesh.h"
 #include "virtual_origami/curved/curved_follow.h"
 #include "virtual_origami/curved/curved_metrics.h"
+#include "virtual_origami/curved/seed_scenes.h"
 
 namespace virtual_origami::core
 {
@@ -182,6 +183,34 @@ TEST(CurvedFollow, FramesAtTheMouseSettleOnTheBalanceEachMoveSolvedReaches)
   EXPECT_EQ(frames.pins().size(), 3u);
   for (const PullTarget& pin : held)
     EXPECT_EQ(frames.positions().col(frames.mesh().vertex_nodes[pin.vertex]), pin.position);
+}
+
+// Nothing pulls a sheet with no pins (weightless, no table): it lies exactly as the state's rigid
+// faces, with no solve; a pin that comes later bends it, and let go it lies as the faces again.
+TEST(CurvedFollow, AnUnpinnedSheetLiesAsTheStatesFacesAndBendsWhenAPinComes)
+{
+  const Expected<SeedScene> scene = seedScene(3);  // the flap ade folded over: layers on layers
+  ASSERT_TRUE(scene) << scene.message();
+  const Paper& paper = scene->paper;
+  CurvedSheetFollower follower = makeFollower();
+  Expected<CurvedReport> report = follower.solveState(paper, {});
+  ASSERT_TRUE(report) << report.message();
+  EXPECT_TRUE(report->converged);
+  EXPECT_EQ(report->iterations, 0);
+  const Positions rigid = placeNodes(follower.mesh(), paper);
+  EXPECT_TRUE(follower.positions() == rigid);
+
+  const Vec3 lifted = scene->pullAt(0.05);  // b a little way along the seed's pull
+  report = follower.follow({ { scene->fixed, paper.vertices[scene->fixed].folded }, { scene->pulled, lifted } });
+  ASSERT_TRUE(report) << report.message();
+  EXPECT_TRUE(report->converged) << report->message;
+  EXPECT_GT(report->iterations, 0);
+  EXPECT_EQ(follower.positions().col(follower.mesh().vertex_nodes[scene->pulled]), lifted);
+  EXPECT_EQ(measureCurved(follower.mesh(), paper, follower.positions()).penetrations, 0);
+
+  report = follower.solveState(paper, {}, true);  // let go
+  ASSERT_TRUE(report) << report.message();
+  EXPECT_TRUE(follower.positions() == rigid);
 }
 
 }  // namespace

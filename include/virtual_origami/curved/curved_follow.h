@@ -53,6 +53,9 @@ public:
   /// move of more than max_steps steps, or a solve that diverges (the last balance stays).
   /// `anew`: from the state's rigid faces even where the last balance could go on (paper let
   /// go springs back to its rest, which no resolution of a soft bend by a force tolerance finds).
+  /// A sheet with no pins, no weight and no table is not solved: nothing pulls it, so it lies as
+  /// the state's rigid faces (the report converged, no iterations); the solver is made when pins
+  /// come.
   Expected<CurvedReport> solveState(const Paper& paper, const std::vector<PullTarget>& pins, bool anew = false);
 
   /// Another paper or surroundings (a physical paper's moduli, gravity): the sheet keeps its
