@@ -88,6 +88,9 @@ InteractionNode::InteractionNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   state_sub_ = nh_.subscribe("state", 1, &InteractionNode::stateReceived, this);
   tool_sub_ = nh_.subscribe("tool_events", 100, &InteractionNode::toolReceived, this);
   timer_ = nh_.createTimer(ros::Duration(1.0 / private_nh.param("rate", 30.0)), &InteractionNode::handleEvents, this);
+  // An event is taken at once (a slider preview waited up to a tick for it: 33 ms at 30 Hz);
+  // events that come while one is taken are queued (a pose replacing the last) and taken next.
+  prompt_timer_ = nh_.createTimer(ros::Duration(0.001), &InteractionNode::handlePrompt, this, true, false);
   status_timer_ = nh_.createTimer(ros::Duration(1.0), &InteractionNode::publishStatus, this);
 }
 
@@ -107,9 +110,34 @@ void InteractionNode::received(const Feedback::ConstPtr& feedback, MenuCallback 
     return;
   }
   events_.push_back(event);
+  promptLocked();
+}
+
+void InteractionNode::promptLocked()
+{
+  if (prompted_)
+    return;
+  prompted_ = true;
+  prompt_timer_.stop();
+  prompt_timer_.setPeriod(ros::Duration(0.001));
+  prompt_timer_.start();
+}
+
+void InteractionNode::handlePrompt(const ros::TimerEvent&)
+{
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    prompted_ = false;
+  }
+  applyEvents(false);
 }
 
 void InteractionNode::handleEvents(const ros::TimerEvent&)
+{
+  applyEvents(true);
+}
+
+void InteractionNode::applyEvents(bool animate)
 {
   std::deque<Event> events;
   {
@@ -118,7 +146,7 @@ void InteractionNode::handleEvents(const ros::TimerEvent&)
   }
   if (events.empty())
   {
-    if (model_.state() == core::GestureState::FoldingMarks)
+    if (animate && model_.state() == core::GestureState::FoldingMarks)
     {
       model_.tick();
       publishStatus();

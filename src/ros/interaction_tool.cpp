@@ -45,6 +45,7 @@ void InteractionNode::toolReceived(const ToolEvent::ConstPtr& event)
   Event queued;
   queued.tool = event;
   events_.push_back(queued);
+  promptLocked();
 }
 
 std::optional<core::SightRay> InteractionNode::sightRay(const ToolEvent& event) const

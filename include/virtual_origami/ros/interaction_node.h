@@ -64,8 +64,15 @@ private:
   /// The Fold tool's events, queued as feedback is (a move replaces the move queued before it).
   void toolReceived(const ToolEvent::ConstPtr& event);
 
+  /// Has the node's thread take the queue at once, not at its next tick (mutex_ held).
+  void promptLocked();
+
   // The node's thread (interaction_node.cpp).
+  /// The tick (`rate`): the queue, or a step of a fold's animation when nothing is queued.
   void handleEvents(const ros::TimerEvent&);
+  /// As soon as something is queued: the queue only (the animation keeps the tick's pace).
+  void handlePrompt(const ros::TimerEvent&);
+  void applyEvents(bool animate);
   void stateReceived(const PaperState::ConstPtr& state);
   void publishStatus(const ros::TimerEvent& = {});
   /// rviz's camera at `stamp` (the ViewCamera display's tf frame), when it is broadcast;
@@ -128,9 +135,11 @@ private:
   ros::ServiceClient crease_, rotate_, squash_, undo_, redo_, reset_, keep_bend_, pin_, fold_, flat_fold_, drag_vertex_,
       paper_model_reconfigure_;
   ros::Timer timer_, status_timer_;
+  ros::Timer prompt_timer_;  // one-shot, started by the first event queued after the queue was taken
 
   std::mutex mutex_;  // guards the queue and the counters the server's thread writes
   std::deque<Event> events_;
+  bool prompted_ = false;  // prompt_timer_ runs
   uint64_t received_ = 0, coalesced_ = 0;
 
   core::RayPointer ray_pointer_;  // the Fold tool's held press
