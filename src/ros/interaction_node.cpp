@@ -87,9 +87,10 @@ InteractionNode::InteractionNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
   slider_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("fold_slider_markers", 10, true);
   state_sub_ = nh_.subscribe("state", 1, &InteractionNode::stateReceived, this);
   tool_sub_ = nh_.subscribe("tool_events", 100, &InteractionNode::toolReceived, this);
-  timer_ = nh_.createTimer(ros::Duration(1.0 / private_nh.param("rate", 30.0)), &InteractionNode::handleEvents, this);
-  // An event is taken at once (a slider preview waited up to a tick for it: 33 ms at 30 Hz);
-  // events that come while one is taken are queued (a pose replacing the last) and taken next.
+  period_ = 1.0 / private_nh.param("rate", 30.0);
+  timer_ = nh_.createTimer(ros::Duration(period_), &InteractionNode::handleEvents, this);
+  // An event is taken at once, not at the next tick (a slider's preview waited up to 33 ms for
+  // it), and the queue no more often than `rate`: a flood of poses is still one update a period.
   prompt_timer_ = nh_.createTimer(ros::Duration(0.001), &InteractionNode::handlePrompt, this, true, false);
   status_timer_ = nh_.createTimer(ros::Duration(1.0), &InteractionNode::publishStatus, this);
 }
@@ -118,41 +119,40 @@ void InteractionNode::promptLocked()
   if (prompted_)
     return;
   prompted_ = true;
+  const double due = taken_at_ + period_ - ros::WallTime::now().toSec();
   prompt_timer_.stop();
-  prompt_timer_.setPeriod(ros::Duration(0.001));
+  prompt_timer_.setPeriod(ros::Duration(std::max(1e-3, due)));
   prompt_timer_.start();
-}
-
-void InteractionNode::handlePrompt(const ros::TimerEvent&)
-{
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    prompted_ = false;
-  }
-  applyEvents(false);
 }
 
 void InteractionNode::handleEvents(const ros::TimerEvent&)
 {
-  applyEvents(true);
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!events_.empty())
+    {
+      promptLocked();  // the prompt takes them (it runs already, unless something stopped it)
+      return;
+    }
+  }
+  if (model_.state() == core::GestureState::FoldingMarks)
+  {
+    model_.tick();
+    publishStatus();
+  }
 }
 
-void InteractionNode::applyEvents(bool animate)
+void InteractionNode::handlePrompt(const ros::TimerEvent&)
 {
   std::deque<Event> events;
   {
     std::lock_guard<std::mutex> lock(mutex_);
+    prompted_ = false;
     events.swap(events_);
+    taken_at_ = ros::WallTime::now().toSec();
   }
   if (events.empty())
-  {
-    if (animate && model_.state() == core::GestureState::FoldingMarks)
-    {
-      model_.tick();
-      publishStatus();
-    }
     return;
-  }
   const ros::WallTime start = ros::WallTime::now();
   const uint64_t updates = model_.updates();
   model_.finishFold();  // the user goes on: the fold first, at once

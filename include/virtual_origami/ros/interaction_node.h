@@ -64,15 +64,15 @@ private:
   /// The Fold tool's events, queued as feedback is (a move replaces the move queued before it).
   void toolReceived(const ToolEvent::ConstPtr& event);
 
-  /// Has the node's thread take the queue at once, not at its next tick (mutex_ held).
+  /// Has the node's thread take the queue at once, or once a period (1 / `rate`) has passed
+  /// since it last took it (mutex_ held).
   void promptLocked();
 
   // The node's thread (interaction_node.cpp).
-  /// The tick (`rate`): the queue, or a step of a fold's animation when nothing is queued.
+  /// The tick (`rate`): a step of a fold's animation, when nothing is queued.
   void handleEvents(const ros::TimerEvent&);
-  /// As soon as something is queued: the queue only (the animation keeps the tick's pace).
+  /// Takes the queue (promptLocked) and applies it.
   void handlePrompt(const ros::TimerEvent&);
-  void applyEvents(bool animate);
   void stateReceived(const PaperState::ConstPtr& state);
   void publishStatus(const ros::TimerEvent& = {});
   /// rviz's camera at `stamp` (the ViewCamera display's tf frame), when it is broadcast;
@@ -139,7 +139,9 @@ private:
 
   std::mutex mutex_;  // guards the queue and the counters the server's thread writes
   std::deque<Event> events_;
-  bool prompted_ = false;  // prompt_timer_ runs
+  bool prompted_ = false;     // prompt_timer_ runs
+  double period_ = 1.0 / 30;  // 1 / `rate`: the queue is taken no more often
+  double taken_at_ = 0.0;     // wall seconds when the queue was last taken
   uint64_t received_ = 0, coalesced_ = 0;
 
   core::RayPointer ray_pointer_;  // the Fold tool's held press
