@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <utility>
+#include <vector>
 #include <sstream>
 
 #include "virtual_origami/core/face_orders.h"
@@ -14,16 +17,36 @@ namespace
 /// one face's plane the other's centroid was on before the pull.
 void orderNewStacks(Paper& next, const Paper& before, double tolerance)
 {
+  // Only faces whose boxes touch can lie on each other: found by a sweep along x, then taken in
+  // the order of the pairs (a < b), as every pair was once (a 2,500-face drag spent 0.1 s of
+  // each preview testing all 3 million pairs).
   const int faces = static_cast<int>(next.faces.size());
-  for (int a = 0; a < faces; ++a)
-    for (int b = a + 1; b < faces; ++b)
+  std::vector<Eigen::AlignedBox3d> boxes(faces);
+  for (int f = 0; f < faces; ++f)
+    for (int v : next.faces[f].vertices)
+      boxes[f].extend(next.vertices[v].folded);
+  std::vector<int> by_x(faces);
+  std::iota(by_x.begin(), by_x.end(), 0);
+  std::sort(by_x.begin(), by_x.end(), [&](int f, int g) { return boxes[f].min().x() < boxes[g].min().x(); });
+  std::vector<std::pair<int, int>> near;
+  for (int i = 0; i < faces; ++i)
+    for (int j = i + 1; j < faces; ++j)
     {
-      if (faceOrder(next, a, b) != 0 || !facesStacked(next, a, b, tolerance))
-        continue;
-      const double from = before.faceNormal(a).dot(before.faceCentroid(b) - before.faceCentroid(a));
-      if (std::abs(from) > tolerance)
-        setFaceOrder(next, a, b, from > 0 ? 1 : -1);
+      const int f = by_x[i], g = by_x[j];
+      if (boxes[g].min().x() > boxes[f].max().x() + tolerance)
+        break;
+      if (boxes[f].exteriorDistance(boxes[g]) <= tolerance)
+        near.emplace_back(std::min(f, g), std::max(f, g));
     }
+  std::sort(near.begin(), near.end());
+  for (const auto& [a, b] : near)
+  {
+    if (faceOrder(next, a, b) != 0 || !facesStacked(next, a, b, tolerance))
+      continue;
+    const double from = before.faceNormal(a).dot(before.faceCentroid(b) - before.faceCentroid(a));
+    if (std::abs(from) > tolerance)
+      setFaceOrder(next, a, b, from > 0 ? 1 : -1);
+  }
   pruneFaceOrders(next, tolerance);
 }
 }  // namespace
