@@ -468,7 +468,7 @@ Expected<RotateResult> rotate(Paper& paper, const RotateRequest& request, ShapeS
         driver.setLimits(limits);
         if (stiffness != turn_guide.face_stiffness)
           driver.setFaceStiffness(stiffness);
-        if (report.diverged || (!report.converged && report.iterations < turn_guide.max_iterations))
+        if (report.diverged)
           return;
         // A start only where it agrees with the turn: the turning faces where it puts them.
         const double agrees = std::max(1e-6, 10 * turn_guide.tolerance) * paper.scale();
