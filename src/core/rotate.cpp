@@ -461,15 +461,19 @@ Expected<RotateResult> rotate(Paper& paper, const RotateRequest& request, ShapeS
         // A driver kept for turns has the guide's stiffness already (and may be shared).
         if (stiffness != turn_guide.face_stiffness)
           driver.setFaceStiffness(turn_guide.face_stiffness);
+        const SolveLimits limits = driver.limits();
+        driver.setLimits(SolveLimits{ turn_guide.tolerance, turn_guide.max_iterations, limits.max_seconds });
         Paper guess = current;
         const SolveReport report = driver.drive(guess, target, anchor);
+        driver.setLimits(limits);
         if (stiffness != turn_guide.face_stiffness)
           driver.setFaceStiffness(stiffness);
-        if (!report.converged)
+        if (report.diverged)
           return;
         // A start only where it agrees with the turn: the turning faces where it puts them.
+        const double agrees = std::max(1e-6, 10 * turn_guide.tolerance) * paper.scale();
         for (size_t v = 0; v < paper.vertices.size(); ++v)
-          if (moving_vertices[v] && (guess.vertices[v].folded - attempt.vertices[v].folded).norm() > 1e-6 * paper.scale())
+          if (moving_vertices[v] && (guess.vertices[v].folded - attempt.vertices[v].folded).norm() > agrees)
             return;
         for (size_t v = 0; v < paper.vertices.size(); ++v)
           if (!fixed[v])

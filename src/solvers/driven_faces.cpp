@@ -151,7 +151,7 @@ Eigen::Matrix3d fitFaceRotation(const RigidFace& face, const Positions& x, Eigen
 }
 
 DrivenFaces::DrivenFaces(const Paper& paper, double face_stiffness)
-  : faces_(rigidFaces(paper)), scale_(paper.scale() > 0 ? paper.scale() : 1.0), stiffness_(face_stiffness)
+  : faces_(rigidFaces(paper, false)), scale_(paper.scale() > 0 ? paper.scale() : 1.0), stiffness_(face_stiffness)
 {
   // Rest shapes in sheet-scale units, so that the energy is the same for any sheet size.
   std::vector<int> rigid_of_face(paper.faces.size(), -1);

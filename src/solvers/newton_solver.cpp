@@ -29,14 +29,6 @@ Eigen::Matrix3d skew(const Eigen::Vector3d& q)
   return s;
 }
 
-Eigen::Vector3d faceMean(const RigidFace& face, const Positions& x)
-{
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (int v : face.vertices)
-    mean += x.col(v);
-  return mean / static_cast<double>(face.vertices.size());
-}
-
 /// The reduced Gauss–Newton matrix over the free vertices (3 rows each). Its pattern is
 /// ordered once, block by block (approximate minimum degree on the vertex graph, so the 3 × 3
 /// blocks stay together), and stored as the upper triangle in that order: every step only
@@ -213,12 +205,12 @@ Eigen::VectorXd gradient(const std::vector<RigidFace>& faces, const RigidFit& fi
   for (size_t f = 0; f < faces.size(); ++f)
   {
     const RigidFace& face = faces[f];
-    const Eigen::Vector3d mean = faceMean(face, x);
+    const Eigen::Matrix3Xd centred = centredFace(face, x);
     for (size_t k = 0; k < face.vertices.size(); ++k)
     {
       const int i = free_index[face.vertices[k]];
       if (i >= 0)
-        g.segment<3>(3 * i) += x.col(face.vertices[k]) - mean -
+        g.segment<3>(3 * i) += centred.col(static_cast<Eigen::Index>(k)) -
                                fit.rotations[f].leftCols<2>() * face.rest.col(static_cast<Eigen::Index>(k));
     }
   }
@@ -297,6 +289,8 @@ namespace
 /// tolerance (further out, a damped start may still turn into Newton's quadratic steps).
 constexpr int kPaceWindow = 25;
 constexpr double kPaceNear = 100.0;
+/// How far a creeping solve lowers its damping floor per step (NewtonOptions::lowest_damping).
+constexpr double kFloorCut = 1e-2;
 }  // namespace
 
 NewtonSolver::NewtonSolver(NewtonOptions options) : options_(options)
@@ -324,6 +318,7 @@ SolveReport NewtonSolver::solve(Paper& paper, const std::vector<char>& fixed)
   RigidFit fit = fitRigidFaces(faces, x);
   std::string stuck;
   std::vector<double> distances;  // how far from the tolerance each iteration started (1: there)
+  double damping_floor = options_.min_damping;
   bool factored = false;
   bool diverged = !std::isfinite(fit.energy);
   while (!diverged)
@@ -356,9 +351,11 @@ SolveReport NewtonSolver::solve(Paper& paper, const std::vector<char>& fixed)
     }
     ++report.iterations;
     const Eigen::VectorXd g = gradient(faces, fit, x, free_index, free_count);
-    double mu = std::max(options_.min_damping, options_.damping * g.norm() / paper.scale());
+    double mu = std::max(damping_floor, options_.damping * g.norm() / paper.scale());
+    const bool at_floor = mu == damping_floor;
     const double energy_before = fit.energy;
     bool accepted = false;
+    bool whole_fresh_step = false;  // a fresh factorisation's step, taken whole
     // First with the factorisation kept from an earlier step (if any), then fresh ones with
     // rising damping, which turns Gauss–Newton towards gradient descent.
     for (int attempt = factored ? -1 : 0; attempt < 4 && !accepted; ++attempt)
@@ -384,6 +381,7 @@ SolveReport NewtonSolver::solve(Paper& paper, const std::vector<char>& fixed)
           std::swap(x, trial);
           fit = std::move(trial_fit);
           accepted = true;
+          whole_fresh_step = attempt == 0 && k == 0;
           break;
         }
       }
@@ -393,6 +391,15 @@ SolveReport NewtonSolver::solve(Paper& paper, const std::vector<char>& fixed)
       stuck = "no step lowers the rigid-face energy any further";
       break;
     }
+    // Creeping: a whole step at the damping floor that did not halve the energy. The floor, not
+    // the model, holds the step back there (a near-singular balance whose soft modes are less
+    // stiff than the floor: a 10,000-vertex Miura-ori turned near the flat sheet crept 237
+    // steps from 2e-9 to 1e-10). Lowered while the steps are whole, raised again at a step the
+    // line search shortens or a retry.
+    if (whole_fresh_step && at_floor && fit.energy > 0.5 * energy_before)
+      damping_floor = std::max(options_.lowest_damping, damping_floor * kFloorCut);
+    else if (!whole_fresh_step)
+      damping_floor = options_.min_damping;
     // A kept factorisation pays while it cuts the energy fast; when progress slows, refresh.
     if (!options_.reuse_factorization || fit.energy > options_.refactor_ratio * energy_before)
       factored = false;

@@ -12,7 +12,7 @@
 
 namespace virtual_origami::core
 {
-std::vector<RigidFace> rigidFaces(const Paper& paper)
+std::vector<RigidFace> rigidFaces(const Paper& paper, bool exact_rest)
 {
   // The convex pieces of a concave face of a loaded file (joined by split edges) are one rigid
   // body: the split edges are no hinges, unless the face is compliant (its facets bend).
@@ -39,24 +39,38 @@ std::vector<RigidFace> rigidFaces(const Paper& paper)
         if (std::find(rigid.vertices.begin(), rigid.vertices.end(), v) == rigid.vertices.end())
           rigid.vertices.push_back(v);
     rigid.rest.resize(2, static_cast<Eigen::Index>(rigid.vertices.size()));
+    // Relative to one of its vertices first (as centredFace): exact differences, where a mean of
+    // coordinates far from the origin rounds each rest shape by their ulp once more.
+    const Vec2 origin = exact_rest ? paper.vertices[rigid.vertices[0]].crease_pattern : Vec2::Zero();
     for (size_t k = 0; k < rigid.vertices.size(); ++k)
-      rigid.rest.col(static_cast<Eigen::Index>(k)) = paper.vertices[rigid.vertices[k]].crease_pattern;
-    rigid.rest.colwise() -= rigid.rest.rowwise().mean();
+      rigid.rest.col(static_cast<Eigen::Index>(k)) = paper.vertices[rigid.vertices[k]].crease_pattern - origin;
+    const Eigen::Vector2d mean = rigid.rest.rowwise().mean();
+    rigid.rest.colwise() -= mean;
     faces.push_back(std::move(rigid));
   }
   return faces;
 }
 
-Eigen::Matrix3d fitRotation(const RigidFace& face, const Positions& x)
+Eigen::Matrix3Xd centredFace(const RigidFace& face, const Positions& x)
 {
+  // Relative to one of its own vertices first: the differences of nearby coordinates are exact,
+  // where a mean of coordinates far from the origin (a sheet 55 units wide) rounds to their ulp,
+  // a noise in every residual and gradient that near-singular balances amplify.
   const Eigen::Index n = face.rest.cols();
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (int v : face.vertices)
-    mean += x.col(v);
-  mean /= static_cast<double>(n);
-  Eigen::Matrix<double, 3, 2> m = Eigen::Matrix<double, 3, 2>::Zero();
+  Eigen::Matrix3Xd centred(3, n);
+  const Eigen::Vector3d origin = x.col(face.vertices[0]);
   for (Eigen::Index k = 0; k < n; ++k)
-    m += (x.col(face.vertices[k]) - mean) * face.rest.col(k).transpose();
+    centred.col(k) = x.col(face.vertices[k]) - origin;
+  const Eigen::Vector3d mean = centred.rowwise().mean();
+  centred.colwise() -= mean;
+  return centred;
+}
+
+namespace
+{
+Eigen::Matrix3d fitCentred(const RigidFace& face, const Eigen::Matrix3Xd& centred)
+{
+  const Eigen::Matrix<double, 3, 2> m = centred * face.rest.transpose();
   // Polar factor q = U Vᵀ of the SVD of m itself. The closed form through mᵀm squares m's
   // condition: on a sliver face (many creases close together) the fit then lost about eight
   // digits, and Newton stalled at a face residual of 1e-11, a strain of 1e-8 on its short edges.
@@ -69,6 +83,12 @@ Eigen::Matrix3d fitRotation(const RigidFace& face, const Positions& x)
   r.col(2) = q.col(0).cross(q.col(1));
   return r;
 }
+}  // namespace
+
+Eigen::Matrix3d fitRotation(const RigidFace& face, const Positions& x)
+{
+  return fitCentred(face, centredFace(face, x));
+}
 
 RigidFit fitRigidFaces(const std::vector<RigidFace>& faces, const Positions& x)
 {
@@ -76,15 +96,12 @@ RigidFit fitRigidFaces(const std::vector<RigidFace>& faces, const Positions& x)
   fit.rotations.reserve(faces.size());
   for (const RigidFace& face : faces)
   {
-    const Eigen::Matrix3d r = fitRotation(face, x);
+    const Eigen::Matrix3Xd centred = centredFace(face, x);
+    const Eigen::Matrix3d r = fitCentred(face, centred);
     fit.rotations.push_back(r);
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    for (int v : face.vertices)
-      mean += x.col(v);
-    mean /= static_cast<double>(face.vertices.size());
     for (Eigen::Index k = 0; k < face.rest.cols(); ++k)
     {
-      const Eigen::Vector3d residual = x.col(face.vertices[k]) - mean - r.leftCols<2>() * face.rest.col(k);
+      const Eigen::Vector3d residual = centred.col(k) - r.leftCols<2>() * face.rest.col(k);
       const double norm = residual.norm();
       fit.energy += 0.5 * norm * norm;
       fit.max_residual = std::isfinite(norm) ? std::max(fit.max_residual, norm) : INFINITY;

@@ -45,6 +45,18 @@ struct TurnGuide
   CreaseDriver* driver = nullptr;
   size_t min_vertices = 1000;
   double face_stiffness = 100.0;
+  /// The guide's balance (the driver's tolerance: no vertex would move more than this times the
+  /// sheet's scale) and its step limit, in place of the driver's own for the call. The guide is a
+  /// start for the solver, which closes the faces quadratically from there; near the flat sheet
+  /// it crept to its balance (a 5,000-vertex Miura-ori's 2° turn: 479 steps, 35 s), so its steps
+  /// are bounded, and a guide stopped short of balance (not diverged) is still the start. Ten
+  /// steps: at 10,000 vertices a drag's later previews then take 0.7–0.8 s against 2–2.7 s at 20,
+  /// the solver closing in 3–4 iterations; at 6 the solver needs up to 62 (docs/SOLVERS.md). The balance
+  /// stays 1e-9: from a guide balanced to 1e-8 or 1e-6 (cheaper) the solver ends further along
+  /// the near-flat sheet's soft modes, and a drag's last preview no longer lies within 1e-9 of
+  /// the sheet of the turn committed at once (Session.ATurnCommittedAfterItsPreviews…: 1.06e-9).
+  double tolerance = 1e-9;
+  int max_iterations = 10;
 };
 
 /// A solved state of the same turn (`face` about `axis_edge` as rotate() resolves the request,

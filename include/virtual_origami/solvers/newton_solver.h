@@ -21,6 +21,12 @@ struct NewtonOptions
   /// fold with degrees of freedom left) from blowing up rounding errors.
   double damping = 1e-4;
   double min_damping = 1e-8;
+  /// A solve whose whole steps at that floor creep (each cuts the energy by less than half)
+  /// lowers the floor a hundredfold per step down to this (min_damping: never); a step the line
+  /// search must shorten restores min_damping. Near a flat sheet a large mechanism's soft modes
+  /// are less stiff than 1e-8, and the floor, not the model, held its steps back. (A lower floor
+  /// lets rounding move an unheld exact mechanism further: docs/SOLVERS.md, Known limits.)
+  double lowest_damping = 1e-12;
   /// Keep a factorisation for the next steps while each cuts the energy below
   /// refactor_ratio of what it was (a chord step: one back-substitution instead of a
   /// factorisation); refactor when progress slows.

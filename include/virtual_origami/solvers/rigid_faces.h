@@ -22,7 +22,15 @@ struct RigidFace
 
 /// One per face; the convex pieces of a concave face a file gave (joined by split edges) make one,
 /// unless they are compliant (joined by facets, which bend: core/compliant_faces.h).
-std::vector<RigidFace> rigidFaces(const Paper& paper);
+/// `exact_rest`: each rest shape from its crease-pattern coordinates' differences, exact; else
+/// from their mean over the face, which rounds to the coordinates' ulp (a sheet 92 units wide:
+/// 1.4e-14, which a large Miura-ori's near-singular balance amplified to a strain of 1.7e-9
+/// that no solver could close). The crease drivers keep the mean (their step counts are tuned
+/// and tested on it; a turn guide only starts the rigid solver).
+std::vector<RigidFace> rigidFaces(const Paper& paper, bool exact_rest = true);
+
+/// The face's folded vertices, one column each, less their mean.
+Eigen::Matrix3Xd centredFace(const RigidFace& face, const Positions& x);
 
 /// The rotation that best turns the face's rest shape onto the centred folded vertices. The
 /// rest shape is planar, so only the first two columns are fitted (the polar factor of a
