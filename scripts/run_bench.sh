@@ -56,6 +56,8 @@ step curved_bench "$bin/curved_bench" "$out/curved_solvers.csv"
 step curved_speed_bench env OMP_THREAD_LIMIT=1 "$bin/curved_speed_bench" "$out"
 # One core, as curved_speed_bench (CHOLMOD's OpenMP loops capped to one thread).
 step fold_bench env OMP_THREAD_LIMIT=1 "$bin/fold_bench" "$out"
+# One core: a corner-face turn drag at 1,681, 5,000 and 10,000 vertices (docs/SOLVERS.md).
+step turn_bench sh -c "OMP_THREAD_LIMIT=1 \"$bin/turn_bench\" 1681 5000 10000 > \"$out/turns.csv\""
 # One core, as fold_bench: the crane's gestures, each pointer event to its serialized markers.
 step gesture_bench env OMP_THREAD_LIMIT=1 "$bin/gesture_bench" "$out/gesture_latency.csv" test/data/crane_reference.json
 # One core: Origami Simulator's example patterns folded by assignment in steps and in one call,
