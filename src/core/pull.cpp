@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <sstream>
 #include <utility>
 #include <vector>
-#include <sstream>
 
 #include "virtual_origami/core/face_orders.h"
 
