@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -230,17 +231,37 @@ void keptRules(const StackProblem& stack, const std::vector<char>& member, const
 void transitivityRules(const StackProblem& stack, const std::vector<int>& faces, Clauses& clauses)
 {
   const double tolerance = stack.tolerance();
-  for (size_t i = 0; i < faces.size(); ++i)
-    for (size_t j = i + 1; j < faces.size(); ++j)
+  // Each face's later partners (the faces after it in `faces` that it overlaps) and its outline's
+  // box: the triples are those of overlapping pairs, found by merging two partner lists instead of
+  // asking every third face (a flat Miura-ori's stack of 156 faces: 600,000 triples asked, most
+  // of which overlap in no pair).
+  const size_t n = faces.size();
+  std::vector<std::vector<size_t>> later(n);
+  std::vector<Eigen::AlignedBox2d> boxes(n);
+  for (size_t i = 0; i < n; ++i)
+  {
+    for (const Vec2& p : stack.polygon(faces[i]))
+      boxes[i].extend(p);
+    for (size_t j = i + 1; j < n; ++j)
+      if (stack.higher(faces[i], faces[j]) != 0)
+        later[i].push_back(j);
+  }
+  std::vector<size_t> thirds;
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j : later[i])
     {
       const int f = faces[i], g = faces[j];
-      if (stack.higher(f, g) == 0)
-        continue;
       const Polygon fg = clipConvex(stack.polygon(f), stack.polygon(g));
-      for (size_t k = j + 1; k < faces.size(); ++k)
+      Eigen::AlignedBox2d fg_box;
+      for (const Vec2& p : fg)
+        fg_box.extend(p);
+      thirds.clear();
+      std::set_intersection(std::upper_bound(later[i].begin(), later[i].end(), j), later[i].end(), later[j].begin(),
+                            later[j].end(), std::back_inserter(thirds));
+      for (size_t k : thirds)
       {
         const int h = faces[k];
-        if (stack.higher(f, h) == 0 || stack.higher(g, h) == 0 ||
+        if (fg.empty() || fg_box.exteriorDistance(boxes[k]) > tolerance ||
             area(clipConvex(fg, stack.polygon(h))) <= tolerance * tolerance)
           continue;
         const Why why = [f, g, h] {
