@@ -301,6 +301,10 @@ void recordLayerOrder(Paper& work, AssignmentFoldResult& result)
   // lay 1e-6 of the sheet apart, which at 1e-7 read as one crossing the other's face.
   LayerOrderOptions options;
   options.tolerance = 1e-5 * work.scale();
+  // Faces joined by an unfolded crease are one sheet no layer passes through, as flatFold holds
+  // them: on Origami Simulator's library no flat result changes (the same pairs ordered, the same
+  // patterns refused), and a result passing a layer through such a sheet is refused.
+  options.unfolded_sheets = true;
   const Expected<LayerOrder> order = solveLayerOrder(work, options);
   if (!order)
   {

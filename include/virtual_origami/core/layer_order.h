@@ -31,9 +31,9 @@ struct LayerOrderOptions
   /// Papers of more faces than this are not searched for stacks at all (pairs grow with its square).
   int max_paper_faces = 4000;
   /// Whether faces joined by an unfolded crease are held to be one sheet (tortilla–tortilla).
-  /// flatFold holds them so (the crane, flapping bird and frog base scripts obey it); off by
-  /// default for the other callers (fold by assignment's flat results), not yet tried on the
-  /// patterns they fold.
+  /// flatFold holds them so (the crane, flapping bird and frog base scripts obey it), and so does
+  /// fold by assignment for its flat results (on Origami Simulator's library it changes none);
+  /// off by default for the other callers.
   bool unfolded_sheets = false;
 };
 
