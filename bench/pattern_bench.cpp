@@ -142,7 +142,8 @@ void foldPattern(const fs::path& path, const std::string& name, FILE* out)
     driven += std::isfinite(t) ? 1 : 0;
   std::ostringstream head;
   head << name << ',' << probe.paper().vertices.size() << ',' << probe.paper().faces.size() << ',' << driven;
-  std::fprintf(out, "#loaded\n");  // for the parent: a call that times out after this is a fold's
+  // For the parent: a call that times out after this is a fold's, on a pattern of this size.
+  std::fprintf(out, "#loaded,%s\n", head.str().substr(name.size() + 1).c_str());
   std::fflush(out);
   AssignmentFoldAcceptance keep;
   keep.keep = true;
@@ -186,6 +187,7 @@ void benchPattern(const fs::path& path, const std::string& name, double seconds,
   int rows = 0;
   bool loaded = false;
   bool timed_out = false;
+  std::string size = ",,";  // vertices, faces and driven creases, once loaded
   double cpu_at_row = 0.0;  // the child's CPU time at its last row
   char chunk[4096];
   while (true)
@@ -214,6 +216,8 @@ void benchPattern(const fs::path& path, const std::string& name, double seconds,
       if (line[0] == '#')
       {
         loaded = true;
+        size = line.substr(std::string("#loaded,").size());
+        size.pop_back();  // the line break
         cpu_at_row = childCpuSeconds(child);
         continue;
       }
@@ -230,7 +234,7 @@ void benchPattern(const fs::path& path, const std::string& name, double seconds,
   {
     const std::string names[] = { "step_25", "step_50", "step_75", "step_100", "one_call_100" };
     const std::string what = !loaded ? "load" : names[std::min(rows, 4)];
-    csv << name << ",,,," << what << ',' << seconds << ",,,,,,,,,did not finish in " << seconds << " s\n";
+    csv << name << ',' << size << ',' << what << ',' << seconds << ",,,,,,,,,did not finish in " << seconds << " s\n";
     std::cout << name << ": did not finish " << what << " in " << seconds << " s" << std::endl;
   }
 }
