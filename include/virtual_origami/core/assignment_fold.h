@@ -69,7 +69,7 @@ struct AssignmentFoldRequest
   /// again with the driver's stiffness. A one-stage commit (a slide's step) stays stiff, and so
   /// does a paper with compliant faces (they bend instead).
   double path_stiffness = 100.0;
-  /// A commit's driver runs in pieces (50 iterations, then 20) and stops once a piece moves no
+  /// A commit's driver runs in pieces (100 iterations, then 20) and stops once a piece moves no
   /// vertex further than this share of the sheet: settled as far as any figure measures
   /// (flatness and crossings are judged at 1e-6 of the sheet), where the driver's own tolerance
   /// (a step of 1e-9) near a singular balance is reached only linearly or not at all. 0: each
