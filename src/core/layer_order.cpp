@@ -734,6 +734,14 @@ Expected<LayerOrder> solveLayerOrder(const Paper& paper, const LayerOrderOptions
       continue;
     }
     const StackProblem stack(paper, faces, options.tolerance);
+    if (options.max_pairs > 0 && stack.variableCount() > options.max_pairs)
+    {
+      result.complete = false;
+      result.incomplete = "a stack of " + std::to_string(stack.variableCount()) +
+                          " overlapping pairs of faces is more than the " + std::to_string(options.max_pairs) +
+                          " whose layer order is worked out";
+      continue;
+    }
     const std::vector<Clause> clauses = rulesOf(paper, stack, faces, options.kept, options.unfolded_sheets);
     Search search(stack.variableCount(), clauses);
     bool gave_up = false;
