@@ -3,9 +3,10 @@
 // then folded as a new user would — commits at 25, 50, 75 and 100 %, and after a reload one call
 // to 100 % — with paper_model's solvers (quasi_newton crease driver, newton rigid solver), one
 // core. Each commit is kept whatever its figures so the steps go on, and the row says what the
-// service would answer. A pattern runs in its own process, stopped when a call takes longer than
-// SECONDS (its row then says so). Writes one CSV row per call:
+// service would answer. A pattern runs in its own process, stopped when a call takes more than
+// SECONDS of CPU (its row then says so). Writes one CSV row per call:
 //   pattern_bench PATTERN_DIR OUT_CSV [SECONDS]
+// PATTERN_DIR may also be one pattern file (its row named by the file's name).
 #include <poll.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -37,6 +38,17 @@ double cpuSeconds()
 {
   timespec t{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+/// CPU seconds a child process has used (so that a call is stopped by its own CPU time, not by
+/// the wall time a shared machine stretches).
+double childCpuSeconds(pid_t child)
+{
+  clockid_t clock;
+  timespec t{};
+  if (clock_getcpuclockid(child, &clock) != 0 || clock_gettime(clock, &t) != 0)
+    return 0.0;
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
@@ -130,7 +142,8 @@ void foldPattern(const fs::path& path, const std::string& name, FILE* out)
     driven += std::isfinite(t) ? 1 : 0;
   std::ostringstream head;
   head << name << ',' << probe.paper().vertices.size() << ',' << probe.paper().faces.size() << ',' << driven;
-  std::fprintf(out, "#loaded\n");  // for the parent: a call that times out after this is a fold's
+  // For the parent: a call that times out after this is a fold's, on a pattern of this size.
+  std::fprintf(out, "#loaded,%s\n", head.str().substr(name.size() + 1).c_str());
   std::fflush(out);
   AssignmentFoldAcceptance keep;
   keep.keep = true;
@@ -139,9 +152,9 @@ void foldPattern(const fs::path& path, const std::string& name, FILE* out)
     const double start = cpuSeconds();
     const Expected<AssignmentFoldResult> r = probe.foldByAssignment(fraction, true, keep);
     const double seconds = cpuSeconds() - start;
-    std::fprintf(out, "%s\n",
-                 row(head.str(), "step_" + std::to_string(static_cast<int>(100 * fraction)), seconds, r, probe.paper())
-                     .c_str());
+    std::fprintf(
+        out, "%s\n",
+        row(head.str(), "step_" + std::to_string(static_cast<int>(100 * fraction)), seconds, r, probe.paper()).c_str());
     std::fflush(out);
   }
   Session once = foldingSession();
@@ -153,8 +166,8 @@ void foldPattern(const fs::path& path, const std::string& name, FILE* out)
   std::fflush(out);
 }
 
-/// Forks a child for the pattern; copies its rows to `csv`, stopping it when no row comes
-/// within `seconds` (a call that long is the cliff the table shows).
+/// Forks a child for the pattern; copies its rows to `csv`, stopping it when a call takes more
+/// than `seconds` of CPU (a call that long is the cliff the table shows).
 void benchPattern(const fs::path& path, const std::string& name, double seconds, std::ostream& csv)
 {
   int pipe_fds[2];
@@ -174,16 +187,22 @@ void benchPattern(const fs::path& path, const std::string& name, double seconds,
   int rows = 0;
   bool loaded = false;
   bool timed_out = false;
+  std::string size = ",,";  // vertices, faces and driven creases, once loaded
+  double cpu_at_row = 0.0;  // the child's CPU time at its last row
   char chunk[4096];
   while (true)
   {
     pollfd p{ pipe_fds[0], POLLIN, 0 };
-    const int ready = poll(&p, 1, static_cast<int>(seconds * 1000));
+    const int ready = poll(&p, 1, 100);
     if (ready == 0)
     {
-      timed_out = true;
-      kill(child, SIGKILL);
-      break;
+      if (childCpuSeconds(child) - cpu_at_row > seconds)
+      {
+        timed_out = true;
+        kill(child, SIGKILL);
+        break;
+      }
+      continue;
     }
     const ssize_t n = read(pipe_fds[0], chunk, sizeof chunk);
     if (n <= 0)
@@ -197,11 +216,15 @@ void benchPattern(const fs::path& path, const std::string& name, double seconds,
       if (line[0] == '#')
       {
         loaded = true;
+        size = line.substr(std::string("#loaded,").size());
+        size.pop_back();  // the line break
+        cpu_at_row = childCpuSeconds(child);
         continue;
       }
       csv << line;
       std::cout << line;
       ++rows;
+      cpu_at_row = childCpuSeconds(child);
     }
     csv.flush();
   }
@@ -211,7 +234,7 @@ void benchPattern(const fs::path& path, const std::string& name, double seconds,
   {
     const std::string names[] = { "step_25", "step_50", "step_75", "step_100", "one_call_100" };
     const std::string what = !loaded ? "load" : names[std::min(rows, 4)];
-    csv << name << ",,,," << what << ',' << seconds << ",,,,,,,,,did not finish in " << seconds << " s\n";
+    csv << name << ',' << size << ',' << what << ',' << seconds << ",,,,,,,,,did not finish in " << seconds << " s\n";
     std::cout << name << ": did not finish " << what << " in " << seconds << " s" << std::endl;
   }
 }
@@ -227,18 +250,21 @@ int main(int argc, char** argv)
   const fs::path root = argv[1];
   const double seconds = argc > 3 ? std::atof(argv[3]) : 60.0;
   std::vector<fs::path> files;
-  for (const auto& entry : fs::recursive_directory_iterator(root))
-    if (entry.is_regular_file() && modelFormat(entry.path().string()) && entry.path().filename() != "LICENSE")
-    {
-      const std::string ext = entry.path().extension().string();
-      if (ext == ".svg" || ext == ".fold" || ext == ".cp" || ext == ".opx")
-        files.push_back(entry.path());
-    }
+  if (fs::is_regular_file(root))
+    files.push_back(root);
+  else
+    for (const auto& entry : fs::recursive_directory_iterator(root))
+      if (entry.is_regular_file() && modelFormat(entry.path().string()) && entry.path().filename() != "LICENSE")
+      {
+        const std::string ext = entry.path().extension().string();
+        if (ext == ".svg" || ext == ".fold" || ext == ".cp" || ext == ".opx")
+          files.push_back(entry.path());
+      }
   std::sort(files.begin(), files.end());
   std::ofstream csv(argv[2]);
   csv << "pattern,vertices,faces,driven_creases,path,cpu_seconds,max_strain,angle_error,rigid,against_target,"
          "crossings,ordered_pairs,layer_problem,flat,answer\n";
   for (const fs::path& file : files)
-    benchPattern(file, fs::relative(file, root).string(), seconds, csv);
+    benchPattern(file, file == root ? file.filename().string() : fs::relative(file, root).string(), seconds, csv);
   return 0;
 }

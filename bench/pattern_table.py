@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
 """The table of docs/BENCHMARKS.md's "Real crease patterns" from pattern_bench's CSV:
-   pattern_table.py docs/bench/patterns.csv > table.md"""
+   pattern_table.py docs/bench/patterns.csv > table.md
+   pattern_table.py --summary docs/bench/patterns.csv: the CPU time of the calls, against issue 35's
+   targets (every call within 5 s up to 5,000 vertices; under 1,000 vertices well under a second)"""
 import csv
 import sys
 from collections import OrderedDict
@@ -66,5 +68,35 @@ def main(path):
             figures("step_100"), figures("one_call_100"), answer))
 
 
+def summary(path):
+    calls = []  # (vertices, seconds, finished)
+    vertices_of = {}
+    with open(path, encoding='utf-8', errors='replace') as f:
+        rows = list(csv.DictReader(f))
+    for row in rows:
+        if row["vertices"]:
+            vertices_of[row["pattern"]] = int(row["vertices"])
+    for row in rows:
+        if row["answer"].startswith("refused at load") or row["path"] == "load":
+            continue
+        finished = not row["answer"].startswith("did not finish")
+        calls.append((vertices_of.get(row["pattern"]), float(row["cpu_seconds"]), finished))
+    done = sorted(s for _, s, f in calls if f)
+    median = done[len(done) // 2] if done else float("nan")
+    print("%d calls finished, %d stopped; median %.2g s of CPU" % (len(done), len(calls) - len(done), median))
+    for label, keep in (("under 1,000 vertices", lambda v: v is not None and v < 1000),
+                        ("1,000 to 5,000 vertices", lambda v: v is not None and 1000 <= v <= 5000),
+                        ("over 5,000 vertices or unknown", lambda v: v is None or v > 5000)):
+        group = [(s, f) for v, s, f in calls if keep(v)]
+        if not group:
+            continue
+        within = lambda t: sum(1 for s, f in group if f and s <= t)
+        print("%s: %d calls; within 0.5 s %d, 1 s %d, 5 s %d; over 5 s or stopped %d" % (
+            label, len(group), within(0.5), within(1.0), within(5.0), len(group) - within(5.0)))
+
+
 if __name__ == "__main__":
-    main(sys.argv[1])
+    if sys.argv[1] == "--summary":
+        summary(sys.argv[2])
+    else:
+        main(sys.argv[1])

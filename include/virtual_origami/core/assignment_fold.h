@@ -69,6 +69,12 @@ struct AssignmentFoldRequest
   /// again with the driver's stiffness. A one-stage commit (a slide's step) stays stiff, and so
   /// does a paper with compliant faces (they bend instead).
   double path_stiffness = 100.0;
+  /// A commit's driver runs in pieces (100 iterations, then 20) and stops once a piece moves no
+  /// vertex further than this share of the sheet: settled as far as any figure measures
+  /// (flatness and crossings are judged at 1e-6 of the sheet), where the driver's own tolerance
+  /// (a step of 1e-9) near a singular balance is reached only linearly or not at all. 0: each
+  /// stage one call of the driver, to its tolerance or its limit (2,000 iterations).
+  double settled_move = 1e-6;
   /// A recorded commit's result (a replay): the folded positions to take instead of driving
   /// anything, one column per vertex. Its figures are measured as a solve's are, so a replay
   /// is answered as the commit was; rigid when its faces keep their shape to kRigidStrain.
