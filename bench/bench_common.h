@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <ctime>
 #include <iostream>
@@ -18,6 +19,18 @@ using namespace virtual_origami::core;
 inline double now()
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+/// A Miura-ori's corner face (face 0) turns about its zigzag crease: the last of its creases not
+/// parallel to x; -1 if none.
+inline int cornerAxis(const Paper& paper)
+{
+  int axis = -1;
+  for (int e : paper.faces[0].edges)
+    if (paper.edges[e].isCrease() && std::abs(paper.vertices[paper.edges[e].vertices[1]].crease_pattern.y() -
+                                              paper.vertices[paper.edges[e].vertices[0]].crease_pattern.y()) > 1e-9)
+      axis = e;
+  return axis;
 }
 
 /// This process's CPU seconds (all its threads), for times on one core of a shared machine.

@@ -19,6 +19,7 @@
 
 #include <Eigen/SparseCholesky>
 
+#include "bench_common.h"
 #include "virtual_origami/core/assignment_fold.h"
 #include "virtual_origami/core/positions.h"
 #include "virtual_origami/core/rotate.h"
@@ -29,6 +30,7 @@
 #include "virtual_origami/solvers/solver_factory.h"
 
 using namespace virtual_origami::core;
+using virtual_origami::bench::cornerAxis;
 namespace numerics = virtual_origami::numerics;
 
 namespace
@@ -308,17 +310,6 @@ void benchErrorTime(const std::string& out, const Paper& largest_start)
   if (ref && ref->solve.converged)
     for (const std::string& name : creaseDriverNames())
       errorCurve(error_time, name, largest_start, reference);
-}
-
-/// The corner face's zigzag crease (the last of its creases not parallel to x), -1 if none.
-int cornerAxis(const Paper& paper)
-{
-  int axis = -1;
-  for (int e : paper.faces[0].edges)
-    if (paper.edges[e].isCrease() && std::abs(paper.vertices[paper.edges[e].vertices[1]].crease_pattern.y() -
-                                              paper.vertices[paper.edges[e].vertices[0]].crease_pattern.y()) > 1e-9)
-      axis = e;
-  return axis;
 }
 
 /// Three 10° turns in a row of the corner face, by the rigid newton solver, guided or not.

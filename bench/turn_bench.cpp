@@ -19,22 +19,12 @@
 #include "virtual_origami/solvers/solver_factory.h"
 
 using namespace virtual_origami::core;
+using virtual_origami::bench::cornerAxis;
 using virtual_origami::bench::cpuNow;
 using virtual_origami::bench::now;
 
 namespace
 {
-/// The corner face's slanted crease (the turn's axis), as test::slantedCreaseOf finds it.
-int slantedCreaseOf(const Paper& paper, int face)
-{
-  int axis = -1;
-  for (int e : paper.faces[face].edges)
-    if (paper.edges[e].isCrease() && std::abs(paper.vertices[paper.edges[e].vertices[1]].crease_pattern.y() -
-                                              paper.vertices[paper.edges[e].vertices[0]].crease_pattern.y()) > 1e-9)
-      axis = e;
-  return axis;
-}
-
 void turnDrag(long vertices, double last_degrees, double step_degrees)
 {
   const Expected<Tessellation> pattern = tessellationWithVertices(TessellationKind::Miura, vertices);
@@ -56,7 +46,7 @@ void turnDrag(long vertices, double last_degrees, double step_degrees)
 
   RotateRequest request;
   request.face = 0;
-  request.axis_edge = slantedCreaseOf(session.paper(), 0);
+  request.axis_edge = cornerAxis(session.paper());
   const long n = static_cast<long>(session.paper().vertices.size());
   // TURN_COMMIT_ONLY: the commit alone, from the flat sheet (a release with no preview on show).
   const double first = std::getenv("TURN_COMMIT_ONLY") ? last_degrees : step_degrees;

@@ -3,13 +3,11 @@
 // in one stack, which at 250 faces was answered `success` without any order recorded.
 #include <gtest/gtest.h>
 
-#include <fstream>
-#include <sstream>
 #include <string>
 
+#include "library_patterns.h"
 #include "virtual_origami/core/assignment_fold.h"
 #include "virtual_origami/core/layer_order.h"
-#include "virtual_origami/core/model_file.h"
 #include "virtual_origami/core/session.h"
 #include "virtual_origami/solvers/crease_driver_factory.h"
 #include "virtual_origami/solvers/solver_factory.h"
@@ -18,20 +16,9 @@ namespace virtual_origami::core
 {
 namespace
 {
-Paper libraryPattern(const std::string& name)
-{
-  const std::string path = std::string(VO_SOURCE_DIR) + "/bench/patterns/origami-simulator/" + name;
-  std::ifstream file(path);
-  std::stringstream text;
-  text << file.rdbuf();
-  const Expected<Paper> paper = parseModel(text.str(), *modelFormat(path), 1.0);
-  EXPECT_TRUE(paper) << name << ": " << paper.message();
-  return paper ? *paper : Paper{};
-}
-
 TEST(AssignmentLayers, ALargeSparseFlatStackCarriesItsLayerOrder)
 {
-  Session session(libraryPattern("Tessellations/waterbomb.svg"));
+  Session session(test::libraryPattern("Tessellations/waterbomb.svg"));
   session.setSolver(makeSolver("newton"));
   session.setCreaseDrivers(makeCreaseDriver("quasi_newton"));
   const Expected<AssignmentFoldResult> flat = session.foldByAssignment(1.0);

@@ -4,13 +4,11 @@
 // its iterations (docs/FOLD_BY_ASSIGNMENT.md, "No cliffs").
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <memory>
-#include <sstream>
 #include <string>
 
+#include "library_patterns.h"
 #include "virtual_origami/core/assignment_fold.h"
-#include "virtual_origami/core/model_file.h"
 #include "virtual_origami/core/positions.h"
 #include "virtual_origami/solvers/crease_driver_factory.h"
 #include "virtual_origami/solvers/solver_factory.h"
@@ -19,17 +17,6 @@ namespace virtual_origami::core
 {
 namespace
 {
-Paper libraryPattern(const std::string& name)
-{
-  const std::string path = std::string(VO_SOURCE_DIR) + "/bench/patterns/origami-simulator/" + name;
-  std::ifstream file(path);
-  std::stringstream text;
-  text << file.rdbuf();
-  const Expected<Paper> paper = parseModel(text.str(), *modelFormat(path), 1.0);
-  EXPECT_TRUE(paper) << name << ": " << paper.message();
-  return paper ? *paper : Paper{};
-}
-
 Expected<AssignmentFoldResult> commit(Paper& paper, double fraction, double settled_move)
 {
   AssignmentFoldRequest request;
@@ -44,7 +31,7 @@ Expected<AssignmentFoldResult> commit(Paper& paper, double fraction, double sett
 // its stages creeps on to the driver's 2,000 iterations (1.6 s of its 1.6 s).
 TEST(AssignmentSettle, ASettledCommitEndsWhereTheDriverRunToItsLimitEnds)
 {
-  Paper paper = libraryPattern("Curved/curvedcrease2.svg");
+  Paper paper = test::libraryPattern("Curved/curvedcrease2.svg");
   const double settled = AssignmentFoldRequest{}.settled_move;
   ASSERT_GT(settled, 0.0);
   for (double fraction : { 0.25, 0.5 })

@@ -7,9 +7,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
+#include "library_patterns.h"
 #include "virtual_origami/core/assignment_fold.h"
 #include "virtual_origami/core/compliant_faces.h"
 #include "virtual_origami/core/fold_io.h"
@@ -33,18 +33,6 @@ Session foldingSession(Paper paper)
   session.setSolver(makeSolver("newton"));
   session.setCreaseDrivers(makeCreaseDriver());
   return session;
-}
-
-/// A pattern of Origami Simulator's library, loaded as `load` loads it.
-Paper libraryPattern(const std::string& name)
-{
-  const std::string path = std::string(VO_SOURCE_DIR) + "/bench/patterns/origami-simulator/" + name;
-  std::ifstream file(path);
-  std::stringstream text;
-  text << file.rdbuf();
-  const Expected<Paper> paper = parseModel(text.str(), *modelFormat(path), 1.0);
-  EXPECT_TRUE(paper) << name << ": " << paper.message();
-  return paper ? *paper : Paper{};
 }
 
 /// A unit square with one curved valley crease from its bottom side to its top, bulging right
@@ -155,7 +143,7 @@ TEST(CompliantFaces, StraightCreasePatternsStayRigid)
   std::vector<Paper> papers = { miuraTessellation(4, 4).value().paper, squareTwistTessellation(2, 2).value().paper };
   for (const std::string name : { "Bases/birdBase.svg", "Popup/castlePopup.svg", "Tessellations/whirlpool.svg",
                                   "Tessellations/FTpoly7.svg", "Origami/langKnlDragon.svg", "Popup/housePopup.svg" })
-    papers.push_back(libraryPattern(name));
+    papers.push_back(test::libraryPattern(name));
   for (Paper& paper : papers)
   {
     const Paper before = paper;
@@ -200,7 +188,7 @@ TEST(CompliantFaces, TheFacesBesideACurvedCreaseAreCutIntoTriangles)
 /// each band.
 TEST(CompliantFaces, CurvedBandsBecomeTrianglesAcrossTheBand)
 {
-  const Paper paper = libraryPattern("Curved/wavy_pleats.svg");
+  const Paper paper = test::libraryPattern("Curved/wavy_pleats.svg");
   Paper cut = paper;
   const CompliantFaces made = makeLockedFacesCompliant(cut);
   EXPECT_EQ(made.bodies, 6);
@@ -363,7 +351,7 @@ TEST(CompliantFaces, AHyparsTrapezoidsTwist)
 /// all the way it is refused with its figures — a curved crease cannot fold flat — unless kept.
 TEST(CompliantFaces, ACurvedPleatFoldsPartWayAndIsRefusedFlatUnlessKept)
 {
-  Session session = foldingSession(libraryPattern("Curved/wavy_pleats.svg"));
+  Session session = foldingSession(test::libraryPattern("Curved/wavy_pleats.svg"));
   const Expected<AssignmentFoldResult> half = session.foldByAssignment(0.5);
   ASSERT_TRUE(half) << half.message();
   EXPECT_LE(half->max_strain, 1e-3);
@@ -371,7 +359,7 @@ TEST(CompliantFaces, ACurvedPleatFoldsPartWayAndIsRefusedFlatUnlessKept)
   EXPECT_EQ(half->crossings, 0);
   EXPECT_EQ(half->compliant_faces, 6);
   EXPECT_GT(half->largest_bend, 0.1);
-  Session from_flat = foldingSession(libraryPattern("Curved/wavy_pleats.svg"));
+  Session from_flat = foldingSession(test::libraryPattern("Curved/wavy_pleats.svg"));
   AssignmentFoldResult figures;
   const Expected<Computed<AssignmentFoldResult>> flat =
       computeFoldByAssignment(from_flat.workspace(), 1.0, true, {}, &figures);

@@ -319,23 +319,34 @@ namespace virtual_origami::core
 {
 namespace
 {
-/// A crease driver's start changes how fast a turn is followed, not where it ends: on a
-/// Miura-ori (one degree of freedom) three guided 10° turns end where the solver alone ends,
-/// with the faces as exact.
-TEST(Rotate, AGuidedTurnEndsWhereTheSolverAloneEnds)
+/// The corner face of an 8 × 8 Miura-ori turned about its slanted crease (one degree of
+/// freedom), a quasi-Newton crease driver as the guide whatever the size.
+class GuidedMiuraTurn : public ::testing::Test
 {
+protected:
+  void SetUp() override
+  {
+    ASSERT_GE(axis, 0);
+    guide.driver = driver.get();
+    guide.min_vertices = 0;
+    request.face = 0;
+    request.axis_edge = axis;
+  }
+
   const Paper start = miuraTessellation(8, 8).value().paper;
   const int axis = test::slantedCreaseOf(start, 0);
-  ASSERT_GE(axis, 0);
-  Paper alone = start, guided = start;
   NewtonSolver solver;
   const std::unique_ptr<CreaseDriver> driver = makeCreaseDriver("quasi_newton");
   TurnGuide guide;
-  guide.driver = driver.get();
-  guide.min_vertices = 0;
   RotateRequest request;
-  request.face = 0;
-  request.axis_edge = axis;
+};
+
+/// A crease driver's start changes how fast a turn is followed, not where it ends: on a
+/// Miura-ori (one degree of freedom) three guided 10° turns end where the solver alone ends,
+/// with the faces as exact.
+TEST_F(GuidedMiuraTurn, AGuidedTurnEndsWhereTheSolverAloneEnds)
+{
+  Paper alone = start, guided = start;
   request.angle = 10 * M_PI / 180;
   for (int k = 0; k < 3; ++k)
   {
@@ -356,20 +367,9 @@ TEST(Rotate, AGuidedTurnEndsWhereTheSolverAloneEnds)
 /// A guide its step bound stops short of balance (here after 5 steps) is still the solver's start
 /// (TurnGuide::max_iterations): the solver needs fewer iterations from it, and the turn ends where
 /// the solver alone ends, as exact.
-TEST(Rotate, AGuideStoppedShortOfBalanceStillEndsWhereTheSolverAloneEnds)
+TEST_F(GuidedMiuraTurn, AGuideStoppedShortOfBalanceStillEndsWhereTheSolverAloneEnds)
 {
-  const Paper start = miuraTessellation(8, 8).value().paper;
-  const int axis = test::slantedCreaseOf(start, 0);
-  ASSERT_GE(axis, 0);
-  NewtonSolver solver;
-  const std::unique_ptr<CreaseDriver> driver = makeCreaseDriver("quasi_newton");
-  TurnGuide guide;
-  guide.driver = driver.get();
-  guide.min_vertices = 0;
   guide.max_iterations = 5;
-  RotateRequest request;
-  request.face = 0;
-  request.axis_edge = axis;
   request.angle = 10 * kDeg;
   Paper alone = start, guided = start;
   const Expected<RotateResult> a = rotate(alone, request, &solver);
@@ -388,19 +388,8 @@ TEST(Rotate, AGuideStoppedShortOfBalanceStillEndsWhereTheSolverAloneEnds)
 /// A drag's preview goes on from its last one (TurnStart) and ends where the same turn from the
 /// paper ends (a Miura-ori has one degree of freedom), the faces as exact; a start another turn
 /// made, or one on the other side of the paper, is not taken.
-TEST(Rotate, APreviewGoingOnFromTheLastEndsWhereTheTurnFromThePaperEnds)
+TEST_F(GuidedMiuraTurn, APreviewGoingOnFromTheLastEndsWhereTheTurnFromThePaperEnds)
 {
-  const Paper start = miuraTessellation(8, 8).value().paper;
-  const int axis = test::slantedCreaseOf(start, 0);
-  ASSERT_GE(axis, 0);
-  NewtonSolver solver;
-  const std::unique_ptr<CreaseDriver> driver = makeCreaseDriver("quasi_newton");
-  TurnGuide guide;
-  guide.driver = driver.get();
-  guide.min_vertices = 0;
-  RotateRequest request;
-  request.face = 0;
-  request.axis_edge = axis;
   request.angle = 6 * kDeg;
   Paper last = start;
   ASSERT_TRUE(rotate(last, request, &solver, {}, guide).ok());
