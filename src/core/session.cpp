@@ -80,16 +80,24 @@ Expected<Computed<CreaseResult>> computeCrease(Workspace workspace, const Crease
   return Computed<CreaseResult>{ std::move(*result), std::move(change) };
 }
 
-Expected<Computed<RotateResult>> computeRotate(Workspace workspace, const RotateRequest& request, bool preview)
+Expected<Computed<RotateResult>> computeRotate(Workspace workspace, const RotateRequest& request, bool preview,
+                                               const std::vector<Vec3>* recorded)
 {
+  using Answer = Expected<Computed<RotateResult>>;
+  if (recorded && recorded->size() != workspace.paper.vertices.size())
+    return Answer::failure("a recorded turn gives " + std::to_string(recorded->size()) + " positions for " +
+                           std::to_string(workspace.paper.vertices.size()) + " vertices; the model is unchanged");
+  if (recorded)
+    for (const Vec3& p : *recorded)
+      if (!p.allFinite())
+        return Answer::failure("a recorded turn gives a position that is not finite; the model is unchanged");
   std::vector<std::pair<int, Vec3>> held_at;
   for (int v : workspace.held)
     if (v >= 0 && v < static_cast<int>(workspace.paper.vertices.size()))
       held_at.emplace_back(v, workspace.paper.vertices[v].folded);
   // A big model's turn starts its solver where a crease driver took the turned creases
   // (rotate.h, TurnGuide); the guide's driver is a clone, its stiffness its own. Previews share
-  // the session's turn driver, whose last frames predict the next; a commit takes a fresh clone,
-  // so that it ends bit for bit where its replay (with no previews before it) ends.
+  // the session's turn driver, whose last frames predict the next; a commit takes a fresh clone.
   TurnGuide guide;
   std::unique_ptr<CreaseDriver> guide_driver;
   if (preview && workspace.turn_driver && workspace.paper.vertices.size() >= guide.min_vertices)
@@ -99,20 +107,69 @@ Expected<Computed<RotateResult>> computeRotate(Workspace workspace, const Rotate
     guide_driver = workspace.driver->clone();
     guide.driver = guide_driver.get();
   }
-  // A drag's preview goes on from the last one of the same turn (rotate() checks that the
-  // request resolves to that preview's face and axis).
+  // A drag's preview, and its commit, go on from the drag's last preview of the same turn
+  // (rotate() checks that the request resolves to that preview's face and axis), the previews
+  // before it predicting the next stage's start.
   TurnStart start;
   const RotateRequest& last = workspace.rotate_preview_request;
-  if (preview && workspace.rotate_preview && request.carry_stack == last.carry_stack)
+  const bool after_preview = workspace.rotate_preview && request.carry_stack == last.carry_stack;
+  if (after_preview)
+  {
     start = TurnStart{ &*workspace.rotate_preview, last.angle, last.face, last.axis_edge };
-  Expected<RotateResult> result =
-      core::rotate(workspace.paper, request, workspace.solver.get(), workspace.held, guide, start);
+    for (const auto& [state, angle] : workspace.rotate_previews_before)
+      start.before.emplace_back(&state, angle);
+  }
+  Expected<RotateResult> result = Expected<RotateResult>::failure("not turned");
+  if (preview)
+    result = core::rotate(workspace.paper, request, workspace.solver.get(), workspace.held, guide, start);
+  else
+  {
+    // A commit's state is made from where its vertices end (recorded by a replay; the last
+    // preview's when it showed this very turn; else solved now) by the one call a replay makes:
+    // the turn taken from the model with those positions as the solved start of its last stage,
+    // which the solver finds balanced. A replay with the recorded positions lands on the
+    // commit's state bit for bit, and no commit solves what its preview solved already.
+    std::vector<Vec3> ended;
+    int face = request.face, axis_edge = request.axis_edge;
+    if (recorded)
+      ended = *recorded;
+    else if (after_preview && request.angle == last.angle &&
+             (request.face < 0 || request.face == last.face) && (request.axis_edge < 0 || request.axis_edge == last.axis_edge))
+    {
+      for (const Vertex& v : workspace.rotate_preview->vertices)
+        ended.push_back(v.folded);
+      face = last.face;
+      axis_edge = last.axis_edge;
+    }
+    else
+    {
+      Paper solved = workspace.paper;
+      result = core::rotate(solved, request, workspace.solver.get(), workspace.held, guide, start);
+      if (!result)
+        return Answer::failure(result.message());
+      for (const Vertex& v : solved.vertices)
+        ended.push_back(v.folded);
+      face = result->face;
+      axis_edge = result->axis_edge;
+    }
+    Paper ending = workspace.paper;
+    for (size_t v = 0; v < ending.vertices.size(); ++v)
+      ending.vertices[v].folded = ended[v];
+    const SolveReport solving = result ? result->solve : SolveReport{};
+    result = core::rotate(workspace.paper, request, workspace.solver.get(), workspace.held, {},
+                          TurnStart{ &ending, request.angle, face, axis_edge });
+    if (result && solving.iterations > 0)
+    {
+      // What the commit solved, with the check of its end summed in.
+      result->solve.iterations += solving.iterations;
+      result->solve.seconds += solving.seconds;
+    }
+  }
   if (!result)
-    return Expected<Computed<RotateResult>>::failure(result.message());
+    return Answer::failure(result.message());
   for (const auto& [v, at] : held_at)
     if ((workspace.paper.vertices[v].folded - at).norm() > 1e-9 * workspace.paper.scale())
-      return Expected<Computed<RotateResult>>::failure("vertex " + std::to_string(v) +
-                                                       " is pinned and the rotation would move it; release it first");
+      return Answer::failure("vertex " + std::to_string(v) + " is pinned and the rotation would move it; release it first");
   Change change = makeChange(workspace.revision, Operation::Kind::Rotate, std::move(workspace.paper));
   change.operation.rotate = request;
   change.operation.rotate.face = result->face;
@@ -391,6 +448,7 @@ Workspace Session::workspace() const
   {
     workspace.rotate_preview = *preview_;
     workspace.rotate_preview_request = preview_rotate_;
+    workspace.rotate_previews_before = previews_before_;
   }
   return workspace;
 }
@@ -457,6 +515,7 @@ Status Session::commit(Change change)
     history_.paper = std::move(*change.next);
   }
   preview_.reset();
+  previews_before_.clear();
   change.operation.revision = ++history_.revision;
   history_.log.push_back(std::move(change.operation));
   // Undo and redo only move states between the two stacks: trimming then would forget states
@@ -470,6 +529,21 @@ bool Session::setPreview(Change change)
 {
   if (change.base_revision != history_.revision || !change.next)
     return false;
+  // The two turn previews before this one on the same drag are kept: the next preview starts
+  // where the polynomial through them leads (rotate.h, TurnStart::before).
+  const RotateRequest& turn = change.operation.rotate;
+  const bool same_turn = preview_ && preview_kind_ == Operation::Kind::Rotate &&
+                         change.operation.kind == Operation::Kind::Rotate && preview_held_ == held_ &&
+                         preview_rotate_.face == turn.face && preview_rotate_.axis_edge == turn.axis_edge &&
+                         preview_rotate_.carry_stack == turn.carry_stack;
+  if (!same_turn)
+    previews_before_.clear();
+  else
+  {
+    previews_before_.emplace_back(std::move(*preview_), preview_rotate_.angle);
+    if (previews_before_.size() > 2)
+      previews_before_.erase(previews_before_.begin());
+  }
   preview_ = std::move(change.next);
   preview_kind_ = change.operation.kind;
   preview_rotate_ = change.operation.rotate;
@@ -504,9 +578,9 @@ Expected<CreaseResult> Session::crease(const CreaseRequest& request)
   return std::move(computed->result);
 }
 
-Expected<RotateResult> Session::rotate(const RotateRequest& request, bool commit_it)
+Expected<RotateResult> Session::rotate(const RotateRequest& request, bool commit_it, const std::vector<Vec3>* recorded)
 {
-  auto computed = computeRotate(workspace(), request, !commit_it);
+  auto computed = computeRotate(workspace(), request, !commit_it, commit_it ? recorded : nullptr);
   if (!computed)
     return Expected<RotateResult>::failure(computed.message());
   if (commit_it)
@@ -616,7 +690,7 @@ Status Session::apply(const Operation& operation)
     }
     case Operation::Kind::Rotate:
     {
-      const auto r = rotate(operation.rotate, true);
+      const auto r = rotate(operation.rotate, true, operation.folded.empty() ? nullptr : &operation.folded);
       return r ? success() : failure(r.message());
     }
     case Operation::Kind::Squash:

@@ -122,6 +122,19 @@ core::Expected<core::Paper> fromMessage(const PaperState& state)
   return paper;
 }
 
+namespace
+{
+/// Where every vertex ended (recorded, else the state after the operation): what a replay takes.
+void recordFolded(const core::Operation& op, const core::Paper* after, Operation& msg)
+{
+  for (const core::Vec3& p : op.folded)
+    msg.folded.push_back(toPoint(p));
+  if (op.folded.empty() && after)
+    for (const core::Vertex& v : after->vertices)
+      msg.folded.push_back(toPoint(v.folded));
+}
+}  // namespace
+
 Operation toMessage(const core::Operation& op, const core::Paper* after)
 {
   Operation msg;
@@ -146,6 +159,7 @@ Operation toMessage(const core::Operation& op, const core::Paper* after)
       msg.click = toPoint(op.rotate.click);
       msg.angle = op.rotate.angle;
       msg.picked_layers_only = !op.rotate.carry_stack;
+      recordFolded(op, after, msg);
       break;
     case core::Operation::Kind::FlatFold:
       for (const core::CreaseLineAngle& line : op.flat_fold.creases)
@@ -168,11 +182,7 @@ Operation toMessage(const core::Operation& op, const core::Paper* after)
       break;
     case core::Operation::Kind::AssignmentFold:
       msg.fraction = op.fraction;
-      for (const core::Vec3& p : op.folded)
-        msg.folded.push_back(toPoint(p));
-      if (op.folded.empty() && after)
-        for (const core::Vertex& v : after->vertices)
-          msg.folded.push_back(toPoint(v.folded));
+      recordFolded(op, after, msg);
       break;
     case core::Operation::Kind::Pull:
       for (const core::PullTarget& target : op.pull)
@@ -247,6 +257,8 @@ core::Expected<core::Operation> fromMessage(const Operation& msg)
       op.rotate.click = toVec3(msg.click);
       op.rotate.angle = msg.angle;
       op.rotate.carry_stack = !msg.picked_layers_only;
+      for (const geometry_msgs::Point& p : msg.folded)
+        op.folded.push_back(toVec3(p));
       break;
     case core::Operation::Kind::Load:
       op.path = msg.path;

@@ -84,6 +84,7 @@ core::Status OperationClient::apply(const Operation& op, int animation_steps, do
     }
     srv.request.angle = op.angle;
     srv.request.commit = true;
+    srv.request.positions = op.folded;  // where it ended: taken, not solved again
     return call(nh_, "rotate", srv);
   }
   if (op.type == "pin")

@@ -571,8 +571,23 @@ bool PaperModelNode::rotate(Rotate::Request& req, Rotate::Response& res)
   request.click = toVec3(req.click);
   request.angle = req.angle;
   request.carry_stack = !req.picked_layers_only;
+  std::vector<core::Vec3> recorded;
+  for (const geometry_msgs::Point& p : req.positions)
+    recorded.push_back(toVec3(p));
+  if (!recorded.empty() && !req.commit)
+  {
+    res.success = false;
+    res.message = "positions are a recorded commit's result: a preview solves its turn";
+    res.face = req.face;
+    res.axis_edge = req.axis_edge;
+    std::lock_guard<std::mutex> lock(mutex_);
+    res.revision = session_.revision();
+    return true;
+  }
   const auto result = computeAndCommit<core::RotateResult>(
-      [&](core::Workspace workspace) { return core::computeRotate(std::move(workspace), request, !req.commit); },
+      [&](core::Workspace workspace) {
+        return core::computeRotate(std::move(workspace), request, !req.commit, recorded.empty() ? nullptr : &recorded);
+      },
       req.commit, "rotated", res.revision);
   res.success = result.ok();
   res.message = result ? (req.commit ? "rotated" : "preview") : result.message();

@@ -390,6 +390,9 @@ TEST_F(GuidedMiuraTurn, AGuideStoppedShortOfBalanceStillEndsWhereTheSolverAloneE
 /// made, or one on the other side of the paper, is not taken.
 TEST_F(GuidedMiuraTurn, APreviewGoingOnFromTheLastEndsWhereTheTurnFromThePaperEnds)
 {
+  // Balanced to 1e-12: near the flat sheet a strain of 1e-10 leaves the vertices free along the
+  // soft mode by some 1e-8, by where the solve started (measured 1.7e-8 between the two starts).
+  solver.setLimits(SolveLimits{ 1e-12, 1000, 0.0 });
   request.angle = 6 * kDeg;
   Paper last = start;
   ASSERT_TRUE(rotate(last, request, &solver, {}, guide).ok());
@@ -419,6 +422,50 @@ TEST_F(GuidedMiuraTurn, APreviewGoingOnFromTheLastEndsWhereTheTurnFromThePaperEn
   ASSERT_TRUE(rotate(alone_back, request, &solver).ok());
   ASSERT_TRUE(rotate(other_side, request, &solver, {}, {}, TurnStart{ &last, 6 * kDeg, 0, axis }).ok());
   EXPECT_TRUE(other_side == alone_back);
+}
+
+/// A drag's preview starts where the parabola through the model (no turn) and the drag's previews
+/// before it leads (TurnStart::before): near the flat sheet a Miura-ori's vertices move by the
+/// square of the turn, so from there two of Newton's steps reach 1e-8, where from the last preview
+/// alone they do not (1,100 vertices; from the line through the model and the last preview:
+/// strain 1e-3 at the start against 2e-6, and 1e-7 after the two steps).
+/// It ends on the branch the turn from the paper ends on.
+TEST(Rotate, APreviewStartsWhereTheDragsPreviewsBeforeItLead)
+{
+  const Paper start = tessellationWithVertices(TessellationKind::Miura, 1100).value().paper;
+  const int axis = test::slantedCreaseOf(start, 0);
+  ASSERT_GE(axis, 0);
+  NewtonSolver solver;
+  const std::unique_ptr<CreaseDriver> driver = makeCreaseDriver("quasi_newton");
+  TurnGuide guide;
+  guide.driver = driver.get();
+  RotateRequest request;
+  request.face = 0;
+  request.axis_edge = axis;
+  Paper at2 = start, at4 = start;
+  request.angle = 2 * kDeg;
+  ASSERT_TRUE(rotate(at2, request, &solver, {}, guide).ok());
+  request.angle = 4 * kDeg;
+  ASSERT_TRUE(rotate(at4, request, &solver, {}, guide).ok());
+  NewtonSolver two_steps;
+  two_steps.setLimits(SolveLimits{ 1e-8, 2, 0.0 });
+  request.angle = 6 * kDeg;
+  TurnStart going_on{ &at4, 4 * kDeg, 0, axis };
+  Paper on_the_line = start;
+  EXPECT_FALSE(rotate(on_the_line, request, &two_steps, {}, {}, going_on).ok());
+  EXPECT_TRUE(on_the_line == start);  // refused: untouched
+  going_on.before = { { &at2, 2 * kDeg } };
+  Paper predicted = start;
+  const Expected<RotateResult> p = rotate(predicted, request, &two_steps, {}, {}, going_on);
+  ASSERT_TRUE(p) << p.message();
+  EXPECT_LE(p->solve.iterations, 2);
+  Paper fresh = start;
+  ASSERT_TRUE(rotate(fresh, request, &solver, {}, guide).ok());
+  // On the same branch: balanced to 1e-8 near the flat sheet, whose flexes strain the faces by
+  // the square of their motion, the creases are free by some 1e-5 rad (another branch is 0.1 off).
+  EXPECT_LT(largestFoldAngleDifference(predicted, fresh), 1e-4);
+  EXPECT_NEAR(predicted.edges[axis].fold_angle, start.edges[axis].fold_angle + 6 * kDeg, 1e-12);
+  EXPECT_LT(edgeStrain(predicted).max, 1e-8);
 }
 
 /// A Newton solve that creeps towards its tolerance stops once the pace of its last steps shows

@@ -1,6 +1,7 @@
 // Turning a face about a crease (seed 000 §3.3.2–3.3.3), carrying its flap along.
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include "virtual_origami/core/assignment_fold.h"
@@ -68,6 +69,11 @@ struct TurnStart
   const Paper* paper = nullptr;
   double angle = 0.0;
   int face = -1, axis_edge = -1;  // the turn it was made by
+  /// Solved states of the same turn before `paper` (the drag's previews before it, oldest first,
+  /// each with its request angle, nearer the model). The first stage starts where the parabola
+  /// through `paper` and the two states before it (the model itself, at no turn, when only one
+  /// is given) reaches the turn; with none, the guide gives the start.
+  std::vector<std::pair<const Paper*, double>> before;
 };
 
 /// Turns the face about its axis. When the creases collinear with the axis cut the sheet in

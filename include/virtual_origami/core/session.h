@@ -45,8 +45,9 @@ struct Operation
   std::string path;       // Load: where the model came from
   std::vector<PullTarget> pull;  // Pull: where the vertices were pulled to (pins following frames)
   double fraction = 0.0;  // AssignmentFold: how far towards the creases' targets, −1 to 1
-  /// AssignmentFold: where every vertex ended, when a recording gives it (Operation.msg's
-  /// `folded`); applying the operation then takes these positions instead of solving again.
+  /// AssignmentFold and Rotate: where every vertex ended, when a recording gives it
+  /// (Operation.msg's `folded`); applying the operation then takes these positions instead of
+  /// solving again.
   /// Not kept in the history's log (the state after the operation holds them).
   std::vector<Vec3> folded;
   FlatFoldRequest flat_fold;  // FlatFold: the creases, their angles and the face that stays
@@ -115,14 +116,20 @@ struct Workspace
   /// (face and axis resolved): a preview of the same turn goes on from it (rotate.h, TurnStart).
   std::optional<Paper> rotate_preview;
   RotateRequest rotate_preview_request;
+  /// The previews of the same turn before rotate_preview (at most two, oldest first), each with
+  /// its request angle (TurnStart::before).
+  std::vector<std::pair<Paper, double>> rotate_previews_before;
 };
 
 /// The operations as functions of a workspace; none touches a session. A rotation's change is
 /// its preview too.
 Expected<Computed<CreaseResult>> computeCrease(Workspace workspace, const CreaseRequest& request);
 /// `preview` true: a drag's preview, which goes on from the workspace's rotate_preview of the
-/// same turn; a commit always solves from the committed paper (what a replay does).
-Expected<Computed<RotateResult>> computeRotate(Workspace workspace, const RotateRequest& request, bool preview = false);
+/// same turn. A commit goes on from that preview too (none solved when it showed this turn at this
+/// angle), and its state is the turn from the committed paper to where the vertices ended, which
+/// is what a replay takes (`recorded`, Operation::folded): the replay lands on it bit for bit.
+Expected<Computed<RotateResult>> computeRotate(Workspace workspace, const RotateRequest& request, bool preview = false,
+                                               const std::vector<Vec3>* recorded = nullptr);
 /// Refused when the paper is flat already (pressing it would change nothing).
 Expected<Computed<SquashResult>> computeSquash(Workspace workspace);
 Expected<Computed<PullResult>> computePull(Workspace workspace, const std::vector<PullTarget>& targets);
@@ -201,7 +208,9 @@ public:
   Expected<CreaseResult> crease(const CreaseRequest& request);
   /// With commit false the result is a preview (`preview()`), not in history, and the
   /// committed paper stays as it is; the next preview starts again from it.
-  Expected<RotateResult> rotate(const RotateRequest& request, bool commit = true);
+  /// `recorded`: a commit's positions as a recording gives them (computeRotate).
+  Expected<RotateResult> rotate(const RotateRequest& request, bool commit = true,
+                                const std::vector<Vec3>* recorded = nullptr);
   const std::optional<Paper>& preview() const { return preview_; }
   Expected<SquashResult> squash();
   Status undo();
@@ -255,6 +264,7 @@ private:
   Operation::Kind preview_kind_ = Operation::Kind::Rotate;  // what made preview_
   RotateRequest preview_rotate_;                            // a turn preview's request, resolved
   std::vector<int> preview_held_;                           // the held vertices preview_ kept
+  std::vector<std::pair<Paper, double>> previews_before_;  // turn previews before preview_ on its drag
   std::shared_ptr<CreaseDriver> turn_driver_;               // a clone of driver_ (Workspace)
   std::shared_ptr<ShapeSolver> solver_;
   std::shared_ptr<CreaseDriver> driver_, preview_driver_;
