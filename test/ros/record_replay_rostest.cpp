@@ -134,6 +134,8 @@ TEST(RecordReplay, AReplayEndsInTheRecordedState)
   EXPECT_EQ(recording->operations.back().type, "rotate");
   EXPECT_TRUE(recording->operations.back().picked_layers_only);
   EXPECT_EQ(recording->operations.back().revision, last);
+  // Where the turn's vertices ended, which the replay takes instead of solving again.
+  EXPECT_EQ(recording->operations.back().folded, expected.vertices_folded);
   ASSERT_TRUE(recording->initial_state.has_value());
 
   OperationClient client("/replayed");

@@ -150,6 +150,20 @@ TEST_F(Services, RotateSucceedsOrChangesNothing)
   expectRefused(client_.rotate(-1, 0, 0.8, 0.5, 0.1).response, state);  // a boundary edge
   expectRefused(client_.rotate(-1, -1, 0.8, 0.5, NAN).response, state);
   expectRefused(client_.rotate(-1, -1, 5.0, 5.0, 0.1).response, state);  // no face there
+
+  // Recorded positions (a replay's) are a commit's, one per vertex.
+  Rotate::Request recorded;
+  recorded.face = turned.response.face;
+  recorded.axis_edge = turned.response.axis_edge;
+  recorded.angle = 0.1;
+  recorded.positions = state.vertices_folded;
+  recorded.commit = false;
+  expectRefused(client_.call<Rotate>("rotate", recorded).response, state);
+  recorded.commit = true;
+  recorded.positions.pop_back();
+  const Rotate short_of_one = client_.call<Rotate>("rotate", recorded);
+  expectRefused(short_of_one.response, state);
+  EXPECT_NE(short_of_one.response.message.find("positions for"), std::string::npos) << short_of_one.response.message;
 }
 
 TEST_F(Services, SquashUndoRedoReset)
