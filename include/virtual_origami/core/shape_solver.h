@@ -30,10 +30,10 @@ struct SolveLimits
   int max_iterations = 1000;
   double max_seconds = 0.0;  // wall-time budget; 0: none
   /// Iterative rigid solvers (newton): more than a hundred times the tolerance away, stop once
-  /// the energy fell less than tenfold over this many iterations ("stalled"); 0: never. For a
+  /// the energy fell less than 1 % over this many iterations ("stalled"); 0: never. For a
   /// caller that takes only a rigid state near where the solve starts (closing a balance,
-  /// core/assignment_fold.cpp): a solve stalled that far out is no such closure even where it
-  /// converges after drifting on, so a caller that would take any rigid state leaves it off.
+  /// core/assignment_fold.cpp): a solve may still converge after such a stall, drifting far
+  /// (the 6-point hypar's closures), so a caller that would take any rigid state leaves it off.
   int stall_window = 0;
 };
 
