@@ -203,11 +203,11 @@ SolveReport driveToBalance(CreaseDriver& driver, Paper& work, const std::vector<
 /// The rigid solver closing a balance's faces, stopped where its energy stops falling far from
 /// any rigid state (SolveLimits::stall_window: less than 1 % over 30 iterations). On Origami
 /// Simulator's library the closures of strained balances (FTpoly7, the huffman boxes and weave,
-/// Mooser's train, the 16-flap sphere) ended on an energy constant to the last digit and spent
-/// the solver's 200 iterations there, 1–4 s a call. The only closures that stalled so and still
-/// converged (the 6-point hypar's, after 67 and 99 iterations) drifted 0.7 % of the sheet, 80
-/// times what closeRigidly takes, and were not taken; a tenfold bound would also have stopped a
-/// hex/tri tessellation's closure that converged after 161 iterations and was taken.
+/// Mooser's train) ended on an energy constant to the last digit and spent the solver's 200
+/// iterations there, 1–4 s a call. The only closures seen to stall so and still converge (the
+/// 6-point hypar's, after 67 and 99 iterations) drifted 0.7 % of the sheet, 80 times what
+/// closeRigidly takes, and were not taken; a tenfold bound would also have stopped a hex/tri
+/// tessellation's closure that converged after 161 iterations and was taken.
 SolveReport solveClosure(ShapeSolver& rigid, Paper& paper, const std::vector<char>& fixed)
 {
   const SolveLimits given = rigid.limits();
