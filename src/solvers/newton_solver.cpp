@@ -289,6 +289,12 @@ namespace
 /// tolerance (further out, a damped start may still turn into Newton's quadratic steps).
 constexpr int kPaceWindow = 25;
 constexpr double kPaceNear = 100.0;
+/// A stalled solve (SolveLimits::stall_window) cut its energy by less than this over the window:
+/// 1 %, no progress at all. A solve drifting along a valley of near-constant energy may still
+/// converge (a hex/tri tessellation's closure cut its energy only 10^0.2–10^0.3-fold per 30
+/// iterations for over a hundred, then converged and was taken); the closures that fail for good
+/// end on an energy constant to the last digit.
+constexpr double kStallDrop = 1.01;
 /// How far a creeping solve lowers its damping floor per step (NewtonOptions::lowest_damping).
 constexpr double kFloorCut = 1e-2;
 }  // namespace
@@ -318,6 +324,7 @@ SolveReport NewtonSolver::solve(Paper& paper, const std::vector<char>& fixed)
   RigidFit fit = fitRigidFaces(faces, x);
   std::string stuck;
   std::vector<double> distances;  // how far from the tolerance each iteration started (1: there)
+  std::vector<double> energies;   // the rigid-face energy each iteration started from
   double damping_floor = options_.min_damping;
   bool factored = false;
   bool diverged = !std::isfinite(fit.energy);
@@ -337,6 +344,17 @@ SolveReport NewtonSolver::solve(Paper& paper, const std::vector<char>& fixed)
     const double distance =
         std::max(report.max_strain / limits_.tolerance, fit.max_residual / std::max(residual_tolerance, 1e-300));
     distances.push_back(distance);
+    energies.push_back(fit.energy);
+    // Further out, an energy that hardly falls any more: no rigid state near (limits_.
+    // stall_window, for callers that take only such a state).
+    const int window = limits_.stall_window;
+    if (window > 0 && static_cast<int>(energies.size()) > window && distance >= kPaceNear &&
+        !(fit.energy < energies[energies.size() - 1 - static_cast<size_t>(window)] / kStallDrop))
+    {
+      stuck = "stalled (its rigid-face energy fell less than 1 % over its last " + std::to_string(window) +
+              " iterations, far from the tolerance)";
+      break;
+    }
     if (static_cast<int>(distances.size()) > kPaceWindow && distance < kPaceNear)
     {
       const double then = distances[distances.size() - 1 - kPaceWindow];

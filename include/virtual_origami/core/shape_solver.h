@@ -29,6 +29,12 @@ struct SolveLimits
   double tolerance = 1e-10;  // max strain that counts as converged
   int max_iterations = 1000;
   double max_seconds = 0.0;  // wall-time budget; 0: none
+  /// Iterative rigid solvers (newton): more than a hundred times the tolerance away, stop once
+  /// the energy fell less than 1 % over this many iterations ("stalled"); 0: never. For a
+  /// caller that takes only a rigid state near where the solve starts (closing a balance,
+  /// core/assignment_fold.cpp): a solve may still converge after such a stall, drifting far
+  /// (the 6-point hypar's closures), so a caller that would take any rigid state leaves it off.
+  int stall_window = 0;
 };
 
 class ShapeSolver
