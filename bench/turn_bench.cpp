@@ -4,7 +4,8 @@
 // paper_model sets them. CPU and wall time per call, the solver's iterations and strain.
 //
 //   turn_bench [vertices ...]   (default 1681 5000 10000; a CSV row per call on stdout)
-//   TURN_DEGREES (10), TURN_STEP (2), TURN_TOLERANCE (1e-10), TURN_COMMIT_ONLY: see below.
+//   TURN_DEGREES (10), TURN_STEP (2), TURN_TOLERANCE (1e-10), TURN_COMMIT_ONLY: see below;
+//   TURN_PREVIEW_TOLERANCE: the previews' looser balance (paper_model's turn_preview_tolerance).
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -43,6 +44,8 @@ void turnDrag(long vertices, double last_degrees, double step_degrees)
   std::shared_ptr<CreaseDriver> driver = makeCreaseDriver("quasi_newton");
   std::shared_ptr<CreaseDriver> preview_driver = driver->clone();
   session.setCreaseDrivers(driver, preview_driver);
+  if (std::getenv("TURN_PREVIEW_TOLERANCE"))
+    session.setTurnPreviewTolerance(std::atof(std::getenv("TURN_PREVIEW_TOLERANCE")));
 
   RotateRequest request;
   request.face = 0;

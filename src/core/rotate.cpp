@@ -303,12 +303,13 @@ constexpr size_t kEarlierStates = 2;
 /// The stages start from `start`, the model turned `from` of the way (the model itself at 0).
 /// `turnedBy(paper, angle)` places the turning faces `angle` of the way. Fails, returning no
 /// paper, when a stage does not converge; `report` sums the stages' iterations and time. `earlier`:
-/// solved states of the turn before `start` (oldest first, with their part of the turn).
+/// solved states of the turn before `start` (oldest first, with their part of the turn);
+/// `looser` > 0: the stages converge at that strain (ShapeSolver::solveLoosely).
 Expected<Paper> solveInStages(const Paper& start, double from, double turn,
                               const std::function<Paper(const Paper&, double)>& turnedBy, ShapeSolver& solver,
                               const std::vector<char>& fixed, SolveReport& report,
                               const std::function<void(const Paper&, double, Paper&)>& guide = {},
-                              std::vector<std::pair<const Paper*, double>> earlier = {})
+                              std::vector<std::pair<const Paper*, double>> earlier = {}, double looser = 0.0)
 {
   const double remaining = turn - from;
   const int stages = std::max(1, static_cast<int>(std::ceil(std::abs(remaining) / kMaxStage - 1e-9)));
@@ -330,7 +331,7 @@ Expected<Paper> solveInStages(const Paper& start, double from, double turn,
       extrapolate(earlier, current, done, to, fixed, attempt);
     else if (to != done && guide)
       guide(current, to, attempt);
-    SolveReport stage = solver.solve(attempt, fixed);
+    SolveReport stage = looser > 0 ? solver.solveLoosely(attempt, fixed, looser) : solver.solve(attempt, fixed);
     iterations += stage.iterations;
     seconds += stage.seconds;
     if (stage.diverged || !stage.converged)
@@ -421,7 +422,8 @@ std::vector<int> flapOf(const Paper& paper, int face, int axis_edge)
 }
 
 Expected<RotateResult> rotate(Paper& paper, const RotateRequest& request, ShapeSolver* solver,
-                              const std::vector<int>& held, const TurnGuide& turn_guide, const TurnStart& start)
+                              const std::vector<int>& held, const TurnGuide& turn_guide, const TurnStart& start,
+                              double looser_tolerance)
 {
   const auto resolved = resolveFaceAndAxis(paper, request);
   if (!resolved)
@@ -561,7 +563,8 @@ Expected<RotateResult> rotate(Paper& paper, const RotateRequest& request, ShapeS
       }
     }
     Expected<Paper> solved =
-        solveInStages(*from_paper, from, turn, turnedBy, *solver, fixed, result.solve, guide, std::move(earlier));
+        solveInStages(*from_paper, from, turn, turnedBy, *solver, fixed, result.solve, guide, std::move(earlier),
+                      looser_tolerance);
     if (!solved)
       return Failure::failure(solved.message());
     next = std::move(*solved);

@@ -121,7 +121,8 @@ Expected<Computed<RotateResult>> computeRotate(Workspace workspace, const Rotate
   }
   Expected<RotateResult> result = Expected<RotateResult>::failure("not turned");
   if (preview)
-    result = core::rotate(workspace.paper, request, workspace.solver.get(), workspace.held, guide, start);
+    result = core::rotate(workspace.paper, request, workspace.solver.get(), workspace.held, guide, start,
+                          workspace.turn_preview_tolerance);
   else
   {
     // A commit's state is made from where its vertices end (recorded by a replay; the last
@@ -442,6 +443,7 @@ Workspace Session::workspace() const
                        turn_driver_,
                        {},
                        {} };
+  workspace.turn_preview_tolerance = turn_preview_tolerance_;
   if (preview_ && preview_kind_ == Operation::Kind::AssignmentFold)
     workspace.assignment_preview = *preview_;
   if (preview_ && preview_kind_ == Operation::Kind::Rotate && preview_held_ == held_)

@@ -1,5 +1,6 @@
 #include "virtual_origami/ros/paper_model_node.h"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
@@ -133,6 +134,14 @@ PaperModelNode::PaperModelNode(ros::NodeHandle nh, ros::NodeHandle private_nh) :
   solver_ = std::make_shared<RemoteSolver>(nh_, private_nh.param<std::string>("solver_service", "solve"),
                                            private_nh.param("solver_timeout", 5.0));
   history_limit_ = static_cast<size_t>(std::max(0.0, private_nh.param("history_memory_mb", 256.0)) * 1e6);
+  // A turn preview is a frame of the drag: balanced to 1e-8 it is one of Newton's steps from the
+  // start the previews before it predict, where 1e-10 takes four to six (docs/SOLVERS.md).
+  turn_preview_tolerance_ = private_nh.param("turn_preview_tolerance", turn_preview_tolerance_);
+  if (!(turn_preview_tolerance_ >= 0) || !std::isfinite(turn_preview_tolerance_))
+  {
+    ROS_WARN("paper_model: turn_preview_tolerance must be a finite strain of 0 or more; 1e-8 is used");
+    turn_preview_tolerance_ = 1e-8;
+  }
   const std::string driver = private_nh.param<std::string>("crease_driver", "quasi_newton");
   crease_driver_ = core::makeCreaseDriver(driver);
   if (!crease_driver_)
@@ -208,6 +217,7 @@ void PaperModelNode::configureSession()
   session_.snapSettings() = snap_;
   session_.setSolver(solver_);
   session_.setHistoryLimit(history_limit_);
+  session_.setTurnPreviewTolerance(turn_preview_tolerance_);
   session_.setCreaseDrivers(crease_driver_, preview_driver_);
 }
 

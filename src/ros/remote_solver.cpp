@@ -21,6 +21,11 @@ RemoteSolver::RemoteSolver(ros::NodeHandle nh, std::string service, double timeo
 
 core::SolveReport RemoteSolver::solve(core::Paper& paper, const std::vector<char>& fixed)
 {
+  return solveLoosely(paper, fixed, 0.0);
+}
+
+core::SolveReport RemoteSolver::solveLoosely(core::Paper& paper, const std::vector<char>& fixed, double looser)
+{
   core::SolveReport report;
   if (!ros::service::waitForService(service_, ros::Duration(timeout_)))
   {
@@ -29,6 +34,7 @@ core::SolveReport RemoteSolver::solve(core::Paper& paper, const std::vector<char
   }
   Solve call;
   call.request.paper = toMessage(paper, 0, {});
+  call.request.looser_tolerance = looser;
   for (size_t v = 0; v < fixed.size(); ++v)
     if (fixed[v])
       call.request.fixed_vertices.push_back(static_cast<int>(v));

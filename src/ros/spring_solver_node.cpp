@@ -1,5 +1,7 @@
 #include "virtual_origami/ros/spring_solver_node.h"
 
+#include <cmath>
+
 #include "virtual_origami/ros/conversions.h"
 #include "virtual_origami/solvers/solver_factory.h"
 
@@ -43,6 +45,11 @@ bool SpringSolverNode::solve(Solve::Request& req, Solve::Response& res)
     res.message = "cannot solve this paper: " + paper.message();
     return true;
   }
+  if (!(req.looser_tolerance >= 0) || !std::isfinite(req.looser_tolerance))
+  {
+    res.message = "the looser tolerance must be a finite strain of 0 or more";
+    return true;
+  }
   std::vector<char> fixed(paper->vertices.size(), 0);
   for (int v : req.fixed_vertices)
   {
@@ -53,7 +60,9 @@ bool SpringSolverNode::solve(Solve::Request& req, Solve::Response& res)
     }
     fixed[v] = 1;
   }
-  const core::SolveReport report = solver_->solve(*paper, fixed);
+  const core::SolveReport report = req.looser_tolerance > 0 ?
+                                       solver_->solveLoosely(*paper, fixed, req.looser_tolerance) :
+                                       solver_->solve(*paper, fixed);
   res.success = report.converged && !report.diverged;
   res.message = solver_->name() + ": " + report.message;
   res.iterations = report.iterations;

@@ -308,7 +308,20 @@ NewtonSolver::~NewtonSolver() = default;
 
 SolveReport NewtonSolver::solve(Paper& paper, const std::vector<char>& fixed)
 {
-  numerics::SolveBudget budget(limits_);
+  return solveWithin(paper, fixed, limits_);
+}
+
+SolveReport NewtonSolver::solveLoosely(Paper& paper, const std::vector<char>& fixed, double looser)
+{
+  SolveLimits limits = limits_;
+  if (looser > limits.tolerance)
+    limits.tolerance = looser;
+  return solveWithin(paper, fixed, limits);
+}
+
+SolveReport NewtonSolver::solveWithin(Paper& paper, const std::vector<char>& fixed, const SolveLimits& limits)
+{
+  numerics::SolveBudget budget(limits);
   SolveReport report;
   if (!setup_ || !setup_->matches(paper, fixed))
     setup_ = std::make_unique<Setup>(paper, fixed);
@@ -319,7 +332,7 @@ SolveReport NewtonSolver::solve(Paper& paper, const std::vector<char>& fixed)
   ReducedSystem& system = *setup_->system;
   const Positions start = foldedPositions(paper);
   Positions x = start, trial = start;
-  const double residual_tolerance = limits_.tolerance * paper.scale();
+  const double residual_tolerance = limits.tolerance * paper.scale();
 
   RigidFit fit = fitRigidFaces(faces, x);
   std::string stuck;
@@ -331,7 +344,7 @@ SolveReport NewtonSolver::solve(Paper& paper, const std::vector<char>& fixed)
   while (!diverged)
   {
     report.max_strain = springStrain(springs, x).max;
-    if (report.max_strain <= limits_.tolerance && fit.max_residual <= residual_tolerance)
+    if (report.max_strain <= limits.tolerance && fit.max_residual <= residual_tolerance)
     {
       report.converged = true;
       break;
@@ -342,12 +355,12 @@ SolveReport NewtonSolver::solve(Paper& paper, const std::vector<char>& fixed)
     // now: a near-singular balance (a large Miura-ori turned near the flat sheet) otherwise spent
     // its 200 factorisations creeping at a few percent per step and was refused all the same.
     const double distance =
-        std::max(report.max_strain / limits_.tolerance, fit.max_residual / std::max(residual_tolerance, 1e-300));
+        std::max(report.max_strain / limits.tolerance, fit.max_residual / std::max(residual_tolerance, 1e-300));
     distances.push_back(distance);
     energies.push_back(fit.energy);
-    // Further out, an energy that hardly falls any more: no rigid state near (limits_.
+    // Further out, an energy that hardly falls any more: no rigid state near (limits.
     // stall_window, for callers that take only such a state).
-    const int window = limits_.stall_window;
+    const int window = limits.stall_window;
     if (window > 0 && static_cast<int>(energies.size()) > window && distance >= kPaceNear &&
         !(fit.energy < energies[energies.size() - 1 - static_cast<size_t>(window)] / kStallDrop))
     {
@@ -359,7 +372,7 @@ SolveReport NewtonSolver::solve(Paper& paper, const std::vector<char>& fixed)
     {
       const double then = distances[distances.size() - 1 - kPaceWindow];
       const double pace = std::pow(distance / then, 1.0 / kPaceWindow);
-      const int left = limits_.max_iterations - report.iterations;
+      const int left = limits.max_iterations - report.iterations;
       if (!(pace < 1.0) || distance * std::pow(pace, left) > 1.0)
       {
         stuck = "too slow to converge (at the pace of its last " + std::to_string(kPaceWindow) +
@@ -424,7 +437,7 @@ SolveReport NewtonSolver::solve(Paper& paper, const std::vector<char>& fixed)
     diverged = !std::isfinite(fit.energy);
   }
   report.seconds = budget.seconds();
-  finishRigidSolve("newton", paper, springs, start, x, diverged, fit, stuck, limits_.tolerance, report);
+  finishRigidSolve("newton", paper, springs, start, x, diverged, fit, stuck, limits.tolerance, report);
   return report;
 }
 

@@ -497,6 +497,16 @@ TEST_F(Faults, SolverGetsMalformedPapers)
     else
       EXPECT_FALSE(srv.response.message.empty()) << "request " << i;
   }
+  // A looser tolerance that is not a strain of 0 or more is refused.
+  for (double bad : { -1e-8, double(NAN), double(INFINITY) })
+  {
+    Solve loose;
+    loose.request.paper = good;
+    loose.request.looser_tolerance = bad;
+    ASSERT_TRUE(callService("/origami/solve", loose));
+    EXPECT_FALSE(loose.response.success) << bad;
+    EXPECT_NE(loose.response.message.find("looser tolerance"), std::string::npos) << loose.response.message;
+  }
   // The solver still serves paper_model.
   Solve fine;
   fine.request.paper = good;

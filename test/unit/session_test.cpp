@@ -344,6 +344,51 @@ TEST(Session, ATurnCommittedAfterItsPreviewsIsItsLastPreviewAndItsReplay)
   EXPECT_TRUE(wrong.paper() == flat);
 }
 
+/// With a looser balance for previews (paper_model's turn_preview_tolerance), a drag's previews
+/// converge at that strain in fewer of Newton's steps; the commit at the last preview's angle is
+/// balanced from there to the solver's own tolerance, and its replay lands on it bit for bit.
+TEST(Session, ALooselyBalancedTurnPreviewIsCommittedToTheSolversTolerance)
+{
+  const Paper flat = tessellationWithVertices(TessellationKind::Miura, 1100).value().paper;
+  const int axis = test::slantedCreaseOf(flat, 0);
+  ASSERT_GE(axis, 0);
+  Session loose(flat), tight(flat), replay(flat);
+  for (Session* session : { &loose, &tight, &replay })
+  {
+    session->setSolver(makeSolver("newton"));
+    session->setCreaseDrivers(makeCreaseDriver("quasi_newton"));
+  }
+  loose.setTurnPreviewTolerance(1e-8);
+  RotateRequest request;
+  request.face = 0;
+  request.axis_edge = axis;
+  int loose_iterations = 0, tight_iterations = 0;
+  for (int degrees : { 2, 4, 6, 8, 10 })
+  {
+    request.angle = degrees * M_PI / 180;
+    const Expected<RotateResult> l = loose.rotate(request, false), t = tight.rotate(request, false);
+    ASSERT_TRUE(l) << l.message();
+    ASSERT_TRUE(t) << t.message();
+    EXPECT_LE(l->solve.max_strain, 1e-8) << degrees << "°";
+    EXPECT_LE(t->solve.max_strain, 1e-10) << degrees << "°";
+    EXPECT_NEAR(loose.preview()->edges[axis].fold_angle, request.angle, 1e-12);
+    loose_iterations += l->solve.iterations;
+    tight_iterations += t->solve.iterations;
+  }
+  EXPECT_LT(loose_iterations, tight_iterations);
+  const Expected<RotateResult> committed = loose.rotate(request, true);
+  ASSERT_TRUE(committed) << committed.message();
+  EXPECT_GT(committed->solve.iterations, 0);  // balanced further than the preview was
+  EXPECT_LE(committed->solve.max_strain, 1e-10);
+  EXPECT_LT(edgeStrain(loose.paper()).max, 1e-9);
+  EXPECT_NEAR(loose.paper().edges[axis].fold_angle, request.angle, 1e-12);
+  Operation recorded = loose.history().log.back();
+  for (const Vertex& v : loose.paper().vertices)
+    recorded.folded.push_back(v.folded);
+  ASSERT_TRUE(replay.apply(recorded).ok());
+  EXPECT_TRUE(replay.paper() == loose.paper());
+}
+
 /// A commit at another angle than the drag's last preview goes on from it (the branch the user
 /// saw) to the commit's angle; a replay with the positions it recorded lands on it bit for bit.
 TEST(Session, ATurnCommittedPastItsLastPreviewGoesOnFromItAndReplaysBitForBit)

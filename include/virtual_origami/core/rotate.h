@@ -87,9 +87,11 @@ struct TurnStart
 /// each stage has the solver's own limits (a time budget counts per stage). The layer
 /// order (face_orders) follows: faces folded flat onto others lie on the side they came
 /// from, and entries of faces no longer stacked are dropped. On failure `paper` is untouched.
+/// `looser_tolerance` > 0 (a drag's preview): the solver's stages converge at that strain where
+/// it is looser than the solver's own (ShapeSolver::solveLoosely).
 Expected<RotateResult> rotate(Paper& paper, const RotateRequest& request, ShapeSolver* solver = nullptr,
                               const std::vector<int>& held = {}, const TurnGuide& guide = {},
-                              const TurnStart& start = {});
+                              const TurnStart& start = {}, double looser_tolerance = 0.0);
 
 /// The faces rotate() turns with `face` about `axis_edge` by the request angle `angle` (its sign
 /// decides which layers a turn carries): its side with the layers carried where the axis parts it

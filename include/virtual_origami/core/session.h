@@ -119,6 +119,9 @@ struct Workspace
   /// The previews of the same turn before rotate_preview (at most two, oldest first), each with
   /// its request angle (TurnStart::before).
   std::vector<std::pair<Paper, double>> rotate_previews_before;
+  /// The strain a turn preview's solve converges at, where looser than the solver's own (0: the
+  /// solver's): a preview is a frame of the drag, and its commit is balanced to the solver's.
+  double turn_preview_tolerance = 0.0;
 };
 
 /// The operations as functions of a workspace; none touches a session. A rotation's change is
@@ -251,6 +254,8 @@ public:
   /// are forgotten, oldest first; 0: no limit. The operation log and the journal keep every
   /// operation all the same.
   void setHistoryLimit(size_t bytes);
+  /// Workspace::turn_preview_tolerance (0, the default: previews converge as commits do).
+  void setTurnPreviewTolerance(double strain) { turn_preview_tolerance_ = strain; }
   /// Bytes the undo and redo states hold, and how many undo states the limit has dropped.
   size_t historyBytes() const { return history_bytes_; }
   size_t forgottenStates() const { return forgotten_; }
@@ -266,6 +271,7 @@ private:
   std::vector<int> preview_held_;                           // the held vertices preview_ kept
   std::vector<std::pair<Paper, double>> previews_before_;  // turn previews before preview_ on its drag
   std::shared_ptr<CreaseDriver> turn_driver_;               // a clone of driver_ (Workspace)
+  double turn_preview_tolerance_ = 0.0;
   std::shared_ptr<ShapeSolver> solver_;
   std::shared_ptr<CreaseDriver> driver_, preview_driver_;
   SnapSettings snap_settings_;

@@ -46,6 +46,14 @@ public:
   /// that every face regains its crease-pattern shape. On divergence the paper is left as it
   /// was given (rolled back) and the report says so; a diverged shape is never published.
   virtual SolveReport solve(Paper& paper, const std::vector<char>& fixed) = 0;
+  /// As solve(), converged at the strain `looser` where that is looser than the solver's own
+  /// tolerance: a frame of a drag, balanced again when it is committed. A solver that cannot
+  /// stop there solves as solve() does.
+  virtual SolveReport solveLoosely(Paper& paper, const std::vector<char>& fixed, double looser)
+  {
+    (void)looser;
+    return solve(paper, fixed);
+  }
 
   const SolveLimits& limits() const { return limits_; }
   void setLimits(const SolveLimits& limits) { limits_ = limits; }

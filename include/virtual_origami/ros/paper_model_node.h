@@ -169,6 +169,7 @@ private:
   core::SnapSettings snap_;
   std::shared_ptr<core::ShapeSolver> solver_;
   size_t history_limit_ = 0;
+  double turn_preview_tolerance_ = 1e-8;  // Session::setTurnPreviewTolerance
   /// Load refuses files over these before the expensive work (parameters max_load_vertices,
   /// max_face_vertices, max_load_mb).
   core::ModelLimits load_limits_;

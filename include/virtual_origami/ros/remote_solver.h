@@ -20,6 +20,7 @@ public:
   /// Waits up to the timeout for the service and again for its answer; a missing, failing or
   /// stalled solver reports not converged, so the operation is refused and the model stays as it was.
   core::SolveReport solve(core::Paper& paper, const std::vector<char>& fixed) override;
+  core::SolveReport solveLoosely(core::Paper& paper, const std::vector<char>& fixed, double looser) override;
 
 private:
   ros::NodeHandle nh_;

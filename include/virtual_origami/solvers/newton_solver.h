@@ -46,8 +46,11 @@ public:
     return "newton";
   }
   SolveReport solve(Paper& paper, const std::vector<char>& fixed) override;
+  SolveReport solveLoosely(Paper& paper, const std::vector<char>& fixed, double looser) override;
 
 private:
+  SolveReport solveWithin(Paper& paper, const std::vector<char>& fixed, const SolveLimits& limits);
+
   struct Setup;  // sparse pattern and symbolic factorisation, kept while faces and held vertices stay
 
   NewtonOptions options_;
