@@ -288,15 +288,19 @@ void PaperModelNode::warmUpPreviews()
       frames = warm_after_frames_;
     }
     std::lock_guard<std::mutex> drivers(drivers_mutex_);
-    // A preview came first: it set the driver up, and the next frames go on from its frame,
-    // which a warm-up now would replace.
     if (preview_frames_ != frames)
-      continue;
+      continue;  // a preview came first and set the driver up
+    // On a clone, which shares what depends on the pattern alone (the Gauss-Newton matrix's
+    // analysis and assembly plan) but not the frames: the preview driver's own frames, and so the
+    // state a release commits from, stay as they were. Warmed itself, the driver went on from
+    // the warm-up's frame, and the release at 40 % of a 10,000-vertex Miura-ori took 9 iterations
+    // instead of 6 (twice of two), 0.8 s more.
+    const std::unique_ptr<core::CreaseDriver> warm = preview_driver_->clone();
     core::AssignmentFoldRequest request;
     const double from = core::foldFraction(paper);
     request.fraction = from <= 0.99 ? from + 0.01 : from - 0.01;
     request.converge = false;
-    const auto warmed = core::foldByAssignment(paper, request, *preview_driver_, nullptr, held);
+    const auto warmed = core::foldByAssignment(paper, request, *warm, nullptr, held);
     ROS_DEBUG("paper_model: preview driver warmed up for %zu vertices: %s", paper.vertices.size(),
               warmed ? "ready" : warmed.message().c_str());
   }

@@ -98,9 +98,9 @@ private:
   /// creases, other pins), has warmUpPreviews prepare the driver for it (mutex_ held).
   void scheduleWarmUp();
   /// The warm-up thread: a preview frame of the last paper scheduled, 1 % on from where its
-  /// creases are, computed on a copy and dropped, so that the driver has set up the pattern
-  /// (its matrices' analysis and factorisations: half a second at 10,000 vertices) before the
-  /// user's first preview asks for a frame. Skipped once a preview came first.
+  /// creases are, by a clone of the preview driver on a copy, dropped, so that what the driver's
+  /// clones share of a pattern (the Gauss-Newton matrix's analysis and assembly plan) is ready
+  /// before the user's first preview asks for a frame. Skipped once a preview came first.
   void warmUpPreviews();
   void publishMarkers(const core::Paper& paper);
   /// The pinned points and, unless switched off, a frame per face (broadcastFaces).
