@@ -14,7 +14,7 @@ class AnswerBudget
 public:
   /// `answer_seconds`: the whole answer's budget; `min_solve_seconds`: what a solve gets at the
   /// least (a frame must move, however late it starts).
-  explicit AnswerBudget(double answer_seconds = 0.02, double min_solve_seconds = 0.001);
+  explicit AnswerBudget(double answer_seconds = 0.03, double min_solve_seconds = 0.001);
 
   void setAnswerSeconds(double seconds);
   double answerSeconds() const
