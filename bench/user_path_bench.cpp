@@ -929,6 +929,10 @@ int main(int argc, char** argv)
   const int steps_40 = pnh.param("slide_steps_40", 40);    // 1 % a move
   const int steps_100 = pnh.param("slide_steps_100", 20);  // 5 % a move
   const double timeout = pnh.param("timeout", 180.0);      // for any answer; longer is recorded as none
+  // "all", or "slider": the slides and their releases alone (no fold commits, turns, drags or
+  // breakdown), for measuring the slider's previews in a minute.
+  const std::string actions = pnh.param<std::string>("actions", "all");
+  const bool everything = actions != "slider";
   if (data_dir.empty())
   {
     std::fprintf(stderr, "user_path_bench: ~data_dir (paper_model's data folder) is needed\n");
@@ -995,21 +999,29 @@ int main(int argc, char** argv)
       continue;
     const PaperState flat = *path.state();
     const Corner corner = cornerOf(flat);
+    // The slider alone: a user's moment to find it, in which the nodes take in the new pattern
+    // (curved_mesh_solver meshes its sheet, paper_model readies the preview driver), as the
+    // actions before the slide give them in a whole run.
+    if (!everything)
+      ros::WallDuration(3.0).sleep();
     // The release at 40 % in this process, the same computation without the nodes around it
     // (the Miura-ori only: the others' commits take half a minute at 1,000 vertices).
-    if (kind == "miura")
+    if (kind == "miura" && everything)
       for (const auto& [name, value] : commitInProcess(flat, 0.4, nh).values)
         breakdown << configuration << ',' << pattern->name << ',' << vertices << ',' << name << ',' << value << '\n';
 
     // fold_by_assignment commits from the flat pattern, each undone.
     for (double fraction : { 0.25, 0.5, 0.99 })
     {
+      if (!everything)
+        break;
       const Row r = path.fold(fraction, false);
       write(r);
       if (r.success)
         path.undo();
     }
     // The corner face turned 1°..10° as previews, then 10° committed, undone.
+    if (everything)
     {
       Rotate r;
       r.request.face = -1;
@@ -1040,7 +1052,9 @@ int main(int argc, char** argv)
       write(r);
       at_40 = r.action == "slider_release_40" && r.success;
     }
-    if (at_40)
+    if (at_40 && !everything)
+      path.undo();  // back to the flat pattern
+    if (at_40 && everything)
     {
       const PaperState folded = *path.state();
       // 0.4 % of the sheet a step, 2 % in all: a mouse drag shorter than 1 % is a click.

@@ -237,26 +237,38 @@ std::vector<char> walkFaces(const Paper& paper, int start, const std::function<v
   return reached;
 }
 
+namespace
+{
+/// The crease `e`'s fold angle between its faces' normals: positive when the faces turn towards
+/// each other on the front side (valley).
+double foldAngleBetween(const Paper& paper, const Edge& e, const Vec3& n_left, const Vec3& n_right)
+{
+  const Vec3 axis = (paper.vertices[e.vertices[1]].folded - paper.vertices[e.vertices[0]].folded).normalized();
+  return std::atan2(axis.dot(n_right.cross(n_left)), n_left.dot(n_right));
+}
+}  // namespace
+
 double measureFoldAngle(const Paper& paper, int edge)
 {
   const Edge& e = paper.edges[edge];
   if (!e.isCrease())
     return 0.0;
-  const Vec3 axis = (paper.vertices[e.vertices[1]].folded - paper.vertices[e.vertices[0]].folded).normalized();
-  const Vec3 n_left = paper.faceNormal(e.faces[0]);
-  const Vec3 n_right = paper.faceNormal(e.faces[1]);
-  // Positive when the faces turn towards each other on the front side (valley).
-  return std::atan2(axis.dot(n_right.cross(n_left)), n_left.dot(n_right));
+  return foldAngleBetween(paper, e, paper.faceNormal(e.faces[0]), paper.faceNormal(e.faces[1]));
 }
 
 void updateFoldAngles(Paper& paper, double assign_threshold)
 {
+  // Each face's normal once, not once per crease beside it (measureFoldAngle's, the same
+  // figures): a preview frame of a 10,000-vertex paper measured its angles in 2 ms, mostly these.
+  std::vector<Vec3> normals(paper.faces.size());
+  for (size_t f = 0; f < paper.faces.size(); ++f)
+    normals[f] = paper.faceNormal(static_cast<int>(f));
   for (size_t i = 0; i < paper.edges.size(); ++i)
   {
     Edge& edge = paper.edges[i];
     if (!edge.isCrease())
       continue;
-    double angle = measureFoldAngle(paper, static_cast<int>(i));
+    double angle = foldAngleBetween(paper, edge, normals[edge.faces[0]], normals[edge.faces[1]]);
     // At ±π the dihedral alone cannot tell mountain from valley; continuity can.
     while (angle - edge.fold_angle > M_PI)
       angle -= 2 * M_PI;

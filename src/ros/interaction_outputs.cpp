@@ -50,6 +50,30 @@ core::PaperReply reply(ros::ServiceClient& client, Service& srv)
   return r;
 }
 
+/// paper_model's answer on a kept connection (`client`, opened when it is not): a call that
+/// fails on it is made once more on a new connection, which is then kept.
+template <class Service>
+core::PaperReply keptReply(ros::ServiceClient& client, const std::string& service, Service& srv)
+{
+  if (!client.isValid())
+    client = ros::NodeHandle().serviceClient<Service>(service, /*persistent=*/true);
+  core::PaperReply r;
+  if (!client.call(srv))
+  {
+    client = ros::NodeHandle().serviceClient<Service>(service, /*persistent=*/true);
+    if (!client.call(srv))
+    {
+      client.shutdown();
+      r.message = service + " did not answer; is paper_model running?";
+      return r;
+    }
+  }
+  r.answered = true;
+  r.success = srv.response.success;
+  r.message = srv.response.message;
+  return r;
+}
+
 geometry_msgs::Point onTable(const core::Vec2& p)
 {
   return toPoint(core::Vec3(p.x(), p.y(), 0.0));
@@ -184,7 +208,8 @@ core::PaperReply InteractionNode::send(const core::PaperRequest& request)
                           srv.request.fraction = c.fraction;
                           srv.request.preview = c.preview;
                           srv.request.keep = c.keep;
-                          core::PaperReply r = reply(fold_, srv);
+                          core::PaperReply r = c.preview ? keptReply(fold_previews_, fold_.getService(), srv) :
+                                                           reply(fold_, srv);
                           r.revision = srv.response.revision;
                           return r;
                         },

@@ -36,14 +36,27 @@ visualization_msgs::Marker baseMarker(const std::string& frame_id, const ros::Ti
 
 namespace
 {
-/// Each face's lift off its plane: its stack level along the stack's upward normal.
-std::vector<core::Vec3> layerLifts(const core::Paper& paper, const MarkerStyle& style)
+/// Every face's front normal, each computed once: the sides, the lifts and the creases all
+/// need them (a 10,000-vertex paper's markers took 3.5 ms computing each four times).
+std::vector<core::Vec3> faceNormals(const core::Paper& paper)
 {
+  std::vector<core::Vec3> normals(paper.faces.size());
+  for (size_t f = 0; f < paper.faces.size(); ++f)
+    normals[f] = paper.faceNormal(static_cast<int>(f));
+  return normals;
+}
+
+/// Each face's lift off its plane: its stack level along the stack's upward normal.
+std::vector<core::Vec3> layerLifts(const core::Paper& paper, const std::vector<core::Vec3>& normals,
+                                   const MarkerStyle& style)
+{
+  std::vector<core::Vec3> lift(paper.faces.size(), core::Vec3::Zero());
+  if (paper.face_orders.empty())
+    return lift;  // one layer: every face at level 0
   const std::vector<int> levels = core::stackLevels(paper);
-  std::vector<core::Vec3> lift(paper.faces.size());
   for (size_t f = 0; f < paper.faces.size(); ++f)
   {
-    core::Vec3 up = paper.faceNormal(static_cast<int>(f));
+    core::Vec3 up = normals[f];
     if (up.z() < 0)
       up = -up;
     lift[f] = up * (levels[f] * style.layer_gap);
@@ -55,7 +68,8 @@ std::vector<core::Vec3> layerLifts(const core::Paper& paper, const MarkerStyle& 
 visualization_msgs::MarkerArray paperMarkers(const core::Paper& paper, const MarkerStyle& style, const ros::Time& stamp)
 {
   using visualization_msgs::Marker;
-  const std::vector<core::Vec3> lift = layerLifts(paper, style);
+  const std::vector<core::Vec3> normals = faceNormals(paper);
+  const std::vector<core::Vec3> lift = layerLifts(paper, normals, style);
   Marker front = baseMarker(style.frame_id, stamp, "front", Marker::TRIANGLE_LIST);
   Marker back = baseMarker(style.frame_id, stamp, "back", Marker::TRIANGLE_LIST);
   front.color = rgba(0.96f, 0.89f, 0.76f);  // the coloured side of the sheet
@@ -63,10 +77,20 @@ visualization_msgs::MarkerArray paperMarkers(const core::Paper& paper, const Mar
   std::vector<double> strain;
   if (style.colour_by_strain)
     strain = core::faceStrains(paper);
+  size_t corners = 0;  // of the triangles of every face's fan
+  for (const core::Face& face : paper.faces)
+    corners += face.vertices.size() >= 3 ? 3 * (face.vertices.size() - 2) : 0;
+  front.points.reserve(corners);
+  back.points.reserve(corners);
+  if (style.colour_by_strain)
+  {
+    front.colors.reserve(corners);
+    back.colors.reserve(corners);
+  }
   for (size_t f = 0; f < paper.faces.size(); ++f)
   {
     const std::vector<int>& vs = paper.faces[f].vertices;
-    const core::Vec3 n = paper.faceNormal(static_cast<int>(f));
+    const core::Vec3& n = normals[f];
     const core::Vec3 to_front = lift[f] + n * style.side_offset;
     const core::Vec3 to_back = lift[f] - n * style.side_offset;
     for (size_t i = 1; i + 1 < vs.size(); ++i)  // a fan: faces are convex
@@ -108,7 +132,7 @@ visualization_msgs::MarkerArray paperMarkers(const core::Paper& paper, const Mar
       if (f >= 0 && lift[f].norm() > offset.norm())
         offset = lift[f];
     // Just over the upper surface (front or back), where a view from above sees it.
-    core::Vec3 up = e.faces[0] >= 0 ? paper.faceNormal(e.faces[0]) : core::Vec3::UnitZ();
+    core::Vec3 up = e.faces[0] >= 0 ? normals[e.faces[0]] : core::Vec3::UnitZ();
     if (up.z() < 0)
       up = -up;
     offset += up * (2 * style.side_offset);
@@ -118,11 +142,12 @@ visualization_msgs::MarkerArray paperMarkers(const core::Paper& paper, const Mar
   if (style.colour_by_strain)
     front.color = back.color = rgba(1, 1, 1);
   visualization_msgs::MarkerArray array;
+  array.markers.reserve(6);
   for (Marker* m : { &front, &back, &mountain, &valley, &other, &boundary })
   {
     if (m->points.empty())
       m->action = Marker::DELETE;  // rviz rejects an empty list; nothing of that kind to show
-    array.markers.push_back(*m);
+    array.markers.push_back(std::move(*m));
   }
   return array;
 }

@@ -310,6 +310,52 @@ TEST_F(FoldByAssignmentTest, TheSliderFoldsToHalfWithOneHistoryEntry)
   }));
 }
 
+// The slider's previews go on one kept connection to paper_model: when paper_model dies and
+// comes back (the launch respawns it), the next slide is previewed all the same.
+TEST_F(FoldByAssignmentTest, TheSliderPreviewsAgainAfterPaperModelCameBack)
+{
+  ASSERT_TRUE(waitFor([&] {
+    return interactiveMarker("fold_slider").has_value() && slider_.count("fold_slider_track") &&
+           slider_["fold_slider_track"].points.size() >= 2;
+  })) << "no fold slider";
+  const core::Vec3 end = toVec3(slider_["fold_slider_track"].points[1]);
+  const core::Vec3 start = 0.5 * (toVec3(slider_["fold_slider_track"].points[0]) + end);
+  const auto at = [&](double fraction) { return core::Vec3(start + (end - start) * fraction); };
+  const auto highest = [&] {
+    double z = 0.0;
+    for (const auto& p : front_.points)
+      z = std::max(z, std::abs(p.z));
+    return z;
+  };
+  // A slide to 10 %, previewed on the kept connection, released.
+  int fronts_before = fronts_;
+  send(sliderFeedback(InteractiveMarkerFeedback::MOUSE_DOWN, at(0.0)));
+  send(sliderFeedback(InteractiveMarkerFeedback::POSE_UPDATE, at(0.1)));
+  ASSERT_TRUE(waitFor([&] { return fronts_ > fronts_before; }, 30)) << "no preview drawn";
+  send(sliderFeedback(InteractiveMarkerFeedback::MOUSE_UP, at(0.1)));
+  settle();
+  ASSERT_TRUE(waitFor([&] { return client_.state().revision == base_ + 1; }, 30));
+
+  test::crash("paper_model");
+  // Back with the session as it was, drawn again.
+  ASSERT_TRUE(waitFor([&] { return fronts_ > fronts_before + 2 && client_.state().revision == base_ + 1; }, 60));
+  ros::WallDuration(1.0).sleep();
+  ros::spinOnce();
+  const double committed = highest();
+  ASSERT_GT(committed, 0.0);
+
+  // The next slide, from 10 % to 30 %: previewed, higher than the committed 10 %.
+  fronts_before = fronts_;
+  send(sliderFeedback(InteractiveMarkerFeedback::MOUSE_DOWN, at(0.1)));
+  send(sliderFeedback(InteractiveMarkerFeedback::POSE_UPDATE, at(0.3)));
+  EXPECT_TRUE(waitFor([&] { return fronts_ > fronts_before && highest() > 1.5 * committed; }, 30))
+      << "no preview after paper_model came back: " << status_.message;
+  EXPECT_EQ(client_.state().revision, base_ + 1) << "a preview commits nothing";
+  send(sliderFeedback(InteractiveMarkerFeedback::MOUSE_UP, at(0.3)));
+  settle();
+  EXPECT_TRUE(waitFor([&] { return client_.state().revision == base_ + 2; }, 60)) << "the release committed nothing";
+}
+
 TEST_F(FoldByAssignmentTest, TheServiceRefusesBadInputAndChangesNothing)
 {
   for (double fraction : { std::numeric_limits<double>::quiet_NaN(), -1.5, 1.5 })

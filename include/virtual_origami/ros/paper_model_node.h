@@ -33,6 +33,7 @@
 #include <virtual_origami/Save.h>
 #include <virtual_origami/VertexTarget.h>
 
+#include "virtual_origami/core/answer_budget.h"
 #include "virtual_origami/core/data_folder.h"
 #include "virtual_origami/core/model_file.h"
 #include "virtual_origami/core/session.h"
@@ -93,6 +94,14 @@ private:
                    bool for_these_pins = false);
   /// `stamp` zero: now (a pull is stamped with the tf data it followed).
   void publishState(const ros::Time& stamp = ros::Time(0));
+  /// When the committed paper is one the preview driver has not seen (another pattern, new
+  /// creases, other pins), has warmUpPreviews prepare the driver for it (mutex_ held).
+  void scheduleWarmUp();
+  /// The warm-up thread: a preview frame of the last paper scheduled, 1 % on from where its
+  /// creases are, by a clone of the preview driver on a copy, dropped, so that what the driver's
+  /// clones share of a pattern (the Gauss-Newton matrix's analysis and assembly plan) is ready
+  /// before the user's first preview asks for a frame. Skipped once a preview came first.
+  void warmUpPreviews();
   void publishMarkers(const core::Paper& paper);
   /// The pinned points and, unless switched off, a frame per face (broadcastFaces).
   void broadcastFrames(const ros::TimerEvent&);
@@ -163,7 +172,22 @@ private:
   /// Folding by assignment: a driver that converges for commits, one with a time budget for
   /// previews. A driver keeps what it learnt of a pattern between calls, so one call at a time.
   std::shared_ptr<core::CreaseDriver> crease_driver_, preview_driver_;
+  /// A preview's whole answer keeps to fold_preview_seconds: its frame's solve gets what the
+  /// rest of the answer leaves (guarded by drivers_mutex_).
+  core::AnswerBudget preview_budget_;
+  std::atomic<uint64_t> preview_frames_{ 0 };  // preview frames computed so far
   std::mutex drivers_mutex_;
+  /// The preview driver's warm-up (warmUpPreviews): the paper it waits for and the preview
+  /// frames there had been when it was scheduled, guarded by warm_mutex_; the signature of the
+  /// last paper scheduled (mutex_).
+  std::mutex warm_mutex_;
+  std::condition_variable warm_wanted_;
+  std::optional<core::Paper> warm_paper_;
+  std::vector<int> warm_held_;
+  uint64_t warm_after_frames_ = 0;
+  bool warm_stop_ = false;
+  uint64_t warmed_signature_ = 0;
+  std::thread warm_thread_;
   std::unique_ptr<dynamic_reconfigure::Server<PaperModelConfig>> reconfigure_server_;
   // What configureSession puts on a resumed session.
   core::SnapSettings snap_;
