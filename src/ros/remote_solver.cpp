@@ -35,6 +35,7 @@ core::SolveReport RemoteSolver::solveLoosely(core::Paper& paper, const std::vect
   Solve call;
   call.request.paper = toMessage(paper, 0, {});
   call.request.looser_tolerance = looser;
+  call.request.stall_window = limits_.stall_window;  // a closure's (core/assignment_fold.cpp)
   for (size_t v = 0; v < fixed.size(); ++v)
     if (fixed[v])
       call.request.fixed_vertices.push_back(static_cast<int>(v));

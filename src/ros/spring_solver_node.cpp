@@ -50,6 +50,11 @@ bool SpringSolverNode::solve(Solve::Request& req, Solve::Response& res)
     res.message = "the looser tolerance must be a finite strain of 0 or more";
     return true;
   }
+  if (req.stall_window < 0)
+  {
+    res.message = "the stall window must be 0 (never) or more iterations";
+    return true;
+  }
   std::vector<char> fixed(paper->vertices.size(), 0);
   for (int v : req.fixed_vertices)
   {
@@ -60,9 +65,15 @@ bool SpringSolverNode::solve(Solve::Request& req, Solve::Response& res)
     }
     fixed[v] = 1;
   }
+  // This solve's stall window (callbacks take turns: ros::spin), then the node's limits again.
+  const core::SolveLimits configured = solver_->limits();
+  core::SolveLimits limits = configured;
+  limits.stall_window = req.stall_window;
+  solver_->setLimits(limits);
   const core::SolveReport report = req.looser_tolerance > 0 ?
                                        solver_->solveLoosely(*paper, fixed, req.looser_tolerance) :
                                        solver_->solve(*paper, fixed);
+  solver_->setLimits(configured);
   res.success = report.converged && !report.diverged;
   res.message = solver_->name() + ": " + report.message;
   res.iterations = report.iterations;

@@ -33,6 +33,7 @@
 
 #include "ros_test_client.h"
 #include "virtual_origami/core/data_folder.h"
+#include "virtual_origami/core/tessellations.h"
 #include "virtual_origami/core/validity.h"
 #include "virtual_origami/ros/conversions.h"
 
@@ -512,6 +513,39 @@ TEST_F(Faults, SolverGetsMalformedPapers)
   fine.request.paper = good;
   ASSERT_TRUE(callService("/origami/solve", fine));
   EXPECT_TRUE(fine.response.success) << fine.response.message;
+}
+
+/// A closure's stall window reaches the solver through the service (fold by assignment's closures
+/// run in spring_solver): with two faces of a shaken Miura-ori held, no rigid state exists, and
+/// the solve stops once its energy stops falling instead of running to its limits. A negative
+/// window is refused.
+TEST_F(Faults, SolverStopsAStalledSolveWhenAsked)
+{
+  core::Paper paper = core::tessellationWithVertices(core::TessellationKind::Miura, 400).value().paper;
+  std::srand(7);
+  for (core::Vertex& v : paper.vertices)
+    v.folded += 0.03 * paper.scale() * core::Vec3::Random();
+  Solve stalled, to_limit;
+  stalled.request.paper = toMessage(paper, 0, {});
+  for (int v : paper.faces.front().vertices)
+    stalled.request.fixed_vertices.push_back(v);
+  for (int v : paper.faces.back().vertices)
+    stalled.request.fixed_vertices.push_back(v);
+  to_limit.request = stalled.request;
+  stalled.request.stall_window = 30;
+  ASSERT_TRUE(callService("/origami/solve", stalled));
+  ASSERT_TRUE(callService("/origami/solve", to_limit));
+  EXPECT_FALSE(stalled.response.success);
+  EXPECT_NE(stalled.response.message.find("stalled"), std::string::npos) << stalled.response.message;
+  EXPECT_LE(stalled.response.iterations, 60);
+  EXPECT_FALSE(to_limit.response.success);
+  EXPECT_GT(to_limit.response.iterations, 2 * stalled.response.iterations) << to_limit.response.message;
+  Solve negative;
+  negative.request = stalled.request;
+  negative.request.stall_window = -1;
+  ASSERT_TRUE(callService("/origami/solve", negative));
+  EXPECT_FALSE(negative.response.success);
+  EXPECT_NE(negative.response.message.find("stall window"), std::string::npos) << negative.response.message;
 }
 
 TEST_F(Faults, SolverRefusesPapersThatAreNotOne)
