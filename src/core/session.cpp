@@ -157,7 +157,8 @@ Expected<Computed<RotateResult>> computeRotate(Workspace workspace, const Rotate
     for (size_t v = 0; v < ending.vertices.size(); ++v)
       ending.vertices[v].folded = ended[v];
     const SolveReport solving = result ? result->solve : SolveReport{};
-    result = core::rotate(workspace.paper, request, workspace.solver.get(), workspace.held, {},
+    // (The guide runs only where the start is not taken: a request that resolves elsewhere.)
+    result = core::rotate(workspace.paper, request, workspace.solver.get(), workspace.held, guide,
                           TurnStart{ &ending, request.angle, face, axis_edge });
     if (result && solving.iterations > 0)
     {
@@ -532,7 +533,7 @@ bool Session::setPreview(Change change)
   if (change.base_revision != history_.revision || !change.next)
     return false;
   // The two turn previews before this one on the same drag are kept: the next preview starts
-  // where the polynomial through them leads (rotate.h, TurnStart::before).
+  // where the parabola through them leads (rotate.h, TurnStart::before).
   const RotateRequest& turn = change.operation.rotate;
   const bool same_turn = preview_ && preview_kind_ == Operation::Kind::Rotate &&
                          change.operation.kind == Operation::Kind::Rotate && preview_held_ == held_ &&
