@@ -40,6 +40,45 @@ bool randomOperation(Session& session, std::mt19937& rng)
   request.angle = (unit(rng) * 2 - 1) * M_PI;
   return session.rotate(request, true).ok();
 }
+
+/// A generated 1,100-vertex Miura-ori's corner face turned about its slanted crease: a turn the
+/// solver follows, guided (from 1,000 vertices up).
+struct MiuraCornerTurn
+{
+  Paper flat = tessellationWithVertices(TessellationKind::Miura, 1100).value().paper;
+  int axis = test::slantedCreaseOf(flat, 0);
+  RotateRequest request = [this] {
+    RotateRequest r;
+    r.face = 0;
+    r.axis_edge = axis;
+    return r;
+  }();
+};
+
+/// The newton solver (balanced to `tolerance`) and the quasi_newton driver, as paper_model sets
+/// them.
+void equipForTurns(Session& session, double tolerance = SolveLimits{}.tolerance)
+{
+  std::shared_ptr<ShapeSolver> solver = makeSolver("newton");
+  solver->setLimits(SolveLimits{ tolerance, 1000, 0.0 });
+  session.setSolver(solver);
+  session.setCreaseDrivers(makeCreaseDriver("quasi_newton"));
+}
+
+/// The session's last operation with where its vertices ended, as a recording carries it.
+Operation recordedLast(const Session& session)
+{
+  Operation recorded = session.history().log.back();
+  for (const Vertex& v : session.paper().vertices)
+    recorded.folded.push_back(v.folded);
+  return recorded;
+}
+
+void expectWithinOfTheSheet(const Paper& a, const Paper& b, double share)
+{
+  for (size_t v = 0; v < a.vertices.size(); ++v)
+    EXPECT_LE((a.vertices[v].folded - b.vertices[v].folded).norm(), share * a.scale()) << "vertex " << v;
+}
 }  // namespace
 
 TEST(Session, FailuresKeepTheRevisionAndThePaper)
@@ -290,24 +329,18 @@ TEST(Session, ALoadOfThePaperAsItIsIsRefused)
 /// and a replay of it with the positions it recorded (Operation::folded) lands on it bit for bit.
 TEST(Session, ATurnCommittedAfterItsPreviewsIsItsLastPreviewAndItsReplay)
 {
-  const Paper flat = tessellationWithVertices(TessellationKind::Miura, 1100).value().paper;
+  MiuraCornerTurn turn;
+  const Paper& flat = turn.flat;
+  const int axis = turn.axis;
+  RotateRequest& request = turn.request;
   ASSERT_GE(flat.vertices.size(), TurnGuide{}.min_vertices);
-  const int axis = test::slantedCreaseOf(flat, 0);
   ASSERT_GE(axis, 0);
   // Balanced to 1e-12: near the flat sheet's singular state a strain of 1e-10 leaves the
   // vertices free along the soft mode by some 1e-9 of the sheet, by where each solve started
   // (measured 1.5e-9 between a drag's previews and the turn at once).
   Session dragged(flat), at_once(flat), replay(flat);
   for (Session* session : { &dragged, &at_once, &replay })
-  {
-    std::shared_ptr<ShapeSolver> solver = makeSolver("newton");
-    solver->setLimits(SolveLimits{ 1e-12, 1000, 0.0 });
-    session->setSolver(solver);
-    session->setCreaseDrivers(makeCreaseDriver("quasi_newton"));
-  }
-  RotateRequest request;
-  request.face = 0;
-  request.axis_edge = axis;
+    equipForTurns(*session, 1e-12);
   for (int degrees : { 4, 6, 8 })
   {
     request.angle = degrees * M_PI / 180;
@@ -324,14 +357,9 @@ TEST(Session, ATurnCommittedAfterItsPreviewsIsItsLastPreviewAndItsReplay)
   for (size_t v = 0; v < flat.vertices.size(); ++v)
     ASSERT_EQ(dragged.paper().vertices[v].folded, last_preview.vertices[v].folded) << "vertex " << v;
   ASSERT_TRUE(at_once.rotate(request, true).ok());
-  for (size_t v = 0; v < flat.vertices.size(); ++v)
-    EXPECT_LE((dragged.paper().vertices[v].folded - at_once.paper().vertices[v].folded).norm(),
-              1e-9 * flat.scale())
-        << "vertex " << v;
-  Operation recorded = dragged.history().log.back();
+  expectWithinOfTheSheet(dragged.paper(), at_once.paper(), 1e-9);
+  Operation recorded = recordedLast(dragged);
   ASSERT_EQ(recorded.kind, Operation::Kind::Rotate);
-  for (const Vertex& v : dragged.paper().vertices)
-    recorded.folded.push_back(v.folded);
   ASSERT_TRUE(replay.apply(recorded).ok());
   EXPECT_TRUE(replay.paper() == dragged.paper());
   // Recorded positions of another paper are refused, the model untouched.
@@ -349,19 +377,14 @@ TEST(Session, ATurnCommittedAfterItsPreviewsIsItsLastPreviewAndItsReplay)
 /// balanced from there to the solver's own tolerance, and its replay lands on it bit for bit.
 TEST(Session, ALooselyBalancedTurnPreviewIsCommittedToTheSolversTolerance)
 {
-  const Paper flat = tessellationWithVertices(TessellationKind::Miura, 1100).value().paper;
-  const int axis = test::slantedCreaseOf(flat, 0);
+  MiuraCornerTurn turn;
+  const int axis = turn.axis;
+  RotateRequest& request = turn.request;
   ASSERT_GE(axis, 0);
-  Session loose(flat), tight(flat), replay(flat);
+  Session loose(turn.flat), tight(turn.flat), replay(turn.flat);
   for (Session* session : { &loose, &tight, &replay })
-  {
-    session->setSolver(makeSolver("newton"));
-    session->setCreaseDrivers(makeCreaseDriver("quasi_newton"));
-  }
+    equipForTurns(*session);
   loose.setTurnPreviewTolerance(1e-8);
-  RotateRequest request;
-  request.face = 0;
-  request.axis_edge = axis;
   int loose_iterations = 0, tight_iterations = 0;
   for (int degrees : { 2, 4, 6, 8, 10 })
   {
@@ -382,10 +405,7 @@ TEST(Session, ALooselyBalancedTurnPreviewIsCommittedToTheSolversTolerance)
   EXPECT_LE(committed->solve.max_strain, 1e-10);
   EXPECT_LT(edgeStrain(loose.paper()).max, 1e-9);
   EXPECT_NEAR(loose.paper().edges[axis].fold_angle, request.angle, 1e-12);
-  Operation recorded = loose.history().log.back();
-  for (const Vertex& v : loose.paper().vertices)
-    recorded.folded.push_back(v.folded);
-  ASSERT_TRUE(replay.apply(recorded).ok());
+  ASSERT_TRUE(replay.apply(recordedLast(loose)).ok());
   EXPECT_TRUE(replay.paper() == loose.paper());
 }
 
@@ -393,23 +413,14 @@ TEST(Session, ALooselyBalancedTurnPreviewIsCommittedToTheSolversTolerance)
 /// saw) to the commit's angle; a replay with the positions it recorded lands on it bit for bit.
 TEST(Session, ATurnCommittedPastItsLastPreviewGoesOnFromItAndReplaysBitForBit)
 {
-  const Paper flat = tessellationWithVertices(TessellationKind::Miura, 1100).value().paper;
-  const int axis = test::slantedCreaseOf(flat, 0);
+  MiuraCornerTurn turn;
+  const int axis = turn.axis;
+  RotateRequest& request = turn.request;
   ASSERT_GE(axis, 0);
-  // Balanced to 1e-12: near the flat sheet's singular state a strain of 1e-10 leaves the
-  // vertices free along the soft mode by some 1e-9 of the sheet, by where each solve started
-  // (measured 1.5e-9 between a drag's previews and the turn at once).
-  Session dragged(flat), at_once(flat), replay(flat);
+  // Balanced to 1e-12, as in ATurnCommittedAfterItsPreviewsIsItsLastPreviewAndItsReplay.
+  Session dragged(turn.flat), at_once(turn.flat), replay(turn.flat);
   for (Session* session : { &dragged, &at_once, &replay })
-  {
-    std::shared_ptr<ShapeSolver> solver = makeSolver("newton");
-    solver->setLimits(SolveLimits{ 1e-12, 1000, 0.0 });
-    session->setSolver(solver);
-    session->setCreaseDrivers(makeCreaseDriver("quasi_newton"));
-  }
-  RotateRequest request;
-  request.face = 0;
-  request.axis_edge = axis;
+    equipForTurns(*session, 1e-12);
   for (int degrees : { 4, 6 })
   {
     request.angle = degrees * M_PI / 180;
@@ -421,13 +432,7 @@ TEST(Session, ATurnCommittedPastItsLastPreviewGoesOnFromItAndReplaysBitForBit)
   EXPECT_LT(edgeStrain(dragged.paper()).max, 1e-9);
   EXPECT_NEAR(dragged.paper().edges[axis].fold_angle, request.angle, 1e-12);
   ASSERT_TRUE(at_once.rotate(request, true).ok());
-  for (size_t v = 0; v < flat.vertices.size(); ++v)
-    EXPECT_LE((dragged.paper().vertices[v].folded - at_once.paper().vertices[v].folded).norm(),
-              1e-9 * flat.scale())
-        << "vertex " << v;
-  Operation recorded = dragged.history().log.back();
-  for (const Vertex& v : dragged.paper().vertices)
-    recorded.folded.push_back(v.folded);
-  ASSERT_TRUE(replay.apply(recorded).ok());
+  expectWithinOfTheSheet(dragged.paper(), at_once.paper(), 1e-9);
+  ASSERT_TRUE(replay.apply(recordedLast(dragged)).ok());
   EXPECT_TRUE(replay.paper() == dragged.paper());
 }
