@@ -928,11 +928,14 @@ int main(int argc, char** argv)
   const std::vector<std::string> other_sizes = split(pnh.param<std::string>("other_sizes", "1000"));
   const int steps_40 = pnh.param("slide_steps_40", 40);    // 1 % a move
   const int steps_100 = pnh.param("slide_steps_100", 20);  // 5 % a move
+  // A mouse drags a face 10° in about half a second: at paper_model's pace, previews 0.5° apart.
+  const int turn_steps = std::max(1, pnh.param("turn_steps", 20));
   const double timeout = pnh.param("timeout", 180.0);      // for any answer; longer is recorded as none
-  // "all", or "slider": the slides and their releases alone (no fold commits, turns, drags or
-  // breakdown), for measuring the slider's previews in a minute.
+  // "all"; "slider": the slides and their releases alone (no fold commits, turns, drags or
+  // breakdown), for measuring the slider's previews in a minute; "turn": the turn alone.
   const std::string actions = pnh.param<std::string>("actions", "all");
-  const bool everything = actions != "slider";
+  const bool turns_only = actions == "turn";
+  const bool everything = actions != "slider" && !turns_only;
   if (data_dir.empty())
   {
     std::fprintf(stderr, "user_path_bench: ~data_dir (paper_model's data folder) is needed\n");
@@ -1020,16 +1023,17 @@ int main(int argc, char** argv)
       if (r.success)
         path.undo();
     }
-    // The corner face turned 1°..10° as previews, then 10° committed, undone.
-    if (everything)
+    // The corner face turned to 10° in `turn_steps` previews, then 10° committed, undone.
+    if (everything || turns_only)
     {
       Rotate r;
       r.request.face = -1;
       r.request.axis_edge = -1;
       r.request.click = toPoint(corner.click);
       r.request.commit = false;
-      for (int degrees = 2; degrees <= 10; degrees += 2)
+      for (int i = 1; i <= turn_steps; ++i)
       {
+        const double degrees = 10.0 * i / turn_steps;
         r.request.angle = degrees * M_PI / 180.0;
         const Row row = path.rotate(r, degrees);
         write(row);
@@ -1045,6 +1049,8 @@ int main(int argc, char** argv)
       if (row.success)
         path.undo();
     }
+    if (turns_only)
+      continue;
     // The slider to 40 %, released (kept); the corner vertex dragged up from there.
     bool at_40 = false;
     for (const Row& r : path.slide(0.4, steps_40, "slider_release_40"))
