@@ -5,6 +5,7 @@
 #include <functional>
 #include <limits>
 #include <list>
+#include <optional>
 #include <utility>
 #include <sstream>
 
@@ -295,6 +296,41 @@ void extrapolate(const std::vector<std::pair<const Paper*, double>>& earlier, co
     }
 }
 
+/// The unit normal of a model lying flat (every vertex within `tolerance` of one face's plane),
+/// or none.
+std::optional<Vec3> flatNormal(const Paper& paper, double tolerance)
+{
+  if (paper.faces.empty() || paper.faces[0].vertices.empty())
+    return std::nullopt;
+  const Vec3 normal = paper.faceNormal(0);
+  if (!normal.allFinite() || normal.norm() < 0.5)
+    return std::nullopt;
+  const Vec3 origin = paper.vertices[paper.faces[0].vertices[0]].folded;
+  for (const Vertex& v : paper.vertices)
+    if (std::abs((v.folded - origin).dot(normal)) > tolerance)
+      return std::nullopt;
+  return normal;
+}
+
+/// Places the vertices the solver moves for a turn `to` of a model that lies flat, from one
+/// solved state `current` of the same turn at `done`. Turned the other way, a flat model moves
+/// as its mirror image across its plane, so across the plane its vertices move by odd powers of
+/// the turn and along it by even ones: by the turn and its square near the flat sheet, where the
+/// guide's start costs a drag's second preview ten of the driver's steps and a line through the
+/// two states misses by the square of the step.
+void extrapolateFromFlat(const Paper& model, const Vec3& normal, const Paper& current, double done, double to,
+                         const std::vector<char>& fixed, Paper& attempt)
+{
+  const double ratio = to / done;
+  for (size_t v = 0; v < attempt.vertices.size(); ++v)
+    if (!fixed[v])
+    {
+      const Vec3 moved = current.vertices[v].folded - model.vertices[v].folded;
+      const Vec3 across = moved.dot(normal) * normal;
+      attempt.vertices[v].folded = model.vertices[v].folded + ratio * across + ratio * ratio * (moved - across);
+    }
+}
+
 /// The solved states before the current one a stage extrapolates from: two (a parabola).
 constexpr size_t kEarlierStates = 2;
 
@@ -312,6 +348,10 @@ Expected<Paper> solveInStages(const Paper& start, double from, double turn,
                               std::vector<std::pair<const Paper*, double>> earlier = {}, double looser = 0.0)
 {
   const double remaining = turn - from;
+  // A flat model at no turn among the earlier states: a stage may start on its mirror symmetry.
+  const std::optional<Vec3> flat = earlier.size() == 1 && earlier[0].second == 0 ?
+                                       flatNormal(*earlier[0].first, 1e-9 * start.scale()) :
+                                       std::nullopt;
   const int stages = std::max(1, static_cast<int>(std::ceil(std::abs(remaining) / kMaxStage - 1e-9)));
   Paper current = start;
   std::list<Paper> solved;  // the stages' states before `current`
@@ -329,6 +369,8 @@ Expected<Paper> solveInStages(const Paper& start, double from, double turn,
     // guide: a 30° turn from the flat sheet in 10° stages); else the guide, if any, gives the start.
     if (to != done && earlier.size() >= kEarlierStates)
       extrapolate(earlier, current, done, to, fixed, attempt);
+    else if (to != done && done != 0 && earlier.size() == 1 && earlier[0].second == 0 && flat)
+      extrapolateFromFlat(*earlier[0].first, *flat, current, done, to, fixed, attempt);
     else if (to != done && guide)
       guide(current, to, attempt);
     SolveReport stage = looser > 0 ? solver.solveLoosely(attempt, fixed, looser) : solver.solve(attempt, fixed);

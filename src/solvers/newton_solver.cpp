@@ -308,7 +308,7 @@ NewtonSolver::~NewtonSolver() = default;
 
 SolveReport NewtonSolver::solve(Paper& paper, const std::vector<char>& fixed)
 {
-  return solveWithin(paper, fixed, limits_);
+  return solveWithin(paper, fixed, limits_, options_.min_damping);
 }
 
 SolveReport NewtonSolver::solveLoosely(Paper& paper, const std::vector<char>& fixed, double looser)
@@ -316,10 +316,11 @@ SolveReport NewtonSolver::solveLoosely(Paper& paper, const std::vector<char>& fi
   SolveLimits limits = limits_;
   if (looser > limits.tolerance)
     limits.tolerance = looser;
-  return solveWithin(paper, fixed, limits);
+  return solveWithin(paper, fixed, limits, std::min(options_.min_damping, options_.frame_damping));
 }
 
-SolveReport NewtonSolver::solveWithin(Paper& paper, const std::vector<char>& fixed, const SolveLimits& limits)
+SolveReport NewtonSolver::solveWithin(Paper& paper, const std::vector<char>& fixed, const SolveLimits& limits,
+                                      double floor)
 {
   numerics::SolveBudget budget(limits);
   SolveReport report;
@@ -338,7 +339,7 @@ SolveReport NewtonSolver::solveWithin(Paper& paper, const std::vector<char>& fix
   std::string stuck;
   std::vector<double> distances;  // how far from the tolerance each iteration started (1: there)
   std::vector<double> energies;   // the rigid-face energy each iteration started from
-  double damping_floor = options_.min_damping;
+  double damping_floor = floor;
   bool factored = false;
   bool diverged = !std::isfinite(fit.energy);
   while (!diverged)
@@ -430,7 +431,7 @@ SolveReport NewtonSolver::solveWithin(Paper& paper, const std::vector<char>& fix
     if (whole_fresh_step && at_floor && fit.energy > 0.5 * energy_before)
       damping_floor = std::max(options_.lowest_damping, damping_floor * kFloorCut);
     else if (!whole_fresh_step)
-      damping_floor = options_.min_damping;
+      damping_floor = floor;
     // A kept factorisation pays while it cuts the energy fast; when progress slows, refresh.
     if (!options_.reuse_factorization || fit.energy > options_.refactor_ratio * energy_before)
       factored = false;

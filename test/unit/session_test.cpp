@@ -7,6 +7,7 @@
 #include "virtual_origami/core/session.h"
 #include "virtual_origami/core/tessellations.h"
 #include "virtual_origami/solvers/crease_driver_factory.h"
+#include "virtual_origami/solvers/newton_solver.h"
 #include "virtual_origami/solvers/solver_factory.h"
 
 using namespace virtual_origami::core;
@@ -407,6 +408,42 @@ TEST(Session, ALooselyBalancedTurnPreviewIsCommittedToTheSolversTolerance)
   EXPECT_NEAR(loose.paper().edges[axis].fold_angle, request.angle, 1e-12);
   ASSERT_TRUE(replay.apply(recordedLast(loose)).ok());
   EXPECT_TRUE(replay.paper() == loose.paper());
+}
+
+/// A drag's loosely balanced previews start at the frame's lower damping floor
+/// (NewtonOptions::frame_damping): near the flat sheet their steps at the solver's own floor creep
+/// until the floor is lowered. On a drag in 1° steps the previews take fewer of Newton's steps
+/// in all, each balanced to the preview's strain, and the commit is balanced to the solver's.
+TEST(Session, ALooseTurnPreviewStartsAtTheFramesLowerDampingFloor)
+{
+  MiuraCornerTurn turn;
+  RotateRequest& request = turn.request;
+  ASSERT_GE(turn.axis, 0);
+  int iterations[2] = { 0, 0 };
+  for (int floor_kept : { 0, 1 })
+  {
+    NewtonOptions options;
+    if (floor_kept)
+      options.frame_damping = options.min_damping;
+    auto solver = std::make_shared<NewtonSolver>(options);
+    solver->setLimits(SolveLimits{ SolveLimits{}.tolerance, 1000, 0.0 });
+    Session session(turn.flat);
+    session.setSolver(solver);
+    session.setCreaseDrivers(makeCreaseDriver("quasi_newton"));
+    session.setTurnPreviewTolerance(1e-8);
+    for (int degrees = 1; degrees <= 10; ++degrees)
+    {
+      request.angle = degrees * M_PI / 180;
+      const Expected<RotateResult> preview = session.rotate(request, false);
+      ASSERT_TRUE(preview) << preview.message();
+      EXPECT_LE(preview->solve.max_strain, 1e-8) << degrees << "°";
+      iterations[floor_kept] += preview->solve.iterations;
+    }
+    const Expected<RotateResult> committed = session.rotate(request, true);
+    ASSERT_TRUE(committed) << committed.message();
+    EXPECT_LT(edgeStrain(session.paper()).max, 1e-9);
+  }
+  EXPECT_LT(iterations[0], iterations[1]) << iterations[0] << " against " << iterations[1];
 }
 
 /// A commit at another angle than the drag's last preview goes on from it (the branch the user
