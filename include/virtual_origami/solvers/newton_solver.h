@@ -55,7 +55,9 @@ public:
   SolveReport solveLoosely(Paper& paper, const std::vector<char>& fixed, double looser) override;
 
 private:
-  SolveReport solveWithin(Paper& paper, const std::vector<char>& fixed, const SolveLimits& limits, double floor);
+  /// `floor`: the damping floor it starts at; `frame`: a drag's frame (solveLoosely).
+  SolveReport solveWithin(Paper& paper, const std::vector<char>& fixed, const SolveLimits& limits, double floor,
+                          bool frame);
 
   struct Setup;  // sparse pattern and symbolic factorisation, kept while faces and held vertices stay
 
