@@ -27,12 +27,13 @@ struct NewtonOptions
   /// are less stiff than 1e-8, and the floor, not the model, held its steps back. (A lower floor
   /// lets rounding move an unheld exact mechanism further: docs/SOLVERS.md, Known limits.)
   double lowest_damping = 1e-12;
-  /// The floor a drag's frame starts at (solveLoosely): near the flat sheet its steps creep at
-  /// min_damping until the floor is lowered, two of a preview's four iterations at 1,681
-  /// vertices. Lower for every solve, a rigid closure drifted along its mechanism's free motion
-  /// (a degree-4 vertex's crease angles 1.4e-6 from the driver's balance); a frame is balanced
-  /// again when committed.
-  double frame_damping = 1e-10;
+  /// The floor a drag's frame starts at and returns to (solveLoosely): near the flat sheet its
+  /// steps crept at min_damping until the floor was lowered, three of a preview's four
+  /// iterations at 1,681 vertices; at 10,000 a drag's later previews now take one step, not four.
+  /// Lower for every solve (1e-10 or 1e-12), rigid closures drifted along their mechanism's free
+  /// motion (a degree-4 vertex's crease angles 1.4e-6 from the driver's balance) or failed; a
+  /// frame is balanced again, at min_damping, when its turn is committed.
+  double frame_damping = 1e-12;
   /// Keep a factorisation for the next steps while each cuts the energy below
   /// refactor_ratio of what it was (a chord step: one back-substitution instead of a
   /// factorisation); refactor when progress slows.
