@@ -34,6 +34,8 @@ struct NewtonOptions
   /// motion (a degree-4 vertex's crease angles 1.4e-6 from the driver's balance) or failed; a
   /// frame is balanced again, at min_damping, when its turn is committed.
   double frame_damping = 1e-12;
+  /// A frame's whole step that creeps is tried longer while the energy falls (up to 32 times).
+  bool extend_creeping_frames = true;
   /// Keep a factorisation for the next steps while each cuts the energy below
   /// refactor_ratio of what it was (a chord step: one back-substitution instead of a
   /// factorisation); refactor when progress slows.
