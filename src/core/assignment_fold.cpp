@@ -499,6 +499,27 @@ std::vector<int> facesBesideStuckCreases(const Paper& before, const Paper& after
 }
 }  // namespace
 
+void prepareAssignmentPreviews(const Paper& paper, CreaseDriver& driver, const std::vector<int>& held)
+{
+  std::vector<char> fixed(paper.vertices.size(), 0);
+  for (int v : held)
+  {
+    if (v < 0 || static_cast<size_t>(v) >= fixed.size())
+      return;
+    fixed[v] = 1;
+  }
+  // As foldOnce makes its frame's paper, targets and held vertices (the driven set, not the
+  // fraction, is what the driver's set-up depends on).
+  Paper work = paper;
+  makeLockedFacesCompliant(work);
+  for (int v : pieceAnchors(paper))
+    fixed[v] = 1;
+  const std::vector<double> targets = creaseTargets(work);
+  if (std::none_of(targets.begin(), targets.end(), [](double t) { return std::isfinite(t); }))
+    return;
+  driver.prepare(work, targets, fixed);
+}
+
 Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFoldRequest& request,
                                                 CreaseDriver& driver, ShapeSolver* rigid, const std::vector<int>& held)
 {
