@@ -263,8 +263,11 @@ bool closeByStiffening(Paper& closed, const Paper& work, const std::vector<doubl
 /// converging to a rigid state moves a hundredth as far the second time (its strain falls as
 /// 1/K), that Miura-ori a sixteenth; one that folds only through strained faces (a square twist
 /// at 50 %) a fifth to a quarter, creeping towards a distant rigid state.
+///
+/// `stiffen` false: the rigid solver's closure alone (a shortcut's test, where a failure costs
+/// the two stiffened balances of up to 100 iterations each for nothing).
 bool closeRigidly(Paper& work, double scale, const std::vector<double>& goal, const std::vector<char>& fixed,
-                  const CreaseDriver& driver, ShapeSolver& rigid)
+                  const CreaseDriver& driver, ShapeSolver& rigid, bool stiffen = true)
 {
   const double strain = largest(faceStrains(work));
   Paper closed = work;
@@ -277,7 +280,7 @@ bool closeRigidly(Paper& work, double scale, const std::vector<double>& goal, co
     const bool as_close = angleError(closed, goal) <= angleError(work, goal) + 10.0 * strain;
     taken = near || as_close;
   }
-  if (!taken && strain > 0.0 && closeByStiffening(closed, work, goal, fixed, driver, rigid))
+  if (!taken && stiffen && strain > 0.0 && closeByStiffening(closed, work, goal, fixed, driver, rigid))
   {
     measureAngles(closed);
     taken = true;
@@ -438,13 +441,14 @@ Expected<AssignmentFoldResult> foldOnce(Paper& paper, const AssignmentFoldReques
       soft->setFaceStiffness(request.path_stiffness);
     CreaseDriver& path = soft ? *soft : *fresh;
     // A commit going on from a preview frame (request.committed) starts on the branch the user
-    // saw: the goal is driven in one stage with the driver's own faces first, and taken where that
-    // balance closes rigidly (a rigid state within reach: no path through soft faces leads to a
-    // better one) with no crease against its target and most creases asked to turn turned;
-    // staged from the frame otherwise (a square twist, which folds only through strained faces).
-    // Staged through soft faces, the release at 100 % of a 10,000-vertex Miura-ori after a slide
-    // of one-iteration frames (the last fitting 70 %) took six stages and 4.4 s of the driver,
-    // where one stage takes 0.9 s (both then rigid, at the targets to 2e-10 rad).
+    // saw: the goal is driven in one stage with the driver's own faces first, and taken where
+    // the rigid solver alone closes that balance (a rigid state within reach: no path through
+    // soft faces leads to a better one) with no crease against its target and most creases
+    // asked to turn turned; staged from the frame otherwise (a square twist, which folds only
+    // through strained faces). Staged through soft faces, the release at 100 % of a
+    // 10,000-vertex Miura-ori after a slide of one-iteration frames (the last fitting 70 %) took
+    // six stages and 4.4 s of the driver, where one stage takes 0.9 s (both then rigid, at the
+    // targets to 2e-10 rad).
     if (request.committed && stages > 1 && rigid)
     {
       // A hundred iterations at most: one stage that crawls is no shortcut.
@@ -459,7 +463,7 @@ Expected<AssignmentFoldResult> foldOnce(Paper& paper, const AssignmentFoldReques
       countStuck(*request.committed, tried, goal, turned);
       direct = report.converged && !report.diverged && againstTarget(tried, goal) == 0 &&
                2 * turned.stuck <= turned.asked_to_turn &&
-               closeRigidly(tried, paper.scale(), goal, fixed, driver, *rigid);
+               closeRigidly(tried, paper.scale(), goal, fixed, driver, *rigid, false);
       addStage(result.solve, report);
       if (direct)
         work = std::move(tried);
