@@ -299,19 +299,11 @@ void PaperModelNode::warmUpPreviews()
     std::lock_guard<std::mutex> drivers(drivers_mutex_);
     if (preview_frames_ != frames)
       continue;  // a preview came first and set the driver up
-    // On a clone, which shares what depends on the pattern alone (the Gauss-Newton matrix's
-    // analysis and assembly plan) but not the frames: the preview driver's own frames, and so the
-    // state a release commits from, stay as they were. Warmed itself, the driver went on from
-    // the warm-up's frame, and the release at 40 % of a 10,000-vertex Miura-ori took 9 iterations
-    // instead of 6 (twice of two), 0.8 s more.
-    const std::unique_ptr<core::CreaseDriver> warm = preview_driver_->clone();
-    core::AssignmentFoldRequest request;
-    const double from = core::foldFraction(paper);
-    request.fraction = from <= 0.99 ? from + 0.01 : from - 0.01;
-    request.converge = false;
-    const auto warmed = core::foldByAssignment(paper, request, *warm, nullptr, held);
-    ROS_DEBUG("paper_model: preview driver warmed up for %zu vertices: %s", paper.vertices.size(),
-              warmed ? "ready" : warmed.message().c_str());
+    // On the preview driver itself, which readies what its first frame would make (its set-up
+    // and factorisations) without a frame: its frames, and so the state a release commits from,
+    // stay as they were.
+    core::prepareAssignmentPreviews(paper, *preview_driver_, held);
+    ROS_DEBUG("paper_model: preview driver prepared for %zu vertices", paper.vertices.size());
   }
 }
 

@@ -55,6 +55,28 @@ SolveReport QuasiNewtonDriver::DriveRun::run()
   return finish();
 }
 
+/// The constant matrix factorised and, for a lagged driver without a kept factorisation, the
+/// Gauss–Newton matrix at the paper's state, as a first frame's refresh would make it (its
+/// faces' frames recorded for refactor_turn). A kept factorisation stays: the frames going on
+/// from it are the driver's own. The energy pass a budgeted frame's line search is planned by is
+/// timed too.
+void QuasiNewtonDriver::DriveRun::prepareFirstFrame()
+{
+  if (free_.empty())
+    return;
+  setup_.factorConstant();
+  if (options_.hessian != DriverHessian::Lagged || setup_.gauss_newton.valid())
+    return;
+  anchored_ = std::any_of(fixed_.begin(), fixed_.end(), [](char c) { return c != 0; });
+  if (!refactor())
+    return;
+  setup_.factor_frames = energy_.linearize(x_).frame;
+  setup_.prepared_start = start_;
+  const double evaluate_from = budget_.seconds();
+  energy_.evaluate(x_, &gradient_);
+  setup_.evaluate_seconds = budget_.seconds() - evaluate_from;
+}
+
 /// Every vertex held, or a constant driver whose matrix is not definite (it is factorised here,
 /// at its first use, and counted).
 bool QuasiNewtonDriver::DriveRun::nothingToSolve()
@@ -80,7 +102,10 @@ void QuasiNewtonDriver::DriveRun::planFrame()
   anchored_ = std::any_of(fixed_.begin(), fixed_.end(), [](char c) { return c != 0; });
   continues_ = setup_.last.cols() == x_.cols() && setup_.last == start_;
   const bool motion_known = setup_.last_start.cols() == x_.cols() && setup_.last_start != setup_.last;
-  subspace_frame_ = options_.hessian == DriverHessian::Lagged && options_.subspace_frames &&
+  // The set-up's first frame is the same whether prepare made its factorisation or it makes it
+  // itself (a subspace frame without a motion to go by lags the slide after it).
+  first_frame_ = setup_.last.cols() == 0;
+  subspace_frame_ = options_.hessian == DriverHessian::Lagged && options_.subspace_frames && !first_frame_ &&
                     (motion_known || setup_.gauss_newton.valid()) && limits_.max_seconds > 0 &&
                     limits_.max_seconds < options_.subspace_below_seconds;
   predicts_ = options_.predict && !subspace_frame_ && continues_ && setup_.last_continued &&
@@ -108,8 +133,12 @@ void QuasiNewtonDriver::DriveRun::start()
     evaluateStart();
   if (!start_evaluated_)
     evaluateStart();
-  refresh_ = !subspace_frame_ && options_.hessian != DriverHessian::Constant &&
-             (options_.hessian == DriverHessian::Exact || !setup_.gauss_newton.valid());
+  // A first frame takes prepare's factorisation only where it was made at this very state.
+  const bool prepared_here =
+      first_frame_ && setup_.prepared_start.cols() == x_.cols() && setup_.prepared_start == start_;
+  refresh_ =
+      !subspace_frame_ && options_.hessian != DriverHessian::Constant &&
+      (options_.hessian == DriverHessian::Exact || !setup_.gauss_newton.valid() || (first_frame_ && !prepared_here));
   g_ = gather(gradient_);
   spread_ = Positions::Zero(3, x_.cols());
   diverged_ = !std::isfinite(now_.energy);

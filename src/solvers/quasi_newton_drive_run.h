@@ -22,6 +22,8 @@ public:
   /// Makes (or keeps) the driver's set-up for this pattern, holds and driven creases.
   DriveRun(QuasiNewtonDriver& driver, Paper& paper, const std::vector<double>& target, const std::vector<char>& fixed);
   SolveReport run();
+  /// What the first frame would factorise, made without a frame (QuasiNewtonDriver::prepare).
+  void prepareFirstFrame();
 
 private:
   /// Where the line search ended: the trial taken, if any.
@@ -99,6 +101,8 @@ private:
   // Start from a prediction along the motion when this is the frame after the last two (the
   // last went on from the one before it: a new slide's second frame has no motion to go by).
   bool continues_ = false;
+  // The first frame on this set-up (none returned yet).
+  bool first_frame_ = false;
   // A frame whose budget cannot pay for a factorisation of the Gauss–Newton matrix, going on
   // from the last frame along its motion: its steps come from the subspace of that motion and
   // the constant matrix's conjugate directions (subspaceStep), no factorisation used.

@@ -46,4 +46,11 @@ SolveReport QuasiNewtonDriver::drive(Paper& paper, const std::vector<double>& ta
   return DriveRun(*this, paper, target, fixed).run();
 }
 
+void QuasiNewtonDriver::prepare(const Paper& paper, const std::vector<double>& target, const std::vector<char>& fixed)
+{
+  const std::lock_guard<std::mutex> lock(mutex_);
+  Paper copy = paper;  // a call's run works on a paper; this one moves nothing
+  DriveRun(*this, copy, target, fixed).prepareFirstFrame();
+}
+
 }  // namespace virtual_origami::core

@@ -72,6 +72,9 @@ struct QuasiNewtonDriver::Setup
   bool last_balanced = true;      // whether the last frame reached balance within its budget
   bool last_continued = false;    // the last frame went on from the one before it
   double last_face_energy = 0.0;  // the face term of the energy at the last frame
+  // Where QuasiNewtonDriver::prepare factorised the Gauss–Newton matrix before any frame: the
+  // first frame from there takes that factor as its own (empty: not prepared).
+  Positions prepared_start;
 
   Setup(const Paper& paper, const std::vector<char>& held, const std::vector<double>& target, double stiffness,
         std::shared_ptr<numerics::SpdFactorization::SharedAnalysis> analysis);

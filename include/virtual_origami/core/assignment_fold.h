@@ -38,6 +38,14 @@ public:
   /// use this one); what depends on the pattern alone, like a factorisation's ordering, may be
   /// shared.
   virtual std::unique_ptr<CreaseDriver> clone() const = 0;
+  /// Readies what this driver's first call on `paper` with these targets' driven creases and
+  /// `fixed` would make before it could move anything (a set-up, a factorisation at the paper's
+  /// state), so that a caller can pay for it ahead of that call (in the background, after a new
+  /// pattern). Moves nothing and leaves what later calls go on from (the last frames) as it
+  /// was. Nothing by default.
+  virtual void prepare(const Paper& /*paper*/, const std::vector<double>& /*target*/,
+                       const std::vector<char>& /*fixed*/)
+  {}
 
   const SolveLimits& limits() const { return limits_; }
   void setLimits(const SolveLimits& limits) { limits_ = limits; }
@@ -131,6 +139,12 @@ struct AssignmentFoldAcceptance
   /// True: the state is kept whatever it is (the caller asked for it), its figures reported.
   bool keep = false;
 };
+
+/// Readies `driver` for foldByAssignment's preview frames (converge false) on `paper` with
+/// `held` vertices, as their first frame would (CreaseDriver::prepare): the same faces (locked
+/// ones made compliant on a copy), driven creases and held vertices. Nothing where `held` names
+/// a vertex not on the paper (the frame refuses it).
+void prepareAssignmentPreviews(const Paper& paper, CreaseDriver& driver, const std::vector<int>& held = {});
 
 /// What makes `result` wrong by `acceptance` (figures included, for the answer), or "" when
 /// nothing does or the caller keeps it anyway.

@@ -98,6 +98,11 @@ public:
   /// limits().tolerance · the sheet's scale (balance), whatever strain the faces keep.
   /// Calls from several threads take turns (the set-up and the kept factorisation are shared).
   SolveReport drive(Paper& paper, const std::vector<double>& target, const std::vector<char>& fixed) override;
+  /// The set-up for this pattern, held vertices and driven creases, its constant matrix
+  /// factorised and (lagged) the Gauss–Newton matrix at the paper's state, where the kept ones
+  /// do not serve: a preview's first frame then pays for no factorisation and is a subspace
+  /// frame (the kept matrix's step among its directions). The last frames stay as they were.
+  void prepare(const Paper& paper, const std::vector<double>& target, const std::vector<char>& fixed) override;
   std::unique_ptr<CreaseDriver> clone() const override;
 
   const QuasiNewtonOptions& options() const { return options_; }
