@@ -51,7 +51,9 @@ core::SolveReport RemoteSolver::solveLoosely(core::Paper& paper, const std::vect
   // A connection made per call was now and then lost under load (seen in contention_bench: one
   // call in 60; callService now avoids roscpp's cause of it). A connection can still break: the
   // solve is a pure function, so a lost call is made again within the deadline.
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_);
+  // The solver's own budget grows with the paper beyond 10,000 vertices; so does the wait for it.
+  const double timeout = core::budgetForSize(timeout_, paper.vertices.size());
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout);
   auto shared = std::make_shared<Solve>(std::move(call));
   for (int attempt = 1;; ++attempt)
   {
@@ -68,8 +70,9 @@ core::SolveReport RemoteSolver::solveLoosely(core::Paper& paper, const std::vect
         --*stalled;
       }).detach();
       char seconds[32];
-      std::snprintf(seconds, sizeof seconds, "%g", timeout_);
-      report.message = "the solver service " + service_ + " did not answer within solver_timeout (" + seconds + " s)";
+      std::snprintf(seconds, sizeof seconds, "%g", timeout);
+      report.message = "the solver service " + service_ + " did not answer within solver_timeout (" + seconds +
+                       " s for this paper's size)";
       return report;
     }
     if (done.get())

@@ -65,10 +65,11 @@ bool SpringSolverNode::solve(Solve::Request& req, Solve::Response& res)
     }
     fixed[v] = 1;
   }
-  // This solve's stall window (callbacks take turns: ros::spin), then the node's limits again.
+  // This solve's stall window and budget (callbacks take turns: ros::spin), then the node's limits again.
   const core::SolveLimits configured = solver_->limits();
   core::SolveLimits limits = configured;
   limits.stall_window = req.stall_window;
+  limits.max_seconds = core::budgetForSize(configured.max_seconds, paper->vertices.size());
   solver_->setLimits(limits);
   const core::SolveReport report = req.looser_tolerance > 0 ?
                                        solver_->solveLoosely(*paper, fixed, req.looser_tolerance) :

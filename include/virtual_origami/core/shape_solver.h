@@ -1,6 +1,7 @@
 // The interface every rigid-face solver implements: restore face shapes around held vertices.
 #pragma once
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,14 @@ struct SolveLimits
   /// (the 6-point hypar's closures), so a caller that would take any rigid state leaves it off.
   int stall_window = 0;
 };
+
+/// A solve's time budget for a paper of `vertices`: `seconds` up to 10,000 vertices, growing in
+/// proportion beyond (a step's factorisation grows at least as fast: at 100,000 vertices a
+/// release's rigid closure took 1 s a step and its 3-s budget stopped it after three).
+inline double budgetForSize(double seconds, size_t vertices)
+{
+  return seconds * std::max(1.0, static_cast<double>(vertices) / 1e4);
+}
 
 class ShapeSolver
 {
