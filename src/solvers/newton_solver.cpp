@@ -336,7 +336,7 @@ NewtonSolver::~NewtonSolver() = default;
 
 SolveReport NewtonSolver::solve(Paper& paper, const std::vector<char>& fixed)
 {
-  return solveWithin(paper, fixed, limits_, options_.min_damping, false);
+  return solveWithin(paper, fixed, limits_, false);
 }
 
 SolveReport NewtonSolver::solveLoosely(Paper& paper, const std::vector<char>& fixed, double looser)
@@ -344,12 +344,13 @@ SolveReport NewtonSolver::solveLoosely(Paper& paper, const std::vector<char>& fi
   SolveLimits limits = limits_;
   if (looser > limits.tolerance)
     limits.tolerance = looser;
-  return solveWithin(paper, fixed, limits, std::min(options_.min_damping, options_.frame_damping), true);
+  return solveWithin(paper, fixed, limits, true);
 }
 
 SolveReport NewtonSolver::solveWithin(Paper& paper, const std::vector<char>& fixed, const SolveLimits& limits,
-                                      double floor, bool frame)
+                                      bool frame)
 {
+  const double floor = frame ? std::min(options_.min_damping, options_.frame_damping) : options_.min_damping;
   numerics::SolveBudget budget(limits);
   SolveReport report;
   if (!setup_ || !setup_->matches(paper, fixed))

@@ -319,11 +319,13 @@ namespace virtual_origami::core
 {
 namespace
 {
-/// The corner face of an 8 × 8 Miura-ori turned about its slanted crease (one degree of
-/// freedom), a quasi-Newton crease driver as the guide whatever the size.
-class GuidedMiuraTurn : public ::testing::Test
+/// The corner face of a Miura-ori turned about its slanted crease (one degree of freedom), a
+/// quasi-Newton crease driver as the guide whatever the size.
+class MiuraCornerTurn : public ::testing::Test
 {
 protected:
+  explicit MiuraCornerTurn(Paper paper) : start(std::move(paper)), axis(test::slantedCreaseOf(start, 0)) {}
+
   void SetUp() override
   {
     ASSERT_GE(axis, 0);
@@ -333,12 +335,26 @@ protected:
     request.axis_edge = axis;
   }
 
-  const Paper start = miuraTessellation(8, 8).value().paper;
-  const int axis = test::slantedCreaseOf(start, 0);
+  const Paper start;
+  const int axis;
   NewtonSolver solver;
   const std::unique_ptr<CreaseDriver> driver = makeCreaseDriver("quasi_newton");
   TurnGuide guide;
   RotateRequest request;
+};
+
+/// An 8 × 8 Miura-ori's.
+class GuidedMiuraTurn : public MiuraCornerTurn
+{
+protected:
+  GuidedMiuraTurn() : MiuraCornerTurn(miuraTessellation(8, 8).value().paper) {}
+};
+
+/// A 1,100-vertex Miura-ori's, near its flat sheet's singular balance.
+class NearFlatMiuraTurn : public MiuraCornerTurn
+{
+protected:
+  NearFlatMiuraTurn() : MiuraCornerTurn(tessellationWithVertices(TessellationKind::Miura, 1100).value().paper) {}
 };
 
 /// A crease driver's start changes how fast a turn is followed, not where it ends: on a
@@ -430,18 +446,8 @@ TEST_F(GuidedMiuraTurn, APreviewGoingOnFromTheLastEndsWhereTheTurnFromThePaperEn
 /// alone they do not (1,100 vertices; from the line through the model and the last preview:
 /// strain 1e-3 at the start against 2e-6, and 1e-7 after the two steps).
 /// It ends on the branch the turn from the paper ends on.
-TEST(Rotate, APreviewStartsWhereTheDragsPreviewsBeforeItLead)
+TEST_F(NearFlatMiuraTurn, APreviewStartsWhereTheDragsPreviewsBeforeItLead)
 {
-  const Paper start = tessellationWithVertices(TessellationKind::Miura, 1100).value().paper;
-  const int axis = test::slantedCreaseOf(start, 0);
-  ASSERT_GE(axis, 0);
-  NewtonSolver solver;
-  const std::unique_ptr<CreaseDriver> driver = makeCreaseDriver("quasi_newton");
-  TurnGuide guide;
-  guide.driver = driver.get();
-  RotateRequest request;
-  request.face = 0;
-  request.axis_edge = axis;
   Paper at2 = start, at4 = start;
   request.angle = 2 * kDeg;
   ASSERT_TRUE(rotate(at2, request, &solver, {}, guide).ok());
@@ -507,20 +513,10 @@ TEST(Rotate, ANewtonSolveTooSlowForItsToleranceStopsAndIsRefused)
 /// across the plane and by its square along it, leads: from there one of Newton's steps reaches
 /// 1e-8 at 1,100 vertices, on the branch the turn from the flat sheet ends on; from a folded
 /// model (no mirror image) the same step is refused.
-TEST(Rotate, ADragsSecondPreviewFromTheFlatSheetStartsOnItsMirrorImage)
+TEST_F(NearFlatMiuraTurn, ADragsSecondPreviewFromTheFlatSheetStartsOnItsMirrorImage)
 {
-  const Paper start = tessellationWithVertices(TessellationKind::Miura, 1100).value().paper;
-  const int axis = test::slantedCreaseOf(start, 0);
-  ASSERT_GE(axis, 0);
   const Vec3 normal = start.faceNormal(0);
   const Vec3 origin = start.vertices[0].folded;
-  NewtonSolver solver;
-  const std::unique_ptr<CreaseDriver> driver = makeCreaseDriver("quasi_newton");
-  TurnGuide guide;
-  guide.driver = driver.get();
-  RotateRequest request;
-  request.face = 0;
-  request.axis_edge = axis;
   Paper up = start, down = start;
   request.angle = 2 * kDeg;
   ASSERT_TRUE(rotate(up, request, &solver, {}, guide).ok());

@@ -58,9 +58,9 @@ public:
   SolveReport solveLoosely(Paper& paper, const std::vector<char>& fixed, double looser) override;
 
 private:
-  /// `floor`: the damping floor it starts at; `frame`: a drag's frame (solveLoosely).
-  SolveReport solveWithin(Paper& paper, const std::vector<char>& fixed, const SolveLimits& limits, double floor,
-                          bool frame);
+  /// `frame`: a drag's frame (solveLoosely): NewtonOptions::frame_damping, creeping steps
+  /// tried longer, the analysis readied.
+  SolveReport solveWithin(Paper& paper, const std::vector<char>& fixed, const SolveLimits& limits, bool frame);
 
   struct Setup;  // sparse pattern and symbolic factorisation, kept while faces and held vertices stay
 
