@@ -64,7 +64,8 @@ struct QuasiNewtonOptions
   /// A step whose linear trial the line search refuses is tried once more with its faces
   /// restored (one step of the constant matrix) before it is shortened: a turn's first steps
   /// from the flat sheet then go the whole way, not a quarter (a 40 × 40 Miura-ori's corner
-  /// turn: 8 steps and 5 factorisations instead of 13 and 8).
+  /// turn: 8 steps and 5 factorisations instead of 13 and 8). Subspace frames too: a
+  /// 10,000-vertex slide in 5 % steps then keeps up with the handle.
   bool restore_trial_faces = true;
   /// Lagged: each Newton–Krylov step also moves along the last frame's motion as far as the
   /// Gauss–Newton model says (a kept matrix calls a mechanism's present turn stiff, and a
@@ -77,6 +78,7 @@ struct QuasiNewtonOptions
   bool exact_hessian = true;
   /// End a frame its limits stopped short of balance with one step of the constant matrix that
   /// restores the faces its last (linear) step stretched; room for it is kept in a time budget.
+  /// A last step taken with its faces restored (restore_trial_faces) needs none.
   bool restore_final_faces = true;
   /// Lagged: a frame whose time budget is below `subspace_below_seconds` and that goes on from
   /// the last frame's motion takes its steps in the subspace of that motion and up to
