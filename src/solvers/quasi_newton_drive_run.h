@@ -149,7 +149,7 @@ private:
   // rest of the frame. Subspace frames multiply by the Gauss–Newton matrix (their Galerkin
   // model must be convex).
   bool exact_allowed_ = false, exact_products_ = false, exact_refused_ = false, last_whole_ = false;
-  bool last_restored_ = false;  // the last step taken was a trial with its faces restored
+  bool last_restored_ = false;     // the last step taken was a trial with its faces restored
   Positions spread_, product_;     // multiply's work space
   Eigen::MatrixX3d step_product_;  // H times the step newtonKrylovStep or subspaceStep returned
   double last_step_ = INFINITY;
