@@ -13,10 +13,12 @@ namespace virtual_origami::core
 TEST(FastSlide, PreviewFramesFivePercentApartKeepUpWithTheHandle)
 {
   const Paper flat = miuraTessellation(20, 20).value().paper;
-  QuasiNewtonDriver driver;
-  // One step a frame, its subspace as large as a preview's budget allows (a budget of 0.1 s or
-  // more makes frames that factorise).
-  driver.setLimits(SolveLimits{ 1e-6, 1, 0.09 });
+  // One step a frame, a subspace frame's (a preview's: no factorisation) with all its
+  // directions: a budget no frame here comes near, below which frames are subspace frames.
+  QuasiNewtonOptions options;
+  options.subspace_below_seconds = 100.0;
+  QuasiNewtonDriver driver(options);
+  driver.setLimits(SolveLimits{ 1e-6, 1, 10.0 });
   prepareAssignmentPreviews(flat, driver);
   Paper paper = flat;
   AssignmentFoldRequest preview;
