@@ -285,9 +285,19 @@ bool LayerContact::needsSearch(const Positions& x) const
 
 double LayerContact::skinUsed(const Positions& x) const
 {
-  if (candidates_at_.cols() != x.cols())
+  return skinUsedFrom(candidates_at_, x);
+}
+
+double LayerContact::skinUsedFrom(const Positions& at, const Positions& x) const
+{
+  if (at.cols() != x.cols() || at.cols() == 0)
     return INFINITY;
-  return std::sqrt((x - candidates_at_).colwise().squaredNorm().maxCoeff()) / (0.5 * skin_);
+  // Every test of the search is unchanged by a translation of the whole sheet: what uses up
+  // the skin is how far the nodes moved apart, the largest distance of a node's motion from a
+  // common one (the middle of their range, per axis: a sheet carried along searches no more).
+  const Positions moved = x - at;
+  const Vec3 common = 0.5 * (moved.rowwise().minCoeff() + moved.rowwise().maxCoeff());
+  return std::sqrt((moved.colwise() - common).colwise().squaredNorm().maxCoeff()) / (0.5 * skin_);
 }
 
 bool LayerContact::adoptCandidates(Candidates&& found, const Positions& x)
@@ -295,7 +305,7 @@ bool LayerContact::adoptCandidates(Candidates&& found, const Positions& x)
   if (found.at.cols() != x.cols())
     return false;
   // Taken when good for x and fresher than the kept ones (nearer x: longer until a search).
-  const double found_used = std::sqrt((x - found.at).colwise().squaredNorm().maxCoeff()) / (0.5 * skin_);
+  const double found_used = skinUsedFrom(found.at, x);
   if (!(found_used <= 1.0) || !(found_used < skinUsed(x)))
     return false;
   candidates_ = std::move(found.nodes);
