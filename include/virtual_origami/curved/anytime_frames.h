@@ -58,13 +58,13 @@ struct AnytimeFrameOptions
   /// Negative curvature below this × stretch is rounding (the free turn about two pins): the
   /// static factorisation's shift.
   double static_shift = 1e-10;
-  /// The static factorisation's shift rises tenfold per failure up to this × stretch; a matrix
-  /// still indefinite there makes the frames inertial (a loss of stability: the curvatures of
+  /// The static factorisation's shift (× stretch; one try, none smaller where it fails); a
+  /// matrix indefinite there makes the frames inertial (a loss of stability: the curvatures of
   /// the snaps of curved_speed_bench's drag are −1e-9 to −1e-7, an off-balance frame's a little
   /// below zero).
   double static_shift_limit = 1e-10;
   /// Inertial frames turn static again, after return_frames of them, where the matrix
-  /// factorises at a shift up to this × stretch (they lag the pointer: a little off balance).
+  /// factorises with this shift × stretch (they lag the pointer: a little off balance).
   double return_shift_limit = 1e-8;
   int return_frames = 5;
   /// A frame shown with a force above this (over stretch × spacing) is off balance: the next
