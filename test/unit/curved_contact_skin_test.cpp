@@ -3,6 +3,8 @@
 // a gripper moving it) keeps its candidates, and watches the pairs a fresh search finds.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "virtual_origami/curved/bubble_mesh.h"
 #include "virtual_origami/curved/contact.h"
 #include "virtual_origami/curved/seed_scenes.h"
@@ -58,5 +60,46 @@ TEST(CurvedContactSkin, NodesMovedApartByMoreThanTheSkinAreSearchedAnew)
   moved.col(node) -= Vec3(0, 0, 0.4 * contact.range());
   EXPECT_NEAR(contact.skinUsed(moved), 0.8, 1e-9);
   EXPECT_FALSE(contact.needsSearch(moved));
+}
+}  // namespace
+
+namespace
+{
+// The search's grid (an array of cells over the sheet's extent) finds the same candidates
+// wherever the sheet lies, its cells' keys negative or positive, and the pairs a sheet's
+// layers watch are among them.
+TEST(CurvedContactSkin, TheSearchFindsTheSameCandidatesWhereverTheSheetLies)
+{
+  const FoldedFlap flap;
+  const LayerContact contact(flap.mesh, flap.scene.paper, {});
+  const auto sorted = [](LayerContact::Candidates c) {
+    std::sort(c.nodes.begin(), c.nodes.end());
+    std::sort(c.edges.begin(), c.edges.end());
+    return c;
+  };
+  const LayerContact::Candidates here = sorted(contact.candidatesAt(flap.x));
+  ASSERT_FALSE(here.nodes.empty());
+  ASSERT_FALSE(here.edges.empty());
+  for (const Vec3& offset : { Vec3(-7.3, 2.1, -0.37), Vec3(1e3, -2e3, 5e2) })
+  {
+    const LayerContact::Candidates there = sorted(contact.candidatesAt(flap.x.colwise() + offset));
+    EXPECT_EQ(there.nodes, here.nodes) << offset.transpose();
+    EXPECT_EQ(there.edges, here.edges) << offset.transpose();
+  }
+  LayerContact watching(flap.mesh, flap.scene.paper, {});
+  watching.update(flap.x);
+  ASSERT_GT(watching.watchedPairs(), 0);
+  for (const auto& pair : watching.pairNodes())
+  {
+    // A node–triangle pair: the node first, then the triangle's corners.
+    bool listed = false;
+    for (const auto& [node, triangle] : here.nodes)
+      listed = listed || (node == pair[0] && flap.mesh.triangles[triangle].nodes[0] == pair[1] &&
+                          flap.mesh.triangles[triangle].nodes[1] == pair[2]);
+    for (const auto& [a, b] : here.edges)
+      listed = listed || (flap.mesh.edges[a].nodes[0] == pair[0] && flap.mesh.edges[a].nodes[1] == pair[1] &&
+                          flap.mesh.edges[b].nodes[0] == pair[2] && flap.mesh.edges[b].nodes[1] == pair[3]);
+    EXPECT_TRUE(listed) << pair[0] << " " << pair[1] << " " << pair[2] << " " << pair[3];
+  }
 }
 }  // namespace
