@@ -172,7 +172,7 @@ bool KeptFactor::factorize(const Eigen::SparseMatrix<double>& a_in, double shift
     m.pattern = a;
   }
   // The numeric factor is made in a copy of the analysis, so a failure leaves the last good
-  // simplicial factor as it was.
+  // factor as it was.
   cholmod_factor* factor = cholmod_copy_factor(m.symbolic, &m.factor_common);
   if (!factor)
     return false;
