@@ -100,7 +100,8 @@ struct ReleaseReport
   double seconds = 0.0;
   int corrections = 0;
   int factorizations = 0;
-  int newton_iterations = 0;  // of the Newton solve that finished it, if one did
+  int frame_factorizations = 0;  // of them, made for the rounds of corrections (static only)
+  int newton_iterations = 0;     // of the Newton solve that finished it, if one did
 };
 
 class AnytimeFrames
@@ -165,12 +166,13 @@ private:
     bool search_contact = false;
     double h = 0.0;
     double static_limit = 0.0;
+    bool static_only = false;  // no inertial factor where the static one fails (the release)
   };
   void backgroundLoop();
-  void makeFactor(const Positions& x, long frame, double h, double static_limit);
+  void makeFactor(const Positions& x, long frame, double h, double static_limit, bool static_only = false);
   /// The largest static shift the next factor may take (see return_shift_limit).
   double staticLimit() const;
-  void ask(bool search_contact);
+  void ask(bool search_contact, bool static_only = false);
   void waitForFactor(long frame);
   /// Modified Newton corrections of x_ with the kept factor toward the objective's balance
   /// (inertial: around y with M/h²), within `seconds` (at least one); the report filled in.
