@@ -48,7 +48,10 @@ struct SupernodalFactor
   /// Frees an array taken from a CHOLMOD factor, as CHOLMOD would.
   struct FreeWithCholmod
   {
-    void operator()(void* p) const { SuiteSparse_free(p); }
+    void operator()(void* p) const
+    {
+      SuiteSparse_free(p);
+    }
   };
   Eigen::Index n = 0;
   std::vector<int> perm;   // row k of the factor is row perm[k] of A
