@@ -176,7 +176,7 @@ double AnytimeFrames::objective(const Positions& x, const Positions* y, Eigen::V
   return e;
 }
 
-void AnytimeFrames::makeFactor(const Positions& x, long frame, double h, double static_limit)
+void AnytimeFrames::makeFactor(const Positions& x, long frame, double h, double static_limit, bool static_only)
 {
   const double cpu_start = threadCpuNow();
   // The terms' Hessian (weight and table in; contact not: its pairs belong to the frames'
@@ -189,18 +189,17 @@ void AnytimeFrames::makeFactor(const Positions& x, long frame, double h, double 
   evaluateCurved(terms_, x, out);
   evaluateSurroundings(surroundings_, terms_.mass, x, out);
   // Levenberg–Marquardt's shift where the shown state is off balance (its Hessian indefinite
-  // by a little: a compressed edge), tenfold per try up to static_limit.
-  double shift = options_.static_shift * material_.stretch;
-  bool made = false;
-  for (; !made && shift <= static_limit * material_.stretch * 1.001; shift *= 10)
-  {
-    made = factor_.factorize(hessian_, shift, factorTag(frame, false));
-    ++factorizations_;
-  }
+  // by a little: a compressed edge): static_limit at once. Where that fails, no smaller shift
+  // succeeds (A + s·I is positive definite for every s above some value, none below), and each
+  // try costs a whole factorisation (at 10,000 vertices three tries were a third of a second,
+  // ten frames, in which the frames corrected with an older factor).
+  bool made = factor_.factorize(hessian_, std::max(options_.static_shift, static_limit) * material_.stretch,
+                                factorTag(frame, false));
+  ++factorizations_;
   // Past a snap the inertial matrix needs a shift too; each failed try costs a factorisation,
   // so the ladder starts a hundredth below where it last succeeded.
-  shift = std::max(options_.static_shift * material_.stretch, 1e-2 * inertial_shift_);
-  if (!made)
+  double shift = std::max(options_.static_shift * material_.stretch, 1e-2 * inertial_shift_);
+  if (!made && !static_only)
   {
     // Negative curvature beyond rounding: the sheet buckles or snaps here. With the paper's
     // mass over the frame time squared the matrix is the implicit Euler step's.
@@ -247,7 +246,7 @@ void AnytimeFrames::backgroundLoop()
       const std::lock_guard<std::mutex> lock(mutex_);
       found_ = std::move(found);
     }
-    makeFactor(request.x, request.frame, request.h, request.static_limit);
+    makeFactor(request.x, request.frame, request.h, request.static_limit, request.static_only);
     {
       const std::lock_guard<std::mutex> lock(mutex_);
       made_frame_ = request.frame;
@@ -265,19 +264,19 @@ double AnytimeFrames::staticLimit() const
              options_.static_shift_limit;
 }
 
-void AnytimeFrames::ask(bool search_contact)
+void AnytimeFrames::ask(bool search_contact, bool static_only)
 {
   last_request_ = frame_;
   if (!options_.background)
   {
-    makeFactor(x_, frame_, step_h_, staticLimit());
+    makeFactor(x_, frame_, step_h_, staticLimit(), static_only);
     made_frame_ = frame_;
     return;
   }
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     // The latest shown state replaces one not yet begun.
-    request_ = { x_, frame_, search_contact, step_h_, staticLimit() };
+    request_ = { x_, frame_, search_contact, step_h_, staticLimit(), static_only };
     has_request_ = true;
   }
   wake_.notify_one();
@@ -579,14 +578,16 @@ ReleaseReport AnytimeFrames::release()
   // A factor for the shape as it is now, and after each round of corrections a new one: each
   // step's matrix is the Hessian of a state at most a round old, so the corrections converge
   // as Newton's.
+  // Only a static factor serves: where the static matrix does not factorise, no inertial one
+  // is made (at 10,000 vertices one to three factorisations, a fifth to half a second).
   inertial_ = false;
   inertial_frames_ = 0;
   ++frame_;
-  ask(contact_.skinUsed(x_) > 0.5);
+  ask(contact_.skinUsed(x_) > 0.5, true);
   waitForFactor(frame_);
   for (int round = 0; round < options_.release_rounds && wallNow() - start < options_.release_seconds; ++round)
   {
-    if (taggedInertial(factor_.tag()))
+    if (factor_.tag() != factorTag(frame_, false))
       break;  // still snapping: Newton's saddle test and damping finish it (below)
     FrameReport report;
     correct(nullptr, INFINITY, 8, options_.release_tolerance, report);
@@ -594,9 +595,10 @@ ReleaseReport AnytimeFrames::release()
     if (report.max_force <= options_.release_tolerance)
       break;
     ++frame_;
-    ask(contact_.skinUsed(x_) > 0.5);
+    ask(contact_.skinUsed(x_) > 0.5, true);
     waitForFactor(frame_);
   }
+  result.frame_factorizations = factorizations_ - factorizations_before;
   Eigen::VectorXd g;
   energy(x_, &g);
   result.max_force = forceOf(g);

@@ -12,7 +12,10 @@ namespace virtual_origami::core
 namespace
 {
 /// Mesh elements (triangles or edges) binned by their bounding boxes, grown by `margin`, in
-/// cubic cells.
+/// cubic cells: an array of the cells over the elements' extent (a lookup is an index, not a
+/// hash: a search visits millions of cells), or a hash of the occupied ones where that array
+/// would be much larger than the elements (a sheet spread far apart). Either visits the same
+/// elements in the same order.
 class ElementGrid
 {
 public:
@@ -24,6 +27,8 @@ public:
   template <class Nodes>
   ElementGrid(size_t count, const Positions& x, double cell, double margin, Nodes nodes_of) : cell_(cell)
   {
+    std::vector<std::array<long, 3>> first(count), last(count);
+    std::array<long, 3> low{ 0, 0, 0 }, high{ -1, -1, -1 };
     for (size_t t = 0; t < count; ++t)
     {
       const auto nodes = nodes_of(t);
@@ -33,12 +38,40 @@ public:
         lo = lo.cwiseMin(x.col(n));
         hi = hi.cwiseMax(x.col(n));
       }
-      const auto a = key(lo - Vec3::Constant(margin)), b = key(hi + Vec3::Constant(margin));
-      for (long i = a[0]; i <= b[0]; ++i)
-        for (long j = a[1]; j <= b[1]; ++j)
-          for (long k = a[2]; k <= b[2]; ++k)
-            cells_[{ i, j, k }].push_back(static_cast<int>(t));
+      first[t] = key(lo - Vec3::Constant(margin));
+      last[t] = key(hi + Vec3::Constant(margin));
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        low[axis] = t == 0 ? first[t][axis] : std::min(low[axis], first[t][axis]);
+        high[axis] = t == 0 ? last[t][axis] : std::max(high[axis], last[t][axis]);
+      }
     }
+    double cells = 1.0;
+    for (int axis = 0; axis < 3; ++axis)
+      cells *= static_cast<double>(high[axis] - low[axis] + 1);
+    dense_ = count > 0 && cells <= 16.0 * static_cast<double>(count) + 4096.0;
+    if (dense_)
+    {
+      low_ = low;
+      for (int axis = 0; axis < 3; ++axis)
+        size_[axis] = high[axis] - low[axis] + 1;
+      // Two passes: the count per cell, then the elements in order (a cell's list ascending).
+      start_.assign(static_cast<size_t>(cells) + 1, 0);
+      for (size_t t = 0; t < count; ++t)
+        forCells(first[t], last[t], [&](size_t c) { ++start_[c + 1]; });
+      for (size_t c = 1; c < start_.size(); ++c)
+        start_[c] += start_[c - 1];
+      entries_.resize(start_.back());
+      std::vector<int> filled(start_.begin(), start_.end() - 1);
+      for (size_t t = 0; t < count; ++t)
+        forCells(first[t], last[t], [&](size_t c) { entries_[filled[c]++] = static_cast<int>(t); });
+      return;
+    }
+    for (size_t t = 0; t < count; ++t)
+      for (long i = first[t][0]; i <= last[t][0]; ++i)
+        for (long j = first[t][1]; j <= last[t][1]; ++j)
+          for (long k = first[t][2]; k <= last[t][2]; ++k)
+            cells_[{ i, j, k }].push_back(static_cast<int>(t));
   }
 
   /// The triangles in the cells a box touches (each once per call, via `stamp`).
@@ -46,19 +79,39 @@ public:
   void near(const Vec3& lo, const Vec3& hi, std::vector<int>& stamp, int mark, Visit visit) const
   {
     const auto a = key(lo), b = key(hi);
+    const auto visitAll = [&](const int* begin, const int* end) {
+      for (const int* t = begin; t != end; ++t)
+        if (stamp[*t] != mark)
+        {
+          stamp[*t] = mark;
+          visit(*t);
+        }
+    };
+    if (dense_)
+    {
+      // Cells beyond the array hold nothing.
+      std::array<long, 3> from, to;
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        from[axis] = std::max(a[axis], low_[axis]);
+        to[axis] = std::min(b[axis], low_[axis] + size_[axis] - 1);
+      }
+      for (long i = from[0]; i <= to[0]; ++i)
+        for (long j = from[1]; j <= to[1]; ++j)
+          for (long k = from[2]; k <= to[2]; ++k)
+          {
+            const size_t c = index(i, j, k);
+            visitAll(entries_.data() + start_[c], entries_.data() + start_[c + 1]);
+          }
+      return;
+    }
     for (long i = a[0]; i <= b[0]; ++i)
       for (long j = a[1]; j <= b[1]; ++j)
         for (long k = a[2]; k <= b[2]; ++k)
         {
           const auto it = cells_.find({ i, j, k });
-          if (it == cells_.end())
-            continue;
-          for (int t : it->second)
-            if (stamp[t] != mark)
-            {
-              stamp[t] = mark;
-              visit(t);
-            }
+          if (it != cells_.end())
+            visitAll(it->second.data(), it->second.data() + it->second.size());
         }
   }
 
@@ -75,7 +128,22 @@ private:
     return { static_cast<long>(std::floor(p.x() / cell_)), static_cast<long>(std::floor(p.y() / cell_)),
              static_cast<long>(std::floor(p.z() / cell_)) };
   }
+  size_t index(long i, long j, long k) const
+  {
+    return static_cast<size_t>(((i - low_[0]) * size_[1] + (j - low_[1])) * size_[2] + (k - low_[2]));
+  }
+  template <class Each>
+  void forCells(const std::array<long, 3>& a, const std::array<long, 3>& b, Each each) const
+  {
+    for (long i = a[0]; i <= b[0]; ++i)
+      for (long j = a[1]; j <= b[1]; ++j)
+        for (long k = a[2]; k <= b[2]; ++k)
+          each(index(i, j, k));
+  }
   double cell_;
+  bool dense_ = false;
+  std::array<long, 3> low_{ 0, 0, 0 }, size_{ 0, 0, 0 };
+  std::vector<int> start_, entries_;  // dense: cell c's elements are entries_[start_[c]..start_[c + 1])
   std::unordered_map<std::array<long, 3>, std::vector<int>, KeyHash> cells_;
 };
 
@@ -285,9 +353,19 @@ bool LayerContact::needsSearch(const Positions& x) const
 
 double LayerContact::skinUsed(const Positions& x) const
 {
-  if (candidates_at_.cols() != x.cols())
+  return skinUsedFrom(candidates_at_, x);
+}
+
+double LayerContact::skinUsedFrom(const Positions& at, const Positions& x) const
+{
+  if (at.cols() != x.cols() || at.cols() == 0)
     return INFINITY;
-  return std::sqrt((x - candidates_at_).colwise().squaredNorm().maxCoeff()) / (0.5 * skin_);
+  // Every test of the search is unchanged by a translation of the whole sheet: what uses up
+  // the skin is how far the nodes moved apart, the largest distance of a node's motion from a
+  // common one (the middle of their range, per axis: a sheet carried along searches no more).
+  const Positions moved = x - at;
+  const Vec3 common = 0.5 * (moved.rowwise().minCoeff() + moved.rowwise().maxCoeff());
+  return std::sqrt((moved.colwise() - common).colwise().squaredNorm().maxCoeff()) / (0.5 * skin_);
 }
 
 bool LayerContact::adoptCandidates(Candidates&& found, const Positions& x)
@@ -295,7 +373,7 @@ bool LayerContact::adoptCandidates(Candidates&& found, const Positions& x)
   if (found.at.cols() != x.cols())
     return false;
   // Taken when good for x and fresher than the kept ones (nearer x: longer until a search).
-  const double found_used = std::sqrt((x - found.at).colwise().squaredNorm().maxCoeff()) / (0.5 * skin_);
+  const double found_used = skinUsedFrom(found.at, x);
   if (!(found_used <= 1.0) || !(found_used < skinUsed(x)))
     return false;
   candidates_ = std::move(found.nodes);

@@ -138,6 +138,53 @@ TEST(AnytimeFrames, ASnapTurnsTheFramesInertialAndReachesItsBranchWithinASecondO
   EXPECT_TRUE(reached);
 }
 
+// Each factor costs a whole factorisation (a third of a second of the background's at 10,000
+// vertices): a static matrix indefinite at the largest shift allowed is indefinite at every
+// smaller one, and is not tried again there before the inertial matrix is. A corner pushed in
+// by a tenth of the side, the sheet not yet relaxed: its compressed edges curve the energy
+// down out of the plane, far beyond any static shift.
+TEST(AnytimeFrames, AStaticMatrixIndefiniteAtTheLargestShiftIsNotTriedAtSmallerOnes)
+{
+  PulledGrid sheet(20);
+  Positions pushed = sheet.rest;
+  const int corner = sheet.pins[1].node, held = sheet.pins[0].node;
+  pushed.col(corner) += 0.1 * (sheet.rest.col(held) - sheet.rest.col(corner));
+  const auto factorizationsAt = [&](double static_shift_limit) {
+    AnytimeFrameOptions options = deterministic();
+    options.static_shift_limit = static_shift_limit;
+    AnytimeFrames frames(sheet.mesh, sheet.scene.paper, {}, {}, options);
+    EXPECT_TRUE(frames.start(sheet.rest, sheet.pins));
+    const int before = frames.factorizations();
+    frames.keepFactorAt(pushed, 1);
+    return frames.factorizations() - before;
+  };
+  const int one_shift = factorizationsAt(1e-10);
+  EXPECT_GE(one_shift, 2) << "one static try, then the inertial matrix";
+  EXPECT_EQ(factorizationsAt(1e-8), one_shift);
+}
+
+// The release corrects only with a static factor: where the static matrix does not factorise
+// (the corner of the test above pushed in, the sheet not relaxed), it makes no inertial one
+// (two more factorisations here, the ladder starting below the start's inertial shift) and
+// Newton finishes from there.
+TEST(AnytimeFrames, TheReleaseMakesNoInertialFactorWhereTheStaticMatrixFails)
+{
+  PulledGrid sheet(20);
+  std::vector<CurvedPin> pins = sheet.pins;
+  Positions pushed = sheet.rest;
+  pushed.col(pins[1].node) += 0.1 * (sheet.rest.col(pins[0].node) - sheet.rest.col(pins[1].node));
+  pins[1].position = pushed.col(pins[1].node);
+  AnytimeFrames frames(sheet.mesh, sheet.scene.paper, {}, {}, deterministic());
+  ASSERT_TRUE(frames.start(pushed, pins));
+  const ReleaseReport release = frames.release();
+  EXPECT_EQ(release.frame_factorizations, 1) << "one static try";
+  EXPECT_EQ(release.corrections, 0);
+  EXPECT_GT(release.newton_iterations, 0);
+  EXPECT_TRUE(release.converged);
+  CurvedSolver solver(sheet.mesh, sheet.scene.paper);
+  EXPECT_LE(solver.maxForce(frames.positions(), pins), 1e-8);
+}
+
 TEST(AnytimeFrames, TheReleaseConvergesToTheTolerance)
 {
   Drag& d = drag();

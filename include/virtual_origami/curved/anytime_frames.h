@@ -58,13 +58,13 @@ struct AnytimeFrameOptions
   /// Negative curvature below this × stretch is rounding (the free turn about two pins): the
   /// static factorisation's shift.
   double static_shift = 1e-10;
-  /// The static factorisation's shift rises tenfold per failure up to this × stretch; a matrix
-  /// still indefinite there makes the frames inertial (a loss of stability: the curvatures of
+  /// The static factorisation's shift (× stretch; one try, none smaller where it fails); a
+  /// matrix indefinite there makes the frames inertial (a loss of stability: the curvatures of
   /// the snaps of curved_speed_bench's drag are −1e-9 to −1e-7, an off-balance frame's a little
   /// below zero).
   double static_shift_limit = 1e-10;
   /// Inertial frames turn static again, after return_frames of them, where the matrix
-  /// factorises at a shift up to this × stretch (they lag the pointer: a little off balance).
+  /// factorises with this shift × stretch (they lag the pointer: a little off balance).
   double return_shift_limit = 1e-8;
   int return_frames = 5;
   /// A frame shown with a force above this (over stretch × spacing) is off balance: the next
@@ -100,7 +100,8 @@ struct ReleaseReport
   double seconds = 0.0;
   int corrections = 0;
   int factorizations = 0;
-  int newton_iterations = 0;  // of the Newton solve that finished it, if one did
+  int frame_factorizations = 0;  // of them, made for the rounds of corrections (static only)
+  int newton_iterations = 0;     // of the Newton solve that finished it, if one did
 };
 
 class AnytimeFrames
@@ -165,12 +166,13 @@ private:
     bool search_contact = false;
     double h = 0.0;
     double static_limit = 0.0;
+    bool static_only = false;  // no inertial factor where the static one fails (the release)
   };
   void backgroundLoop();
-  void makeFactor(const Positions& x, long frame, double h, double static_limit);
+  void makeFactor(const Positions& x, long frame, double h, double static_limit, bool static_only = false);
   /// The largest static shift the next factor may take (see return_shift_limit).
   double staticLimit() const;
-  void ask(bool search_contact);
+  void ask(bool search_contact, bool static_only = false);
   void waitForFactor(long frame);
   /// Modified Newton corrections of x_ with the kept factor toward the objective's balance
   /// (inertial: around y with M/h²), within `seconds` (at least one); the report filled in.

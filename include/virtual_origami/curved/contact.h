@@ -65,8 +65,9 @@ public:
   Candidates candidatesAt(const Positions& x) const;
   /// Whether update(x) would search anew (its candidates are not good for x).
   bool needsSearch(const Positions& x) const;
-  /// How far some node at `x` has moved from where the candidates were found, over the half
-  /// skin it may move (above 1: update searches anew; infinity before any search).
+  /// How far some node at `x` has moved from where the candidates were found, less the motion
+  /// common to all nodes (a translation), over the half skin it may move (above 1: update
+  /// searches anew; infinity before any search).
   double skinUsed(const Positions& x) const;
   /// Takes candidates found elsewhere in place of the kept ones, when they are good for `x`
   /// and found nearer it than the kept ones; false (nothing changed) otherwise.
@@ -100,6 +101,8 @@ private:
     int a = -1, b = -1;
     int side = 0;
   };
+  /// skinUsed() for candidates found at `at`.
+  double skinUsedFrom(const Positions& at, const Positions& x) const;
   /// Rebuilds the candidate pairs from a grid, at `x`.
   void findCandidates(const Positions& x);
   int sideFor(int node, int triangle, double signed_distance) const;
