@@ -1047,7 +1047,7 @@ USER_ACTIONS = [
                        "`fold_by_assignment` preview)"),
     ("slider_release_40", "slider let go at 40 %: the commit from the last preview"),
     ("slider_release_100", "slider let go at 100 %: the commit from the last preview"),
-    ("turn_preview", "`rotate` preview of the corner face, 2°, 4°, … 10°"),
+    ("turn_preview", "`rotate` preview of the corner face, 0.5°, 1°, … 10° (a mouse's drag; `turn_steps`)"),
     ("turn_commit", "`rotate` commit, 10°"),
     ("drag_vertex_preview", "`drag_vertex` preview, the corner vertex lifted 0.4 % of the sheet a step to 2 % (40 % state)"),
     ("drag_vertex_commit", "`drag_vertex` commit, 2 %"),
