@@ -111,7 +111,7 @@ run_user_path() {
     else
       set -- journal_sync:=false patterns:=miura sizes:="${USER_PATH_NOSYNC_SIZES:-1000}"
     fi
-    ROS_HOME="$ros_home" timeout 1200 "$build/devel/env.sh" roslaunch -p "$port" virtual_origami user_path.launch \
+    ROS_HOME="$ros_home" timeout 1800 "$build/devel/env.sh" roslaunch -p "$port" virtual_origami user_path.launch \
       data_dir:="$data" csv_prefix:="$prefix" configuration:="$configuration" "$@" || status=$?
   done
   # What a run that stopped early wrote is kept too (each row is written as it is measured).
