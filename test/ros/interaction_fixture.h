@@ -89,7 +89,9 @@ protected:
     base_ = client_.state().revision;
     ASSERT_TRUE(waitFor([&] { return feedback_pub_.getNumSubscribers() > 0; }, 30));
     ASSERT_TRUE(waitFor([&] { return loadMenu(); }, 30)) << "no interactive marker `paper` with a menu";
-    ASSERT_TRUE(waitFor([&] { return statuses_ > 0 && status_.revision == base_; }, 10));
+    // A wait for the node to have taken the reset, as the two above: once, with ctest's other
+    // tests on the same two cores, it took more than 10 s after the test before it.
+    ASSERT_TRUE(waitFor([&] { return statuses_ > 0 && status_.revision == base_; }, 30));
   }
 
   /// The sheet's marker and its menu entries by title, from the server's full update.
