@@ -319,6 +319,17 @@ namespace virtual_origami::core
 {
 namespace
 {
+/// A turn of `sheet`'s corner face (face 0) by `angle` about its slanted crease (axis_edge −1
+/// where the face has none).
+RotateRequest cornerTurn(const Paper& sheet, double angle)
+{
+  RotateRequest request;
+  request.face = 0;
+  request.axis_edge = test::slantedCreaseOf(sheet, 0);
+  request.angle = angle;
+  return request;
+}
+
 /// The corner face of a Miura-ori turned about its slanted crease (one degree of freedom), a
 /// quasi-Newton crease driver as the guide whatever the size.
 class MiuraCornerTurn : public ::testing::Test
@@ -331,8 +342,7 @@ protected:
     ASSERT_GE(axis, 0);
     guide.driver = driver.get();
     guide.min_vertices = 0;
-    request.face = 0;
-    request.axis_edge = axis;
+    request = cornerTurn(start, 0.0);
   }
 
   const Paper start;
@@ -482,12 +492,8 @@ TEST_F(NearFlatMiuraTurn, APreviewStartsWhereTheDragsPreviewsBeforeItLead)
 TEST(Rotate, ANewtonSolveTooSlowForItsToleranceStopsAndIsRefused)
 {
   const Paper start = tessellationWithVertices(TessellationKind::Miura, 400).value().paper;
-  const int axis = test::slantedCreaseOf(start, 0);
-  ASSERT_GE(axis, 0);
-  RotateRequest request;
-  request.face = 0;
-  request.axis_edge = axis;
-  request.angle = 10 * kDeg;
+  const RotateRequest request = cornerTurn(start, 10 * kDeg);
+  ASSERT_GE(request.axis_edge, 0);
   NewtonOptions held_damping;
   held_damping.min_damping = kHeldDamping;
   held_damping.lowest_damping = kHeldDamping;
@@ -564,12 +570,8 @@ TEST_F(NearFlatMiuraTurn, ADragsSecondPreviewFromTheFlatSheetStartsOnItsMirrorIm
 TEST(Rotate, ACreepingFrameTriesItsStepLonger)
 {
   const Paper start = tessellationWithVertices(TessellationKind::Miura, 4000).value().paper;
-  const int axis = test::slantedCreaseOf(start, 0);
-  ASSERT_GE(axis, 0);
-  RotateRequest request;
-  request.face = 0;
-  request.axis_edge = axis;
-  request.angle = 0.5 * kDeg;
+  const RotateRequest request = cornerTurn(start, 0.5 * kDeg);
+  ASSERT_GE(request.axis_edge, 0);
   constexpr double kBalance = 1e-12;
   Paper turned[2] = { start, start };
   int steps[2] = { 0, 0 };
@@ -600,8 +602,8 @@ TEST(Rotate, ACreepingFrameTriesItsStepLonger)
 TEST(Rotate, ATurnFarFromTheOriginIsAsExactAsAtIt)
 {
   const Paper start = tessellationWithVertices(TessellationKind::Miura, 400).value().paper;
-  const int axis = test::slantedCreaseOf(start, 0);
-  ASSERT_GE(axis, 0);
+  const RotateRequest request = cornerTurn(start, 10 * kDeg);
+  ASSERT_GE(request.axis_edge, 0);
   const Vec3 shift(1e3, -1e3, 0.0);
   Paper far = start;
   for (Vertex& v : far.vertices)
@@ -609,10 +611,6 @@ TEST(Rotate, ATurnFarFromTheOriginIsAsExactAsAtIt)
     v.crease_pattern += shift.head<2>();
     v.folded += shift;
   }
-  RotateRequest request;
-  request.face = 0;
-  request.axis_edge = axis;
-  request.angle = 10 * kDeg;
   const std::unique_ptr<ShapeSolver> solver = makeSolver("newton");
   SolveLimits limits = solver->limits();
   limits.tolerance = 1e-12;
