@@ -426,6 +426,60 @@ std::vector<MeshNode> placeBubbles(const Paper& paper, const BubbleMeshOptions& 
   return nodes;
 }
 
+namespace
+{
+/// A row of nodes `width` inside each face beside every crease, one across from each node on
+/// the crease, and one at each of the face's corners between two creases (`width` from both):
+/// the triangles joining a crease to its faces are then `width` wide, so a fold can be drawn
+/// with its two faces apart by less than that (layeredStart) without tilting whole triangles.
+void addCreaseStrips(const Paper& paper, double width, std::vector<MeshNode>& nodes)
+{
+  std::vector<std::vector<double>> along(paper.edges.size());
+  for (const MeshNode& n : nodes)
+    if (n.paper_edge >= 0)
+      along[n.paper_edge].push_back(n.edge_t);
+  for (size_t e = 0; e < paper.edges.size(); ++e)
+  {
+    const Edge& edge = paper.edges[e];
+    if (!edge.isCrease())
+      continue;
+    const Vec2 a = paper.vertices[edge.vertices[0]].crease_pattern, b = paper.vertices[edge.vertices[1]].crease_pattern;
+    const Vec2 left = Vec2(a.y() - b.y(), b.x() - a.x()).normalized();  // faces[0] lies left of a→b
+    for (int side = 0; side < 2; ++side)
+      for (double t : along[e])
+      {
+        MeshNode n;
+        n.crease_pattern = a + t * (b - a) + (side == 0 ? 1.0 : -1.0) * width * left;
+        n.paper_face = edge.faces[side];
+        nodes.push_back(n);
+      }
+  }
+  for (size_t f = 0; f < paper.faces.size(); ++f)
+  {
+    const Face& face = paper.faces[f];
+    const size_t count = face.vertices.size();
+    for (size_t i = 0; i < count; ++i)
+    {
+      const int before = face.edges[(i + count - 1) % count], after = face.edges[i];
+      // Only between two creases: at a corner on the sheet's edge the crease's own row of
+      // nodes comes near enough.
+      if (!paper.edges[before].isCrease() || !paper.edges[after].isCrease())
+        continue;
+      const Vec2 v = paper.vertices[face.vertices[i]].crease_pattern;
+      const Vec2 u = (paper.vertices[face.vertices[(i + count - 1) % count]].crease_pattern - v).normalized();
+      const Vec2 w = (paper.vertices[face.vertices[(i + 1) % count]].crease_pattern - v).normalized();
+      const double half_sine = std::sqrt(std::max(0.0, (1 - u.dot(w)) / 2));
+      if (half_sine < 0.1)
+        continue;  // a sharp corner: its strip nodes beside the sides come near enough
+      MeshNode n;
+      n.crease_pattern = v + width / half_sine * (u + w).normalized();
+      n.paper_face = static_cast<int>(f);
+      nodes.push_back(n);
+    }
+  }
+}
+}  // namespace
+
 Expected<CurvedMesh> bubbleMesh(const Paper& paper, const BubbleMeshOptions& options, BubbleMeshReport* report)
 {
   CurvedMesh mesh;
@@ -445,6 +499,8 @@ Expected<CurvedMesh> bubbleMesh(const Paper& paper, const BubbleMeshOptions& opt
     along[e].emplace_back(0.0, paper.edges[e].vertices[0]);
     along[e].emplace_back(1.0, paper.edges[e].vertices[1]);
   }
+  if (options.crease_strip > 0)
+    addCreaseStrips(paper, options.crease_strip, mesh.nodes);
   std::vector<Vec2> points;
   for (size_t i = 0; i < mesh.nodes.size(); ++i)
   {

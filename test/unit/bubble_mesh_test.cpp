@@ -142,6 +142,43 @@ TEST(BubbleMesh, NodesOnACreaseAreSharedByBothFaces)
   EXPECT_GT(meshQuality(*mesh, paper).min_angle, 25 * kDeg);
 }
 
+TEST(BubbleMesh, CreaseStripsMakeTheTrianglesBesideACreaseThatNarrow)
+{
+  Paper paper = Paper::square(1.0);
+  creaseLine(paper, p3(1, 0), p3(0, 1));  // diagonal bd
+  BubbleMeshOptions options;
+  options.spacing = 0.08;
+  options.crease_strip = 1e-3;
+  const Expected<CurvedMesh> mesh = bubbleMesh(paper, options);
+  ASSERT_TRUE(mesh.ok()) << mesh.message();
+  expectSoundMesh(*mesh, paper);
+  // Every triangle with a side on the crease has its third node a strip's width from it (the
+  // rows beside the crease), on its own side; without strips they lie about a spacing away.
+  const Vec2 b(1, 0), d(0, 1);
+  const Vec2 across = Vec2(1, 1).normalized();
+  int beside = 0;
+  for (const MeshEdge& e : mesh->edges)
+  {
+    if (e.paper_edge < 0 || !paper.edges[e.paper_edge].isCrease())
+      continue;
+    for (int t : e.triangles)
+    {
+      ASSERT_GE(t, 0);
+      for (int n : mesh->triangles[t].nodes)
+        if (n != e.nodes[0] && n != e.nodes[1])
+        {
+          const double distance = std::abs(across.dot(mesh->nodes[n].crease_pattern - b));
+          // Near the crease's ends the row meets the sheet's edge: a node there may lie on the
+          // crease's end beside it, farther along, still within a strip's width of the row.
+          EXPECT_LT(distance, 1e-3 + 1e-9) << "triangle " << t;
+          ++beside;
+        }
+    }
+  }
+  EXPECT_EQ(beside, 2 * 18);  // 18 pieces of the crease, a triangle on each side
+  (void)d;
+}
+
 TEST(BubbleMesh, CoarseFacesGetNoInteriorBubbles)
 {
   Paper paper = Paper::square(1.0);

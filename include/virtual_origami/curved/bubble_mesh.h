@@ -43,6 +43,9 @@ struct BubbleMeshOptions
   /// Per paper face: 1 fills it with bubbles so it can bend, 0 leaves it coarse (its own
   /// corners and the bubbles its curved neighbours put on shared edges). Empty: every face.
   std::vector<char> curved_faces;
+  /// With a width > 0, a row of nodes that far inside each face beside every crease
+  /// (bubbleMesh; see addCreaseStrips): folds whose layers are drawn apart (layered_start.h).
+  double crease_strip = 0.0;
 };
 
 struct BubbleMeshReport
