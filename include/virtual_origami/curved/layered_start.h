@@ -42,7 +42,8 @@ struct LayeredStart
 };
 
 /// The nodes of `mesh` placed as the folded `paper` has them (placeNodes), each moved off its
-/// faces' planes by their stack levels (from `paper.face_orders`), hinges set back.
+/// faces' planes by their stack levels (from `paper.face_orders` and flat folds), hinges set out,
+/// the sheet's raw edges drawn back a strip's width.
 LayeredStart layeredStart(const CurvedMesh& mesh, const Paper& paper, const LayeredStartOptions& options = {});
 
 }  // namespace virtual_origami::core
