@@ -5,28 +5,19 @@
 
 namespace virtual_origami::core
 {
-std::vector<int> stackLevels(const Paper& paper)
+std::vector<int> levelsFromOrders(size_t faces, const std::vector<std::array<int, 2>>& below_above)
 {
-  const size_t n = paper.faces.size();
-  std::vector<std::vector<int>> above(n);  // above[f]: faces directly above f along +z
-  std::vector<int> below_count(n, 0);
-  for (const FaceOrder& o : paper.face_orders)
+  std::vector<std::vector<int>> above(faces);  // above[f]: faces directly above f
+  std::vector<int> below_count(faces, 0);
+  for (const auto& [low, high] : below_above)
   {
-    if (o.face < 0 || o.other < 0 || static_cast<size_t>(o.face) >= n || static_cast<size_t>(o.other) >= n ||
-        o.above == 0 || o.face == o.other)
-      continue;
-    // `above` is relative to the face's front normal; turn it into +z.
-    const bool face_up = paper.faceNormal(o.face).z() >= 0;
-    const bool other_is_higher = (o.above > 0) == face_up;
-    const int low = other_is_higher ? o.face : o.other;
-    const int high = other_is_higher ? o.other : o.face;
     above[low].push_back(high);
     ++below_count[high];
   }
   // Longest path from the bottom (Kahn's order); faces left in a cycle keep what they have.
-  std::vector<int> level(n, 0);
+  std::vector<int> level(faces, 0);
   std::deque<int> ready;
-  for (size_t f = 0; f < n; ++f)
+  for (size_t f = 0; f < faces; ++f)
     if (below_count[f] == 0)
       ready.push_back(static_cast<int>(f));
   while (!ready.empty())
@@ -41,6 +32,23 @@ std::vector<int> stackLevels(const Paper& paper)
     }
   }
   return level;
+}
+
+std::vector<int> stackLevels(const Paper& paper)
+{
+  const size_t n = paper.faces.size();
+  std::vector<std::array<int, 2>> below_above;
+  for (const FaceOrder& o : paper.face_orders)
+  {
+    if (o.face < 0 || o.other < 0 || static_cast<size_t>(o.face) >= n || static_cast<size_t>(o.other) >= n ||
+        o.above == 0 || o.face == o.other)
+      continue;
+    // `above` is relative to the face's front normal; turn it into +z.
+    const bool face_up = paper.faceNormal(o.face).z() >= 0;
+    const bool other_is_higher = (o.above > 0) == face_up;
+    below_above.push_back(other_is_higher ? std::array<int, 2>{ o.face, o.other } : std::array<int, 2>{ o.other, o.face });
+  }
+  return levelsFromOrders(n, below_above);
 }
 
 int layerCount(const Paper& paper, const Vec3& point, double margin)

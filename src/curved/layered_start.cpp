@@ -1,9 +1,10 @@
 #include "virtual_origami/curved/layered_start.h"
 
 #include <cmath>
-#include <deque>
 
 #include <Eigen/Dense>
+
+#include "virtual_origami/core/layers.h"
 
 namespace virtual_origami::core
 {
@@ -40,14 +41,13 @@ std::vector<int> stackLevelsByPlane(const Paper& paper, const std::vector<int>& 
                                     const std::vector<Vec3>& normals)
 {
   const size_t n = paper.faces.size();
-  std::vector<std::vector<int>> above(n);
-  std::vector<int> below_count(n, 0);
   // The recorded orders, and each flat fold's two faces (a valley turns their fronts to face
   // each other: each lies on the other's front), which files seldom list.
   std::vector<FaceOrder> orders = paper.face_orders;
   for (const Edge& e : paper.edges)
     if (e.isCrease() && std::abs(e.fold_angle) > M_PI - 1e-3)
       orders.push_back({ e.faces[0], e.faces[1], e.fold_angle > 0 ? 1 : -1 });
+  std::vector<std::array<int, 2>> below_above;
   for (const FaceOrder& o : orders)
   {
     if (o.above == 0 || o.face < 0 || o.other < 0 || static_cast<size_t>(o.face) >= n ||
@@ -56,27 +56,9 @@ std::vector<int> stackLevelsByPlane(const Paper& paper, const std::vector<int>& 
     // `other` lies on side `above` of `face`'s front; turn it into the plane's normal.
     const bool face_along = paper.faceNormal(o.face).dot(normals[plane_of[o.face]]) > 0;
     const bool other_higher = (o.above > 0) == face_along;
-    const int low = other_higher ? o.face : o.other, high = other_higher ? o.other : o.face;
-    above[low].push_back(high);
-    ++below_count[high];
+    below_above.push_back(other_higher ? std::array<int, 2>{ o.face, o.other } : std::array<int, 2>{ o.other, o.face });
   }
-  std::vector<int> level(n, 0);
-  std::deque<int> ready;
-  for (size_t f = 0; f < n; ++f)
-    if (below_count[f] == 0)
-      ready.push_back(static_cast<int>(f));
-  while (!ready.empty())
-  {
-    const int f = ready.front();
-    ready.pop_front();
-    for (int g : above[f])
-    {
-      level[g] = std::max(level[g], level[f] + 1);
-      if (--below_count[g] == 0)
-        ready.push_back(g);
-    }
-  }
-  return level;
+  return levelsFromOrders(n, below_above);
 }
 /// The unit direction in `face`'s folded plane perpendicular to paper edge `e`, into the face.
 Vec3 inwardFrom(const Paper& paper, int e, int face)
