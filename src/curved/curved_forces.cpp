@@ -358,4 +358,21 @@ CurvedEnergy evaluateCurved(const CurvedTerms& terms, const Positions& x, const 
   return energy;
 }
 
+void restTermsAt(CurvedTerms& terms, const Positions& x)
+{
+  for (StretchTerm& s : terms.stretch)
+    s.rest = (x.col(s.i) - x.col(s.j)).norm();
+  for (ShearTerm& s : terms.shear)
+    s.rest = cornerAngle(x.col(s.o), x.col(s.i), x.col(s.j));
+  for (BendTerm& b : terms.bend)
+  {
+    double angle = hingeAngle(x.col(b.a), x.col(b.b), x.col(b.left), x.col(b.right), nullptr, nullptr);
+    if (angle - b.rest > M_PI)
+      angle -= 2 * M_PI;
+    else if (b.rest - angle > M_PI)
+      angle += 2 * M_PI;
+    b.rest = angle;
+  }
+}
+
 }  // namespace virtual_origami::core

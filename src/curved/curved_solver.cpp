@@ -9,6 +9,7 @@
 #include <Eigen/LU>
 #include <Eigen/QR>
 
+#include "virtual_origami/curved/layered_start.h"
 #include "virtual_origami/numerics/lbfgs_history.h"
 #include "virtual_origami/numerics/solve_budget.h"
 
@@ -147,13 +148,46 @@ CurvedSolver::CurvedSolver(const CurvedMesh& mesh, const Paper& paper, const Cur
 {
   if (!(surroundings_.table_stiffness > 0))
     surroundings_.table_stiffness = contact_.stiffness();
+  if (contact.barrier)
+  {
+    BarrierContactOptions barrier;
+    // Half the lift between stacked layers (layered_start.h), unless given.
+    barrier.activation =
+        contact.barrier_activation > 0 ? contact.barrier_activation : 0.5 * LayeredStartOptions().gapFor(paper);
+    barrier_ = std::make_unique<BarrierContact>(mesh, barrier);
+    barrier_->setPush(contact.barrier_force * material.stretch * mesh.spacing);
+  }
+}
+
+void CurvedSolver::restTermsAt(const Positions& x)
+{
+  core::restTermsAt(terms_, x);
+  constant_free_.clear();  // a quasi-Newton constant matrix made with the old rests
+}
+
+void CurvedSolver::updateContact(const Positions& x)
+{
+  if (!barrier_)
+  {
+    contact_.update(x);
+    return;
+  }
+  if (!barrier_started_)
+  {
+    barrier_->guardNearPairs(x, barrier_->activation());
+    barrier_started_ = true;
+  }
+  // The pairs within the barrier's reach here; a step watches those its motion sweeps near
+  // (lineSearch).
+  barrier_->update(x, nullptr, barrier_->activation());
 }
 
 double CurvedSolver::energy(const Positions& x, const Assembly& out, CurvedEnergy* parts, double* contact) const
 {
   const CurvedEnergy e = evaluateCurved(terms_, x, out);
   // The table is contact too, the weight a load: both count with contact in the report.
-  const double c = contact_.evaluate(x, out) + evaluateSurroundings(surroundings_, terms_.mass, x, out);
+  const double c = (barrier_ ? barrier_->evaluate(x, out) : contact_.evaluate(x, out)) +
+                   evaluateSurroundings(surroundings_, terms_.mass, x, out);
   if (parts)
     *parts = e;
   if (contact)
@@ -177,6 +211,23 @@ double CurvedSolver::lineSearch(const Positions& x, double e, const Eigen::Vecto
   if (!(slope < 0))
     return 0.0;
   double alpha = 1.0;
+  // The share of the allowed step: a step contact's collision check cuts short counts as
+  // whole for the damping (it says nothing of how well the quadratic model fits).
+  double allowed = 1.0;
+  if (barrier_)
+  {
+    // No farther than contact's continuous collision check allows: no pair closes more than
+    // most of its distance, so none passes through between the trials.
+    Positions motion = Positions::Zero(3, x.cols());
+    for (size_t v = 0; v < free_index.size(); ++v)
+      if (free_index[v] >= 0)
+        motion.col(v) = step.segment<3>(3 * free_index[v]);
+    barrier_->update(x, &motion, barrier_->activation());
+    alpha = barrier_->safeStep(x, motion);
+    if (!(alpha > 0))
+      return 0.0;
+    allowed = alpha;
+  }
   for (int k = 0; k < tries; ++k, alpha *= 0.5)
   {
     moveFree(trial, x, step, alpha, free_index);
@@ -184,7 +235,7 @@ double CurvedSolver::lineSearch(const Positions& x, double e, const Eigen::Vecto
       continue;
     const double moved = energy(trial, {});
     if (moved <= e + 1e-4 * alpha * slope)
-      return alpha;
+      return alpha / allowed;
     // Near balance the energy's change falls below its rounding (a sum over every term)
     // while the forces are still above the tolerance: there the slope at the trial decides
     // (Hager and Zhang's approximate Wolfe condition: on a quadratic, Armijo's).
@@ -193,7 +244,7 @@ double CurvedSolver::lineSearch(const Positions& x, double e, const Eigen::Vecto
       trial_gradient.setZero();
       energy(trial, { &free_index, &trial_gradient, nullptr });
       if (trial_gradient.dot(step) <= -(1 - 2e-4) * slope)
-        return alpha;
+        return alpha / allowed;
     }
   }
   return 0.0;
@@ -210,7 +261,7 @@ double CurvedSolver::maxForce(const Positions& x_in, const std::vector<CurvedPin
   }
   int free_count = 0;
   const std::vector<int> free_index = freeIndices(fixed, mesh_.nodes.size(), &free_count);
-  contact_.update(x);
+  updateContact(x);
   Eigen::VectorXd g = Eigen::VectorXd::Zero(3 * free_count);
   energy(x, { &free_index, &g, nullptr });
   return largestNodeForce(g) / (material_.stretch * mesh_.spacing);
@@ -288,7 +339,7 @@ CurvedReport CurvedSolver::solve(Positions& x, const std::vector<CurvedPin>& pin
   if (report.diverged)
   {
     x = start;
-    contact_.update(x);
+    updateContact(x);
   }
   // The path so far, for the next solve's prediction: only balanced shapes count.
   if (report.converged)
@@ -299,7 +350,7 @@ CurvedReport CurvedSolver::solve(Positions& x, const std::vector<CurvedPin>& pin
   }
   else
     path_.clear();
-  report.contacts = contact_.watchedPairs();
+  report.contacts = barrier_ ? barrier_->activePairs(x) : contact_.watchedPairs();
   return report;
 }
 
@@ -416,11 +467,18 @@ bool CurvedSolver::predict(Positions& x, const std::vector<CurvedPin>& pins, con
   const int moves = static_cast<int>(std::ceil(longest / (options_.max_step * contact_.range())));
   for (int k = 0; k < moves; ++k)
   {
-    contact_.update(x);
+    updateContact(x);
     const double worst_gap = contact_.worstGap(x);
     const Positions next = x + motion / moves;
     if (contact_.worstGap(next) < std::min(0.0, worst_gap) - 0.5 * contact_.thickness())
       break;
+    if (barrier_)
+    {
+      const Positions move = motion / moves;
+      barrier_->update(x, &move, barrier_->activation());
+      if (barrier_->safeStep(x, move) < 1.0)
+        break;
+    }
     x = next;
   }
   return true;
@@ -465,7 +523,7 @@ CurvedReport CurvedSolver::newton(Positions& x, const std::vector<int>& free_ind
   negative_curvature_ = false;
   while (true)
   {
-    contact_.update(x);
+    updateContact(x);
     // A solve that will start with the exact Hessian (no kept factorisation, or one whose own
     // steps fell short last time) assembles it with the first gradient: the shape a pull
     // starts from is seldom balanced already.
@@ -716,7 +774,7 @@ CurvedReport CurvedSolver::quasiNewton(Positions& x, const std::vector<int>& fre
   Positions trial = x;
   Eigen::VectorXd g(n), g_next(n), direction(n);
   std::string stuck;
-  contact_.update(x);
+  updateContact(x);
   g.setZero();
   double e = energy(x, { &free_index, &g, nullptr }, &report.energy, &report.contact_energy);
   while (!stopBeforeStep(g, e, force_scale, options_.tolerance, budget, "non-finite energy; rolled back", report))
@@ -793,7 +851,7 @@ CurvedReport CurvedSolver::quasiNewton(Positions& x, const std::vector<int>& fre
       break;
     }
     std::swap(x, trial);
-    contact_.update(x);
+    updateContact(x);
     g_next.setZero();
     e = energy(x, { &free_index, &g_next, nullptr }, &report.energy, &report.contact_energy);
     Eigen::VectorXd s_new = alpha * direction, y_new = g_next - g;
@@ -828,7 +886,7 @@ CurvedReport CurvedSolver::quasiNewton(Positions& x, const std::vector<int>& fre
 
 bool CurvedSolver::unstableAt(const Positions& x, const std::vector<int>& free_index, int free_count)
 {
-  contact_.update(x);
+  updateContact(x);
   Eigen::VectorXd g(3 * free_count);
   assembleHessian(x, free_index, free_count, g);
   // On failure the shift rises a hundredfold until the factorisation succeeds: leaving the
@@ -855,7 +913,7 @@ bool CurvedSolver::leaveSaddle(Positions& x, const std::vector<int>& free_index,
   if (with_constant ? !(constant_factor_.valid() && constant_free_ == free_index) :
                       !(factorization_.valid() && factor_free_ == free_index))
     return false;
-  contact_.update(x);
+  updateContact(x);
   Eigen::VectorXd g(3 * free_count);
   const double e = assembleHessian(x, free_index, free_count, g);
   const Eigen::MatrixXd free_motions = freeMotions(x, free_index, free_count, inPlaneOnly());
@@ -986,7 +1044,7 @@ double CurvedSolver::assembleHessian(const Positions& x, const std::vector<int>&
       return e;
     if (round > 0)
       throw std::logic_error("curved solver: a Hessian block outside the terms and contacts");
-    const std::vector<std::array<int, 4>> contacts = contact_.pairNodes();
+    const std::vector<std::array<int, 4>> contacts = barrier_ ? barrier_->pairNodes() : contact_.pairNodes();
     pattern_groups_.insert(pattern_groups_.end(), contacts.begin(), contacts.end());
     hessian_ = blockPattern(free_count, free_index, pattern_groups_);
   }
@@ -1003,7 +1061,7 @@ CurvedReport CurvedSolver::rk4(Positions& x, const std::vector<int>& free_index,
     if (free_index[v] >= 0)
       inv_mass.segment<3>(3 * free_index[v]).setConstant(1.0 / terms_.mass[v]);
 
-  contact_.update(x);
+  updateContact(x);
   double dt = options_.time_step;
   if (!(dt > 0))
   {
@@ -1043,7 +1101,7 @@ CurvedReport CurvedSolver::rk4(Positions& x, const std::vector<int>& free_index,
   const double start_energy = energy(x, {});
   while (true)
   {
-    contact_.update(x);
+    updateContact(x);
     // k1 from the current state also gives the force to test for balance.
     const Eigen::VectorXd a1 = acceleration(x, v);
     if (stopBeforeStep(g, 0.0, force_scale, options_.tolerance, budget, "rk4 produced non-finite forces; rolled back",

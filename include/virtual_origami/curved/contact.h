@@ -35,6 +35,16 @@ struct ContactOptions
   /// to this far out (0: half a mesh spacing): a layer lying flush with another's edge would
   /// otherwise slip under it between nodes.
   double edge_margin = 0.0;
+  /// In place of the penalty on plane distances: incremental potential contact
+  /// (barrier_contact.h), whose barrier no step can pass, on the true distances between the
+  /// mesh's nodes and triangles and between its edges. Needs the layers apart to begin with
+  /// (layered_start.h); pairs nearer than d̂ in the shape the first solve starts from (where a
+  /// layered start's hinges meet at paper vertices) are kept from touching below the distance
+  /// they start at (BarrierContact::guardNearPairs).
+  bool barrier = false;
+  double barrier_activation = 0.0;  // d̂: pairs nearer than this feel it (0: half the layered start's gap)
+  /// The barrier's push at half its activation distance, × stretch × spacing (sets κ).
+  double barrier_force = 1e-2;
 };
 
 /// +1 when face `a` lies on the front side of face `b`, −1 behind, 0 unknown: from the

@@ -212,6 +212,12 @@ double addTerm(const std::array<int, K>& nodes, double weight, double residual, 
 
 CurvedEnergy evaluateCurved(const CurvedTerms& terms, const Positions& x, const Assembly& out = {});
 
+/// Every stretch, shear and bend term at rest in the shape `x` (a bend's rest angle the
+/// dihedral there, on the branch nearest the rest it had): a folded model drawn with its
+/// layers apart (layered_start.h) rests as drawn, its creases and the strips beside them
+/// remembering their shape. Plate terms are left as they are.
+void restTermsAt(CurvedTerms& terms, const Positions& x);
+
 /// The measures, their gradients with respect to the nodes (columns in argument order) and
 /// their second derivatives (rows and columns node by node, x y z each).
 double cornerAngle(const Vec3& o, const Vec3& i, const Vec3& j, Eigen::Matrix<double, 3, 3>* grad = nullptr,

@@ -8,9 +8,11 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "virtual_origami/curved/barrier_contact.h"
 #include "virtual_origami/curved/contact.h"
 #include "virtual_origami/curved/curved_forces.h"
 #include "virtual_origami/numerics/spd_factorization.h"
@@ -156,6 +158,9 @@ public:
     return options_;
   }
 
+  /// Every term at rest in the shape `x` (restTermsAt): a layered start rests as drawn.
+  void restTermsAt(const Positions& x);
+
   /// Largest force on a free node over (stretch × spacing), contact included.
   double maxForce(const Positions& x, const std::vector<CurvedPin>& pins);
 
@@ -224,6 +229,11 @@ private:
   CurvedMaterial material_;
   CurvedTerms terms_;
   LayerContact contact_;
+  /// With ContactOptions::barrier, the contact in place of contact_ (which then watches nothing).
+  std::unique_ptr<BarrierContact> barrier_;
+  bool barrier_started_ = false;  // the pairs touching at the first solve's start are set aside
+  /// Finds the pairs contact watches at x (the barrier's within its reach of a Newton step).
+  void updateContact(const Positions& x);
   CurvedSolveOptions options_;
   Surroundings surroundings_;
   // Newton's Hessian and factorisation, kept across solves, and the free nodes it is for.

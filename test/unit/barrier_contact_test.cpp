@@ -1,0 +1,151 @@
+// Barrier contact (barrier_contact.h): the first time of contact along a motion against closed
+// forms, and the folded crane's wing tips pulled apart on it from the layered start — its body
+// opening with no layer passing another.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "virtual_origami/core/fold_sequence.h"
+#include "virtual_origami/curved/barrier_contact.h"
+#include "virtual_origami/curved/bubble_mesh.h"
+#include "virtual_origami/curved/contact.h"
+#include "virtual_origami/curved/curved_solver.h"
+#include "virtual_origami/curved/layered_start.h"
+#include "virtual_origami/solvers/solver_factory.h"
+
+using namespace virtual_origami::core;
+
+TEST(Impact, APointFallingThroughATriangleMeetsItWhereItReachesItsPlane)
+{
+  const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0), still(0, 0, 0);
+  const double h = 1e-6;
+  // From h above to 3h below: the plane at a quarter of the motion.
+  EXPECT_NEAR(pointTriangleImpact(Vec3(0.2, 0.2, h), a, b, c, Vec3(0, 0, -4 * h), still, still, still, 1e-12), 0.25,
+              1e-12);
+  // The triangle rising to meet it instead: the same time.
+  const Vec3 up(0, 0, 4 * h);
+  EXPECT_NEAR(pointTriangleImpact(Vec3(0.2, 0.2, h), a, b, c, still, up, up, up, 1e-12), 0.25, 1e-12);
+  // Passing the plane beside the triangle: no contact.
+  EXPECT_EQ(pointTriangleImpact(Vec3(0.8, 0.8, h), a, b, c, Vec3(0, 0, -4 * h), still, still, still, 1e-12), 2.0);
+}
+
+TEST(Impact, ALayerAHairAboveAnotherSlidesAlongItFarWithoutContact)
+{
+  // A node 10⁻⁶ above a triangle slides 0.3 along it and sinks by half its height: no contact,
+  // the whole step allowed. A bound by the distance over the motion allows 3 × 10⁻⁶ of it.
+  const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0), still(0, 0, 0);
+  const double h = 1e-6;
+  EXPECT_EQ(pointTriangleImpact(Vec3(0.1, 0.1, h), a, b, c, Vec3(0.3, 0.2, -0.5 * h), still, still, still, 1e-12),
+            2.0);
+  // Sinking twice its height on the way: it meets the plane half way, inside the triangle.
+  EXPECT_NEAR(pointTriangleImpact(Vec3(0.1, 0.1, h), a, b, c, Vec3(0.3, 0.2, -2 * h), still, still, still, 1e-12),
+              0.5, 1e-9);
+}
+
+TEST(Impact, TwoEdgesMeetWhenTheyCrossInOnePlane)
+{
+  const double h = 1e-5;
+  const Vec3 still(0, 0, 0), down(0, 0, -4 * h), along(3, 0, 0);
+  // Edge (−1, 0, h)–(1, 0, h) sinking across edge (0, −1, 0)–(0, 1, 0): they meet at a quarter.
+  EXPECT_NEAR(edgeEdgeImpact(Vec3(-1, 0, h), Vec3(1, 0, h), Vec3(0, -1, 0), Vec3(0, 1, 0), down, down, still, still,
+                             1e-12),
+              0.25, 1e-12);
+  // Sliding along its own line above the other: never in its plane.
+  EXPECT_EQ(edgeEdgeImpact(Vec3(-1, 0, h), Vec3(1, 0, h), Vec3(0, -1, 0), Vec3(0, 1, 0), along, along, still, still,
+                           1e-12),
+            2.0);
+}
+
+namespace
+{
+Paper foldedCrane()
+{
+  std::ifstream in(std::string(VO_SOURCE_DIR) + "/sequences/crane.json");
+  std::stringstream text;
+  text << in.rdbuf();
+  const Expected<FoldSequence> sequence = parseFoldSequence(text.str());
+  EXPECT_TRUE(sequence.ok()) << sequence.message();
+  Session session;
+  const Expected<std::vector<Paper>> states = foldSequence(*sequence, session, makeSolver(sequence->solver));
+  EXPECT_TRUE(states.ok()) << states.message();
+  return states->back();
+}
+}  // namespace
+
+TEST(BarrierContact, TheCranesBodyOpensAsItsWingTipsArePulledApartWithNoLayerPassingAnother)
+{
+  const Paper crane = foldedCrane();
+  // Layers 10⁻⁵ of the sheet apart, strips 120 gaps wide (layered_start.h).
+  LayeredStartOptions layers;
+  layers.gap = 1e-5;
+  layers.strip = 120 * layers.gap;
+  BubbleMeshOptions meshing;
+  meshing.spacing = 0.05;
+  meshing.crease_strip = layers.strip;
+  const Expected<CurvedMesh> mesh = bubbleMesh(crane, meshing);
+  ASSERT_TRUE(mesh.ok()) << mesh.message();
+  const LayeredStart start = layeredStart(*mesh, crane, layers);
+
+  CurvedMaterial material;
+  material.crease = 10;  // creases remember their folded angles
+  ContactOptions contact;
+  contact.barrier = true;
+  contact.barrier_activation = 0.5 * layers.gap;
+  CurvedSolveOptions options;
+  options.max_iterations = 200;
+  options.modified_newton_rate = 0;  // a fresh Hessian every step: contact changes it
+  options.damping = 1e-4;
+  CurvedSolver solver(*mesh, crane, material, contact, options);
+  solver.restTermsAt(start.positions);  // the folded model at rest as drawn
+
+  // The wing tips, paper corners (0, 0) and (1, 1), pinched through all their layers.
+  std::array<int, 2> tip{ -1, -1 };
+  for (size_t v = 0; v < crane.vertices.size(); ++v)
+  {
+    const Vec2 c = crane.vertices[v].crease_pattern;
+    if (c.norm() < 1e-9)
+      tip[0] = mesh->vertex_nodes[v];
+    if ((c - Vec2(1, 1)).norm() < 1e-9)
+      tip[1] = mesh->vertex_nodes[v];
+  }
+  ASSERT_GE(std::min(tip[0], tip[1]), 0);
+  const Positions& rest = start.positions;
+  const Vec3 apart = (rest.col(tip[1]) - rest.col(tip[0])).normalized();
+  Positions x = rest;
+  auto bodySpread = [&](const Positions& at) {
+    // The body's stack: how far its nodes lie apart across its plane.
+    const Vec3 normal = crane.faceNormal(0);
+    double low = INFINITY, high = -INFINITY;
+    for (size_t i = 0; i < mesh->nodes.size(); ++i)
+    {
+      const std::vector<int> faces = mesh->facesOfNode(crane, static_cast<int>(i));
+      if (std::none_of(faces.begin(), faces.end(), [&](int f) { return start.plane_of[f] == start.plane_of[0]; }))
+        continue;
+      const double height = normal.dot(at.col(i) - rest.col(0));
+      low = std::min(low, height), high = std::max(high, height);
+    }
+    return high - low;
+  };
+  const int start_crossings = countPenetrations(*mesh, rest, layers.gap);
+  const double pull = 0.001;
+  for (int k = 1; k <= 4; ++k)
+  {
+    std::vector<CurvedPin> pins;
+    for (int i = 0; i < rest.cols(); ++i)
+      for (int s = 0; s < 2; ++s)
+        if ((rest.col(i) - rest.col(tip[s])).norm() <= 0.03)
+          pins.push_back({ i, Vec3(rest.col(i) + (s == 0 ? -0.5 : 0.5) * k * pull * apart) });
+    const CurvedReport report = solver.solve(x, pins);
+    ASSERT_TRUE(report.converged) << "pull " << k << ": " << report.message;
+    // No edge passes through a triangle by more than the gap between two layers beyond what
+    // the start had where hinges meet at paper vertices.
+    EXPECT_LE(countPenetrations(*mesh, x, layers.gap), start_crossings) << "pull " << k;
+  }
+  // Pulled 0.004 apart, the body's layers have opened: its stack is several times as thick
+  // as the twelve layers lying on each other (11 gaps).
+  EXPECT_LT(bodySpread(rest), 12 * layers.gap);
+  EXPECT_GT(bodySpread(x), 0.003);
+}
