@@ -99,8 +99,9 @@ Status CurvedSheetFollower::setMaterial(const CurvedMaterial& material, const Su
   frames_.reset();
   frames_live_ = false;
   if (mesh_)
-    solver_ = std::make_unique<CurvedSolver>(*mesh_, *paper_, options_.material, options_.contact, solveOptions(),
-                                             options_.surroundings);
+  {
+    solver_ = makeSolver(*mesh_, *paper_, layered_rest_);
+  }
   return success();
 }
 
@@ -137,12 +138,14 @@ Expected<CurvedReport> CurvedSheetFollower::solveState(const Paper& paper, const
       return Failure::failure(checked.message());
     next_mesh = std::make_unique<CurvedMesh>(std::move(*meshed));
   }
+  Positions next_x = options_.layered ?
+                         layeredStart(*next_mesh, *next_paper, layersFor(*next_paper, options_.layer_gap)).positions :
+                         placeNodes(*next_mesh, *next_paper);
+  // A layered start rests as drawn, whenever its solver is made.
+  Positions next_rest = options_.layered ? next_x : Positions();
   std::unique_ptr<CurvedSolver> next_solver;
   if (!at_rest)
-    next_solver = std::make_unique<CurvedSolver>(*next_mesh, *next_paper, options_.material, options_.contact,
-                                                 solveOptionsFor(options_.material, options_.solve, *next_mesh),
-                                                 options_.surroundings);
-  Positions next_x = placeNodes(*next_mesh, *next_paper);
+    next_solver = makeSolver(*next_mesh, *next_paper, next_rest);
 
   // The frames hold the old paper and mesh: they go first.
   frames_.reset();
@@ -151,6 +154,7 @@ Expected<CurvedReport> CurvedSheetFollower::solveState(const Paper& paper, const
   std::swap(mesh_, next_mesh);
   std::swap(solver_, next_solver);
   std::swap(x_, next_x);
+  std::swap(layered_rest_, next_rest);
   std::vector<PullTarget> last_pins = std::move(pins_);
   pins_.clear();
   if (at_rest)
@@ -170,6 +174,7 @@ Expected<CurvedReport> CurvedSheetFollower::solveState(const Paper& paper, const
     std::swap(mesh_, next_mesh);
     std::swap(solver_, next_solver);
     std::swap(x_, next_x);
+    std::swap(layered_rest_, next_rest);
     pins_ = std::move(last_pins);
   }
   return moved;
@@ -187,13 +192,18 @@ Expected<CurvedReport> CurvedSheetFollower::follow(const std::vector<PullTarget>
 Expected<CurvedReport> CurvedSheetFollower::moveTo(const std::vector<PullTarget>& pins)
 {
   using Failure = Expected<CurvedReport>;
-  // Every pin starts from where its node lies now and moves on a straight line.
-  std::vector<Vec3> from;
+  // Every pin starts from where its node lies now and moves on a straight line. A layered start
+  // drew its vertices a few gaps off the model's (lifted, hinges set out, raw edges drawn back):
+  // a pin moves its node by as much as it moves the vertex from where the model has it.
+  std::vector<Vec3> from, to;
   double farthest = 0.0;
   for (const PullTarget& pin : pins)
   {
-    from.push_back(x_.col(mesh_->vertex_nodes[pin.vertex]));
-    farthest = std::max(farthest, (pin.position - from.back()).norm());
+    const int node = mesh_->vertex_nodes[pin.vertex];
+    from.push_back(x_.col(node));
+    to.push_back(options_.layered ? Vec3(pin.position + layered_rest_.col(node) - paper_->vertices[pin.vertex].folded) :
+                                    pin.position);
+    farthest = std::max(farthest, (to.back() - from.back()).norm());
   }
   const double step = options_.max_pin_step * mesh_->spacing;
   const int steps = step > 0 ? std::max(1, static_cast<int>(std::ceil(farthest / step))) : 1;
@@ -202,8 +212,7 @@ Expected<CurvedReport> CurvedSheetFollower::moveTo(const std::vector<PullTarget>
                             std::to_string(options_.max_steps) + " steps of " + std::to_string(step));
 
   if (!solver_)  // a sheet at rest until now (solveState)
-    solver_ = std::make_unique<CurvedSolver>(*mesh_, *paper_, options_.material, options_.contact, solveOptions(),
-                                             options_.surroundings);
+    solver_ = makeSolver(*mesh_, *paper_, layered_rest_);
   const Positions start = x_;
   CurvedReport total;
   std::vector<CurvedPin> at(pins.size());
@@ -211,8 +220,7 @@ Expected<CurvedReport> CurvedSheetFollower::moveTo(const std::vector<PullTarget>
   {
     const double t = static_cast<double>(k) / steps;
     for (size_t i = 0; i < pins.size(); ++i)
-      at[i] = { mesh_->vertex_nodes[pins[i].vertex],
-                k == steps ? pins[i].position : Vec3(from[i] + t * (pins[i].position - from[i])) };
+      at[i] = { mesh_->vertex_nodes[pins[i].vertex], k == steps ? to[i] : Vec3(from[i] + t * (to[i] - from[i])) };
     CurvedReport report = solver_->solve(x_, at);
     report.iterations += total.iterations;
     report.factorizations += total.factorizations;
@@ -231,6 +239,30 @@ Expected<CurvedReport> CurvedSheetFollower::moveTo(const std::vector<PullTarget>
   return total;
 }
 
+LayeredStartOptions layersFor(const Paper& paper, double layer_gap)
+{
+  LayeredStartOptions layers;
+  layers.gap = layer_gap * paper.scale();
+  return layers;
+}
+
+std::unique_ptr<CurvedSolver> CurvedSheetFollower::makeSolver(const CurvedMesh& mesh, const Paper& paper,
+                                                              const Positions& rest) const
+{
+  ContactOptions contact = options_.contact;
+  if (options_.layered)
+  {
+    contact.barrier = true;
+    contact.barrier_activation = 0.5 * layersFor(paper, options_.layer_gap).gapFor(paper);
+  }
+  auto solver = std::make_unique<CurvedSolver>(mesh, paper, options_.material, contact,
+                                               solveOptionsFor(options_.material, options_.solve, mesh),
+                                               options_.surroundings);
+  if (options_.layered)
+    solver->restTermsAt(rest);
+  return solver;
+}
+
 CurvedSolveOptions CurvedSheetFollower::solveOptions() const
 {
   return solveOptionsFor(options_.material, options_.solve, *mesh_);
@@ -241,6 +273,9 @@ Expected<FrameReport> CurvedSheetFollower::frame(const std::vector<PullTarget>& 
   using Failure = Expected<FrameReport>;
   if (!hasSheet())
     return Failure::failure("no state to follow pins on yet");
+  if (options_.layered)
+    return Failure::failure("anytime frames keep layers apart with the penalty contact only: a layered sheet follows "
+                            "its pins by balanced solves");
   if (const Status checked = checkPins(*paper_, pins); !checked)
     return Failure::failure(checked.message());
   std::vector<CurvedPin> at;

@@ -17,7 +17,8 @@ namespace virtual_origami
 core::Expected<core::CurvedMesh> meshCurvedSheet(const core::Paper& paper, const CurvedMeshSolverConfig& config)
 {
   const double spacing = config.spacing * paper.scale();
-  if (config.mesher == "cgal")
+  // Layers lifted apart need strips beside the creases, which only the bubble mesher makes.
+  if (config.mesher == "cgal" && !config.layers)
   {
     core::CgalMeshOptions options;
     options.spacing = spacing;
@@ -25,6 +26,8 @@ core::Expected<core::CurvedMesh> meshCurvedSheet(const core::Paper& paper, const
   }
   core::BubbleMeshOptions options;
   options.spacing = spacing;
+  if (config.layers)
+    options.crease_strip = core::layersFor(paper, core::CurvedFollowOptions().layer_gap).stripFor(paper);
   return core::bubbleMesh(paper, options);
 }
 
@@ -93,6 +96,16 @@ core::Expected<core::CurvedFollowOptions> curvedFollowOptions(const CurvedMeshSo
   if (const core::Status checked = core::checkSurroundings(options.surroundings); !checked)
     return Failure::failure(checked.message());
   options.solve = solveOptions(config);
+  if (config.layers)
+  {
+    // Stacked layers lifted apart, a barrier between them (docs/CURVED.md, "A barrier on that
+    // start"): Newton with a fresh Hessian every step (the contacts change it), little damping,
+    // and pins moved a few layer gaps at a time, as the folded crane's pulls balance.
+    options.layered = true;
+    options.solve.modified_newton_rate = 0;
+    options.solve.damping = 1e-4;
+    options.max_pin_step = 0.01;
+  }
   return options;
 }
 
@@ -375,7 +388,8 @@ void CurvedMeshSolverNode::followFrames(const ros::TimerEvent&)
   // stopped short of balance is solved on from where it is, a few times, before it is shown.
   const bool moved = pinsMoved(pins, follower_->pins(), 1e-9 * follower_->paper().scale());
   constexpr int kResumes = 5;
-  if (follower_->onFrames() || (moved && anytimeFrames(follower_->mesh().nodes.size())))
+  // Anytime frames know only the penalty contact: with `layers` every move is solved.
+  if (follower_->onFrames() || (moved && !config_.layers && anytimeFrames(follower_->mesh().nodes.size())))
   {
     // Anytime frames: each move shown at once as one frame (anytime_frames.h), not balanced;
     // pins standing still for kStillSeconds after the last frame settle the sheet to the

@@ -13,6 +13,7 @@
 #include "virtual_origami/core/pull.h"
 #include "virtual_origami/curved/anytime_frames.h"
 #include "virtual_origami/curved/curved_solver.h"
+#include "virtual_origami/curved/layered_start.h"
 
 namespace virtual_origami::core
 {
@@ -27,6 +28,16 @@ struct CurvedFollowOptions
   /// No pin moves farther than this many mesh spacings in one solve; a longer move is made in
   /// equal steps, each solved from the last.
   double max_pin_step = 0.25;
+  /// A new state's sheet starts with its stacked layers lifted apart (layeredStart), `layer_gap`
+  /// × the sheet's scale between two layers, every term at rest there, and contact keeps them
+  /// apart with a barrier no step passes (ContactOptions::barrier, within half a gap): a folded
+  /// model bent or pulled open (seed 002 Fig. 1.1). The mesher must give the creases strips as
+  /// wide as layersFor(paper, layer_gap) has them (BubbleMeshOptions::crease_strip). The pins
+  /// should move little per solve (max_pin_step): layers a gap apart slide in steps of a few gaps.
+  bool layered = false;
+  /// 10⁻⁵: the folded crane's pulls balance in 30–60 Newton iterations; at the layered start's
+  /// own 10⁻⁶, 160–185 (docs/CURVED.md).
+  double layer_gap = 1e-5;
   int max_steps = 400;  // a move that would need more steps is refused
   /// The anytime frames of frame() (their release tolerance is the solve's, as solveOptionsFor
   /// gives it). Corrections bound by the frame's wall-time budget alone: a pointer moves far more
@@ -38,6 +49,9 @@ struct CurvedFollowOptions
     return options;
   }();
 };
+
+/// The layered start a follower with `layered` gives `paper`: layers `layer_gap` × its scale apart.
+LayeredStartOptions layersFor(const Paper& paper, double layer_gap);
 
 class CurvedSheetFollower
 {
@@ -126,11 +140,15 @@ private:
   Expected<CurvedReport> moveTo(const std::vector<PullTarget>& pins);
   /// The solve options of the current mesh.
   CurvedSolveOptions solveOptions() const;
+  /// A solver for `mesh` of `paper`; with `layered`, its contact the barrier within half a gap
+  /// and every term at rest in `rest`.
+  std::unique_ptr<CurvedSolver> makeSolver(const CurvedMesh& mesh, const Paper& paper, const Positions& rest) const;
 
   CurvedMesher mesher_;
   CurvedFollowOptions options_;
   // The solver keeps references to the paper and the mesh: both live on the heap, at fixed
   // addresses, for as long as the solver does.
+  Positions layered_rest_;  // with `layered`: the sheet's start, where its bends rest
   std::unique_ptr<Paper> paper_;
   std::unique_ptr<CurvedMesh> mesh_;
   std::unique_ptr<CurvedSolver> solver_;

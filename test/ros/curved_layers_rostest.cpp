@@ -1,0 +1,168 @@
+// rostest: curved_mesh_solver with `layers` (issue 38, item 2; docs/CURVED.md "A barrier on that
+// start"). The crane of sequences/crane.json is folded through the paper's services, one wing tip
+// pinned where it lies, the other dragged on `curved_drag` (as the interaction's Drag mode drags)
+// 0.004 of the side away along the tips' line. The sheet shown when the drag stands still has the
+// tip where the mouse left it, no layer passed through another, and the body's layers opened.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <optional>
+#include <sstream>
+
+#include <visualization_msgs/MarkerArray.h>
+#include <virtual_origami/PinVertex.h>
+#include <virtual_origami/VertexTarget.h>
+
+#include "ros_test_client.h"
+#include "virtual_origami/core/fold_sequence.h"
+#include "virtual_origami/curved/contact.h"
+#include "virtual_origami/curved/curved_follow.h"
+#include "virtual_origami/curved/layered_start.h"
+#include "virtual_origami/ros/conversions.h"
+#include "virtual_origami/ros/curved_mesh_solver_node.h"
+#include "virtual_origami/ros/operation_client.h"
+
+namespace virtual_origami::test
+{
+namespace
+{
+using visualization_msgs::Marker;
+
+/// The node positions of a published sheet of `mesh` (its triangles in the mesh's order).
+std::optional<core::Positions> nodePositions(const Marker& triangles, const core::CurvedMesh& mesh)
+{
+  if (triangles.points.size() != 3 * mesh.triangles.size())
+    return std::nullopt;
+  core::Positions x = core::Positions::Zero(3, static_cast<Eigen::Index>(mesh.nodes.size()));
+  for (size_t t = 0; t < mesh.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k)
+      x.col(mesh.triangles[t].nodes[k]) = toVec3(triangles.points[3 * t + k]);
+  return x;
+}
+}  // namespace
+
+TEST(CurvedLayers, AFoldedCraneDraggedByAWingTipOpensItsBodyWithNoLayerPassingAnother)
+{
+  PaperClient client;
+  std::vector<Marker> sheets;
+  ros::Subscriber sheet_sub = client.nh().subscribe<visualization_msgs::MarkerArray>(
+      "curved_mesh", 1000, [&](const visualization_msgs::MarkerArray::ConstPtr& a) {
+        for (const Marker& m : a->markers)
+          if (m.ns == "curved_mesh")
+            sheets.push_back(m);
+      });
+  ros::Publisher drag_pub = client.nh().advertise<VertexTarget>("curved_drag", 10);
+  ASSERT_TRUE(waitFor([&] { return drag_pub.getNumSubscribers() >= 1; }, 30)) << "nobody listens to curved_drag";
+
+  // The crane, folded through the services.
+  std::string path;
+  ASSERT_TRUE(ros::NodeHandle("~").getParam("sequence", path));
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  const core::Expected<core::FoldSequence> sequence = core::parseFoldSequence(text.str());
+  ASSERT_TRUE(sequence) << sequence.message();
+  OperationClient operations("/origami");
+  ASSERT_TRUE(operations.waitForServices(30));
+  for (const core::FoldStep& step : sequence->steps)
+    for (int k = 0; k < step.repeat; ++k)
+    {
+      const core::Status applied = operations.apply(toMessage(step.operation));
+      ASSERT_TRUE(applied) << step.note << ": " << applied.message();
+    }
+  const int tip0 = vertexAt(client.state(), 0, 0), tip1 = vertexAt(client.state(), 1, 1);
+  ASSERT_GE(tip0, 0);
+  ASSERT_GE(tip1, 0);
+  PinVertex::Request pin;
+  pin.vertex = tip0;
+  ASSERT_TRUE(client.call<PinVertex>("pin", pin).response.success);
+  ASSERT_TRUE(waitFor([&] { return client.state().pins.size() == 1; }, 30));
+  const PaperState state = client.state();
+  const core::Expected<core::Paper> crane = fromMessage(state);
+  ASSERT_TRUE(crane) << crane.message();
+
+  // The sheet as curved_mesh_solver meshes it, with this launch's parameters, shown as the
+  // layered start draws it.
+  CurvedMeshSolverConfig config = CurvedMeshSolverConfig::__getDefault__();
+  ros::NodeHandle solver_params("/origami/curved_mesh_solver");
+  ASSERT_TRUE(solver_params.getParam("layers", config.layers) && config.layers);
+  ASSERT_TRUE(solver_params.getParam("spacing", config.spacing));
+  const core::Expected<core::CurvedMesh> mesh = meshCurvedSheet(*crane, config);
+  ASSERT_TRUE(mesh) << mesh.message();
+  const core::LayeredStartOptions layers = core::layersFor(*crane, core::CurvedFollowOptions().layer_gap);
+  const core::LayeredStart start = core::layeredStart(*mesh, *crane, layers);
+  const double gap = layers.gapFor(*crane);
+  ASSERT_TRUE(waitFor([&] { return !sheets.empty() && sheets.back().header.stamp == state.header.stamp; }, 60))
+      << "the pinned crane is not shown";
+  const std::optional<core::Positions> shown = nodePositions(sheets.back(), *mesh);
+  ASSERT_TRUE(shown);
+  EXPECT_LT((*shown - start.positions).cwiseAbs().maxCoeff(), 1e-12) << "the pinned crane is not shown as drawn";
+
+  // The other tip dragged away along the tips' line in twenty moves at 30 Hz, then held there.
+  const core::Vec3 p0 = crane->vertices[tip0].folded, p1 = crane->vertices[tip1].folded;
+  const core::Vec3 away = (p1 - p0).normalized();
+  const double pull = 0.004 * crane->scale();
+  const int node0 = mesh->vertex_nodes[tip0], node1 = mesh->vertex_nodes[tip1];
+  VertexTarget drag;
+  drag.header.frame_id = state.header.frame_id;
+  drag.vertex = tip1;
+  for (int k = 1; k <= 20; ++k)
+  {
+    drag.header.stamp = ros::Time::now();
+    drag.position = toPoint(core::Vec3(p1 + pull * k / 20.0 * away));
+    drag_pub.publish(drag);
+    ros::WallDuration(1.0 / 30).sleep();
+    ros::spinOnce();
+  }
+  const ros::Time last = drag.header.stamp;
+  std::optional<core::Positions> x;
+  ASSERT_TRUE(waitFor(
+      [&] {
+        if (sheets.empty() || sheets.back().header.stamp != last)
+          return false;
+        x = nodePositions(sheets.back(), *mesh);
+        return x.has_value();
+      },
+      240))
+      << "no sheet for the drag's last move";
+  // The dragged tip where the mouse left it (moved as far as the vertex from where the model has
+  // it), the pinned one where it lay.
+  EXPECT_LT((x->col(node1) - (start.positions.col(node1) + pull * away)).norm(), 1e-12);
+  EXPECT_LT((x->col(node0) - start.positions.col(node0)).norm(), 1e-12);
+  // No layer passed through another: no edge through a triangle deeper than a layer's gap that
+  // the start had not (where folds' hinges meet at paper vertices).
+  EXPECT_LE(core::countPenetrations(*mesh, *x, gap), core::countPenetrations(*mesh, start.positions, gap));
+  // The body's stack (its plane's nodes, across the plane), 11 gaps as drawn, opened.
+  const core::Vec3 normal = crane->faceNormal(0);
+  auto spread = [&](const core::Positions& at) {
+    double low = INFINITY, high = -INFINITY;
+    for (int i = 0; i < at.cols(); ++i)
+    {
+      const std::vector<int> faces = mesh->facesOfNode(*crane, i);
+      if (std::none_of(faces.begin(), faces.end(), [&](int f) { return start.plane_of[f] == start.plane_of[0]; }))
+        continue;
+      const double height = normal.dot(at.col(i));
+      low = std::min(low, height), high = std::max(high, height);
+    }
+    return high - low;
+  };
+  EXPECT_LT(spread(start.positions), 12 * gap);
+  EXPECT_GT(spread(*x), 0.5 * pull);
+  std::printf("curved_layers: %zu sheets; the body's stack %.2g across (as drawn %.2g)\n", sheets.size(), spread(*x),
+              spread(start.positions));
+  drag.vertex = -1;
+  drag_pub.publish(drag);
+}
+
+}  // namespace virtual_origami::test
+
+int main(int argc, char** argv)
+{
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "curved_layers_rostest");
+  ros::NodeHandle nh;
+  return RUN_ALL_TESTS();
+}
