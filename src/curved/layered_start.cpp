@@ -1,6 +1,8 @@
 #include "virtual_origami/curved/layered_start.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <Eigen/Dense>
 
@@ -150,6 +152,26 @@ LayeredStart layeredStart(const CurvedMesh& mesh, const Paper& paper, const Laye
     start.positions.col(i) += lift;
   }
   return start;
+}
+
+double stackThickness(const CurvedMesh& mesh, const Paper& paper, const LayeredStart& start, int plane,
+                      const Positions& x)
+{
+  const auto first = std::find(start.plane_of.begin(), start.plane_of.end(), plane);
+  if (first == start.plane_of.end())
+    return 0.0;
+  const Vec3 normal = paper.faceNormal(static_cast<int>(first - start.plane_of.begin()));
+  double low = std::numeric_limits<double>::infinity(), high = -low;
+  for (int i = 0; i < x.cols(); ++i)
+  {
+    const std::vector<int> faces = mesh.facesOfNode(paper, i);
+    if (std::none_of(faces.begin(), faces.end(), [&](int f) { return start.plane_of[f] == plane; }))
+      continue;
+    const double height = normal.dot(x.col(i));
+    low = std::min(low, height);
+    high = std::max(high, height);
+  }
+  return high >= low ? high - low : 0.0;
 }
 
 }  // namespace virtual_origami::core

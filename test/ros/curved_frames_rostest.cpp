@@ -17,6 +17,7 @@
 #include <virtual_origami/PinVertex.h>
 #include <virtual_origami/VertexTarget.h>
 
+#include "curved_sheet.h"
 #include "ros_test_client.h"
 #include "virtual_origami/curved/curved_solver.h"
 #include "virtual_origami/ros/conversions.h"
@@ -28,17 +29,6 @@ namespace
 {
 using visualization_msgs::Marker;
 
-/// The node positions of a published sheet of `mesh` (its triangles in the mesh's order).
-std::optional<core::Positions> nodePositions(const Marker& triangles, const core::CurvedMesh& mesh)
-{
-  if (triangles.points.size() != 3 * mesh.triangles.size())
-    return std::nullopt;
-  core::Positions x = core::Positions::Zero(3, static_cast<Eigen::Index>(mesh.nodes.size()));
-  for (size_t t = 0; t < mesh.triangles.size(); ++t)
-    for (int k = 0; k < 3; ++k)
-      x.col(mesh.triangles[t].nodes[k]) = toVec3(triangles.points[3 * t + k]);
-  return x;
-}
 
 class CurvedFrames : public ::testing::Test
 {

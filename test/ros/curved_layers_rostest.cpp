@@ -16,6 +16,7 @@
 #include <virtual_origami/PinVertex.h>
 #include <virtual_origami/VertexTarget.h>
 
+#include "curved_sheet.h"
 #include "ros_test_client.h"
 #include "virtual_origami/core/fold_sequence.h"
 #include "virtual_origami/curved/contact.h"
@@ -27,22 +28,7 @@
 
 namespace virtual_origami::test
 {
-namespace
-{
 using visualization_msgs::Marker;
-
-/// The node positions of a published sheet of `mesh` (its triangles in the mesh's order).
-std::optional<core::Positions> nodePositions(const Marker& triangles, const core::CurvedMesh& mesh)
-{
-  if (triangles.points.size() != 3 * mesh.triangles.size())
-    return std::nullopt;
-  core::Positions x = core::Positions::Zero(3, static_cast<Eigen::Index>(mesh.nodes.size()));
-  for (size_t t = 0; t < mesh.triangles.size(); ++t)
-    for (int k = 0; k < 3; ++k)
-      x.col(mesh.triangles[t].nodes[k]) = toVec3(triangles.points[3 * t + k]);
-  return x;
-}
-}  // namespace
 
 TEST(CurvedLayers, AFoldedCraneDraggedByAWingTipOpensItsBodyWithNoLayerPassingAnother)
 {
@@ -136,18 +122,8 @@ TEST(CurvedLayers, AFoldedCraneDraggedByAWingTipOpensItsBodyWithNoLayerPassingAn
   // the start had not (where folds' hinges meet at paper vertices).
   EXPECT_LE(core::countPenetrations(*mesh, *x, gap), core::countPenetrations(*mesh, start.positions, gap));
   // The body's stack (its plane's nodes, across the plane), 11 gaps as drawn, opened.
-  const core::Vec3 normal = crane->faceNormal(0);
   auto spread = [&](const core::Positions& at) {
-    double low = INFINITY, high = -INFINITY;
-    for (int i = 0; i < at.cols(); ++i)
-    {
-      const std::vector<int> faces = mesh->facesOfNode(*crane, i);
-      if (std::none_of(faces.begin(), faces.end(), [&](int f) { return start.plane_of[f] == start.plane_of[0]; }))
-        continue;
-      const double height = normal.dot(at.col(i));
-      low = std::min(low, height), high = std::max(high, height);
-    }
-    return high - low;
+    return core::stackThickness(*mesh, *crane, start, start.plane_of[0], at);
   };
   EXPECT_LT(spread(start.positions), 12 * gap);
   EXPECT_GT(spread(*x), 0.5 * pull);

@@ -14,6 +14,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "gripper_checks.h"
+#include "curved_sheet.h"
 #include "ros_test_client.h"
 #include "virtual_origami/curved/curved_metrics.h"
 #include "virtual_origami/ros/curved_mesh_solver_node.h"
@@ -29,26 +30,6 @@ constexpr double kSolverTolerance = 1e-10;  // spring_solver's default strain to
 // (test/unit/curved_follow_test.cpp, the same path solved step by step).
 constexpr double kMeshStrain = 3e-3;
 
-/// The node positions of a published sheet: the triangles come in the order of the mesh the
-/// node made, which the same mesher makes again from the same state.
-std::optional<core::Positions> nodePositions(const visualization_msgs::Marker& triangles, const core::CurvedMesh& mesh)
-{
-  if (triangles.points.size() != 3 * mesh.triangles.size())
-    return std::nullopt;
-  core::Positions x = core::Positions::Zero(3, static_cast<Eigen::Index>(mesh.nodes.size()));
-  std::vector<char> seen(mesh.nodes.size(), 0);
-  for (size_t t = 0; t < mesh.triangles.size(); ++t)
-    for (int k = 0; k < 3; ++k)
-    {
-      const int node = mesh.triangles[t].nodes[k];
-      const core::Vec3 p = toVec3(triangles.points[3 * t + k]);
-      if (seen[node] && (x.col(node) - p).norm() > 1e-12)
-        return std::nullopt;  // not this mesh
-      x.col(node) = p;
-      seen[node] = 1;
-    }
-  return x;
-}
 
 struct Sheet
 {

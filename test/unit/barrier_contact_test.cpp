@@ -5,16 +5,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
-#include "virtual_origami/core/fold_sequence.h"
+#include "folded_crane.h"
 #include "virtual_origami/curved/barrier_contact.h"
 #include "virtual_origami/curved/bubble_mesh.h"
 #include "virtual_origami/curved/contact.h"
 #include "virtual_origami/curved/curved_solver.h"
 #include "virtual_origami/curved/layered_start.h"
-#include "virtual_origami/solvers/solver_factory.h"
 
 using namespace virtual_origami::core;
 
@@ -59,22 +56,6 @@ TEST(Impact, TwoEdgesMeetWhenTheyCrossInOnePlane)
             2.0);
 }
 
-namespace
-{
-Paper foldedCrane()
-{
-  std::ifstream in(std::string(VO_SOURCE_DIR) + "/sequences/crane.json");
-  std::stringstream text;
-  text << in.rdbuf();
-  const Expected<FoldSequence> sequence = parseFoldSequence(text.str());
-  EXPECT_TRUE(sequence.ok()) << sequence.message();
-  Session session;
-  const Expected<std::vector<Paper>> states = foldSequence(*sequence, session, makeSolver(sequence->solver));
-  EXPECT_TRUE(states.ok()) << states.message();
-  return states->back();
-}
-}  // namespace
-
 TEST(BarrierContact, TheCranesBodyOpensAsItsWingTipsArePulledApartWithNoLayerPassingAnother)
 {
   const Paper crane = foldedCrane();
@@ -115,20 +96,8 @@ TEST(BarrierContact, TheCranesBodyOpensAsItsWingTipsArePulledApartWithNoLayerPas
   const Positions& rest = start.positions;
   const Vec3 apart = (rest.col(tip[1]) - rest.col(tip[0])).normalized();
   Positions x = rest;
-  auto bodySpread = [&](const Positions& at) {
-    // The body's stack: how far its nodes lie apart across its plane.
-    const Vec3 normal = crane.faceNormal(0);
-    double low = INFINITY, high = -INFINITY;
-    for (size_t i = 0; i < mesh->nodes.size(); ++i)
-    {
-      const std::vector<int> faces = mesh->facesOfNode(crane, static_cast<int>(i));
-      if (std::none_of(faces.begin(), faces.end(), [&](int f) { return start.plane_of[f] == start.plane_of[0]; }))
-        continue;
-      const double height = normal.dot(at.col(i) - rest.col(0));
-      low = std::min(low, height), high = std::max(high, height);
-    }
-    return high - low;
-  };
+  // The body's stack: how far its nodes lie apart across its plane.
+  auto bodySpread = [&](const Positions& at) { return stackThickness(*mesh, crane, start, start.plane_of[0], at); };
   const int start_crossings = countPenetrations(*mesh, rest, layers.gap);
   const double pull = 0.001;
   for (int k = 1; k <= 4; ++k)

@@ -5,33 +5,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
-#include "virtual_origami/core/fold_sequence.h"
+#include "folded_crane.h"
 #include "virtual_origami/curved/bubble_mesh.h"
 #include "virtual_origami/curved/contact.h"
 #include "virtual_origami/curved/curved_follow.h"
 #include "virtual_origami/curved/layered_start.h"
-#include "virtual_origami/solvers/solver_factory.h"
 
 using namespace virtual_origami::core;
-
-namespace
-{
-Paper foldedCrane()
-{
-  std::ifstream in(std::string(VO_SOURCE_DIR) + "/sequences/crane.json");
-  std::stringstream text;
-  text << in.rdbuf();
-  const Expected<FoldSequence> sequence = parseFoldSequence(text.str());
-  EXPECT_TRUE(sequence.ok()) << sequence.message();
-  Session session;
-  const Expected<std::vector<Paper>> states = foldSequence(*sequence, session, makeSolver(sequence->solver));
-  EXPECT_TRUE(states.ok()) << states.message();
-  return states->back();
-}
-}  // namespace
 
 TEST(LayeredFollow, TheFoldedCraneRestsAsDrawnAndItsWingTipsPullApartWithNoLayerPassingAnother)
 {
@@ -75,17 +56,7 @@ TEST(LayeredFollow, TheFoldedCraneRestsAsDrawnAndItsWingTipsPullApartWithNoLayer
   EXPECT_LE(countPenetrations(follower.mesh(), follower.positions(), gap), start_crossings);
   const LayeredStart layers = layeredStart(follower.mesh(), crane, layersFor(crane, options.layer_gap));
   auto bodySpread = [&](const Positions& at) {
-    const Vec3 normal = crane.faceNormal(0);
-    double low = INFINITY, high = -INFINITY;
-    for (int i = 0; i < at.cols(); ++i)
-    {
-      const std::vector<int> faces = follower.mesh().facesOfNode(crane, i);
-      if (std::none_of(faces.begin(), faces.end(), [&](int f) { return layers.plane_of[f] == layers.plane_of[0]; }))
-        continue;
-      const double height = normal.dot(at.col(i) - rest.col(0));
-      low = std::min(low, height), high = std::max(high, height);
-    }
-    return high - low;
+    return stackThickness(follower.mesh(), crane, layers, layers.plane_of[0], at);
   };
   double held_off = 0.0;  // how far holding the tips where the model has them moved the sheet
   for (int i = 0; i < rest.cols(); ++i)

@@ -5,17 +5,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
-#include "virtual_origami/core/fold_sequence.h"
+#include "folded_crane.h"
 #include "virtual_origami/curved/bubble_mesh.h"
 #include "virtual_origami/curved/contact.h"
 #include "virtual_origami/curved/curved_metrics.h"
 #include "virtual_origami/curved/layered_start.h"
 #include "virtual_origami/curved/mesh_distance.h"
 #include "virtual_origami/curved/seed_scenes.h"
-#include "virtual_origami/solvers/solver_factory.h"
 
 using namespace virtual_origami::core;
 
@@ -31,18 +28,6 @@ CurvedMesh stripMesh(const Paper& paper, double spacing)
   return *mesh;
 }
 
-Paper foldedCrane()
-{
-  std::ifstream in(std::string(VO_SOURCE_DIR) + "/sequences/crane.json");
-  std::stringstream text;
-  text << in.rdbuf();
-  const Expected<FoldSequence> sequence = parseFoldSequence(text.str());
-  EXPECT_TRUE(sequence.ok()) << sequence.message();
-  Session session;
-  const Expected<std::vector<Paper>> states = foldSequence(*sequence, session, makeSolver(sequence->solver));
-  EXPECT_TRUE(states.ok()) << states.message();
-  return states->back();
-}
 }  // namespace
 
 TEST(LayeredStart, AFlapFoldedOverLiesAGapAboveTheSheetWithNothingTouching)

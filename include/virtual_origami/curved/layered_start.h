@@ -46,4 +46,10 @@ struct LayeredStart
 /// the sheet's raw edges drawn back a strip's width.
 LayeredStart layeredStart(const CurvedMesh& mesh, const Paper& paper, const LayeredStartOptions& options = {});
 
+/// How far apart across `plane` (along its first face's normal) the nodes on its faces lie at
+/// `x`: a stack's thickness, its levels × the gap as laid out, more where its layers part (a
+/// folded crane's body opening as its wings are pulled apart).
+double stackThickness(const CurvedMesh& mesh, const Paper& paper, const LayeredStart& start, int plane,
+                      const Positions& x);
+
 }  // namespace virtual_origami::core
