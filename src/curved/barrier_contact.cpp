@@ -218,9 +218,13 @@ void BarrierContact::forPairs(const Positions& x, const Positions* motion, doubl
   const int node_count = static_cast<int>(mesh_.nodes.size());
   const int triangle_count = static_cast<int>(mesh_.triangles.size());
   const int edge_count = static_cast<int>(mesh_.edges.size());
-  std::vector<int> ids(std::max({ node_count, triangle_count, edge_count }));
-  for (size_t i = 0; i < ids.size(); ++i)
-    ids[i] = static_cast<int>(i);
+  // Each box its own handle (CGAL tells boxes apart by their handles' addresses): node v at
+  // ids[v], triangle t at ids[node_count + t], both holding their own index.
+  std::vector<int> ids(node_count + std::max(triangle_count, edge_count));
+  for (int i = 0; i < node_count; ++i)
+    ids[i] = i;
+  for (size_t i = node_count; i < ids.size(); ++i)
+    ids[i] = static_cast<int>(i) - node_count;
 
   std::vector<Box> nodes, triangles, edges;
   nodes.reserve(node_count);
@@ -230,13 +234,15 @@ void BarrierContact::forPairs(const Positions& x, const Positions* motion, doubl
   for (int t = 0; t < triangle_count; ++t)
   {
     const auto& n = mesh_.triangles[t].nodes;
-    triangles.emplace_back(bounds({ n[0], n[1], n[2] }, reach), &ids[t]);
+    triangles.emplace_back(bounds({ n[0], n[1], n[2] }, reach), &ids[node_count + t]);
   }
   CGAL::box_intersection_d(
       nodes.begin(), nodes.end(), triangles.begin(), triangles.end(),
       [&](const Box& a, const Box& b) {
-        const int v = *a.handle();
-        const auto& n = mesh_.triangles[*b.handle()].nodes;
+        // Which is the node: its handle lies below the triangles' in `ids`.
+        const bool a_is_node = a.handle() < ids.data() + node_count;
+        const int v = *(a_is_node ? a : b).handle();
+        const auto& n = mesh_.triangles[*(a_is_node ? b : a).handle()].nodes;
         if (v == n[0] || v == n[1] || v == n[2])
           return;
         f(char(0), std::array<int, 4>{ v, n[0], n[1], n[2] });
@@ -247,7 +253,7 @@ void BarrierContact::forPairs(const Positions& x, const Positions* motion, doubl
   for (int e = 0; e < edge_count; ++e)
   {
     const auto& n = mesh_.edges[e].nodes;
-    edges.emplace_back(bounds({ n[0], n[1] }, 0.5 * reach), &ids[e]);
+    edges.emplace_back(bounds({ n[0], n[1] }, 0.5 * reach), &ids[node_count + e]);
   }
   CGAL::box_self_intersection_d(
       edges.begin(), edges.end(),

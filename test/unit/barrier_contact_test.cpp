@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 #include "folded_crane.h"
 #include "virtual_origami/curved/barrier_contact.h"
@@ -12,6 +13,7 @@
 #include "virtual_origami/curved/contact.h"
 #include "virtual_origami/curved/curved_solver.h"
 #include "virtual_origami/curved/layered_start.h"
+#include "virtual_origami/curved/mesh_distance.h"
 
 using namespace virtual_origami::core;
 
@@ -54,6 +56,49 @@ TEST(Impact, TwoEdgesMeetWhenTheyCrossInOnePlane)
   EXPECT_EQ(edgeEdgeImpact(Vec3(-1, 0, h), Vec3(1, 0, h), Vec3(0, -1, 0), Vec3(0, 1, 0), along, along, still, still,
                            1e-12),
             2.0);
+}
+
+TEST(BarrierContact, WatchesEveryPairWithinItsReach)
+{
+  // The crane's layered start: every node–triangle and edge–edge pair sharing no node that lies
+  // within the reach (brute force, by true distances) is among the watched pairs.
+  const Paper crane = foldedCrane();
+  LayeredStartOptions layers;
+  layers.gap = 1e-5;
+  BubbleMeshOptions meshing;
+  meshing.spacing = 0.05;
+  meshing.crease_strip = layers.stripFor(crane);
+  const Expected<CurvedMesh> mesh = bubbleMesh(crane, meshing);
+  ASSERT_TRUE(mesh.ok()) << mesh.message();
+  const Positions x = layeredStart(*mesh, crane, layers).positions;
+  const double reach = 3 * layers.gap;
+  BarrierContact contact(*mesh, { reach, 1.0 });
+  contact.update(x, nullptr, reach);
+  const std::vector<std::array<int, 4>> watched = contact.pairNodes();
+  const std::set<std::array<int, 4>> found(watched.begin(), watched.end());
+  int near = 0;
+  for (int v = 0; v < x.cols(); ++v)
+    for (const MeshTriangle& t : mesh->triangles)
+    {
+      const auto& n = t.nodes;
+      if (v == n[0] || v == n[1] || v == n[2] ||
+          pointTriangleDistance(x.col(v), x.col(n[0]), x.col(n[1]), x.col(n[2])) >= reach)
+        continue;
+      ++near;
+      EXPECT_TRUE(found.count({ v, n[0], n[1], n[2] })) << "node " << v << " and triangle " << n[0] << " " << n[1] << " " << n[2];
+    }
+  for (size_t a = 0; a < mesh->edges.size(); ++a)
+    for (size_t b = a + 1; b < mesh->edges.size(); ++b)
+    {
+      const auto& p = mesh->edges[a].nodes;
+      const auto& q = mesh->edges[b].nodes;
+      if (p[0] == q[0] || p[0] == q[1] || p[1] == q[0] || p[1] == q[1] ||
+          segmentDistance(x.col(p[0]), x.col(p[1]), x.col(q[0]), x.col(q[1])) >= reach)
+        continue;
+      ++near;
+      EXPECT_TRUE(found.count({ p[0], p[1], q[0], q[1] })) << "edges " << a << " and " << b;
+    }
+  EXPECT_GT(near, 1000);  // the stacked layers lie a gap apart: many pairs are near
 }
 
 TEST(BarrierContact, TheCranesBodyOpensAsItsWingTipsArePulledApartWithNoLayerPassingAnother)

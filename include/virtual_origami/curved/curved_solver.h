@@ -231,8 +231,9 @@ private:
   LayerContact contact_;
   /// With ContactOptions::barrier, the contact in place of contact_ (which then watches nothing).
   std::unique_ptr<BarrierContact> barrier_;
-  bool barrier_started_ = false;  // the pairs touching at the first solve's start are set aside
-  /// Finds the pairs contact watches at x (the barrier's within its reach of a Newton step).
+  bool barrier_started_ = false;  // the pairs near at the first solve's start are guarded
+  /// Finds the pairs contact watches at x (the barrier's: those within its activation distance;
+  /// lineSearch adds those a step sweeps near).
   void updateContact(const Positions& x);
   CurvedSolveOptions options_;
   Surroundings surroundings_;
