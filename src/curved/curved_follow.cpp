@@ -99,9 +99,7 @@ Status CurvedSheetFollower::setMaterial(const CurvedMaterial& material, const Su
   frames_.reset();
   frames_live_ = false;
   if (mesh_)
-  {
     solver_ = makeSolver(*mesh_, *paper_, layered_rest_);
-  }
   return success();
 }
 

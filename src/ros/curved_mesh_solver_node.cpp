@@ -100,7 +100,7 @@ core::Expected<core::CurvedFollowOptions> curvedFollowOptions(const CurvedMeshSo
   {
     // Stacked layers lifted apart, a barrier between them (docs/CURVED.md, "A barrier on that
     // start"): Newton with a fresh Hessian every step (the contacts change it), little damping,
-    // and pins moved a few layer gaps at a time, as the folded crane's pulls balance.
+    // and pins moved 1/100 spacing a solve, as the folded crane's pulls balance.
     options.layered = true;
     options.solve.modified_newton_rate = 0;
     options.solve.damping = 1e-4;

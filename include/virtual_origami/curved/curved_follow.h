@@ -33,7 +33,8 @@ struct CurvedFollowOptions
   /// apart with a barrier no step passes (ContactOptions::barrier, within half a gap): a folded
   /// model bent or pulled open (seed 002 Fig. 1.1). The mesher must give the creases strips as
   /// wide as layersFor(paper, layer_gap) has them (BubbleMeshOptions::crease_strip). The pins
-  /// should move little per solve (max_pin_step): layers a gap apart slide in steps of a few gaps.
+  /// should move little per solve (max_pin_step): the folded crane's pulls balance in steps of
+  /// 1/100 spacing (curved_mesh_solver's `layers`).
   bool layered = false;
   /// 10⁻⁵: the folded crane's pulls balance in 30–60 Newton iterations; at the layered start's
   /// own 10⁻⁶, 160–185 (docs/CURVED.md).
