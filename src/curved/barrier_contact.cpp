@@ -7,6 +7,8 @@
 #include <cmath>
 #include <limits>
 
+#include "virtual_origami/curved/mesh_distance.h"
+
 namespace virtual_origami::core
 {
 namespace
@@ -20,53 +22,24 @@ struct Closest
   Eigen::Matrix<double, 3, 4> gradient;
 };
 
-/// Ericson, Real-Time Collision Detection 5.1.5: the nearest point of triangle abc to p, by the
-/// region of the triangle's plane p projects into, as barycentric weights.
+/// The distance from p to triangle abc and its gradient.
 Closest pointTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c)
 {
-  const Vec3 ab = b - a, ac = c - a, ap = p - a, bp = p - b, cp = p - c;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap), d3 = ab.dot(bp), d4 = ac.dot(bp), d5 = ab.dot(cp),
-               d6 = ac.dot(cp);
-  const double vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
-  double wa = 1, wb = 0, wc = 0;
-  if (d1 <= 0 && d2 <= 0)
-    wa = 1, wb = 0, wc = 0;
-  else if (d3 >= 0 && d4 <= d3)
-    wa = 0, wb = 1, wc = 0;
-  else if (vc <= 0 && d1 >= 0 && d3 <= 0)
-    wb = d1 / (d1 - d3), wa = 1 - wb, wc = 0;
-  else if (d6 >= 0 && d5 <= d6)
-    wa = 0, wb = 0, wc = 1;
-  else if (vb <= 0 && d2 >= 0 && d6 <= 0)
-    wc = d2 / (d2 - d6), wa = 1 - wc, wb = 0;
-  else if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0)
-    wc = (d4 - d3) / ((d4 - d3) + (d5 - d6)), wb = 1 - wc, wa = 0;
-  else
-  {
-    const double scale = 1.0 / (va + vb + vc);
-    wb = vb * scale, wc = vc * scale, wa = 1 - wb - wc;
-  }
-  const Vec3 offset = p - (wa * a + wb * b + wc * c);
+  const Vec3 w = nearestOnTriangle(p, a, b, c);
+  const Vec3 offset = p - (w.x() * a + w.y() * b + w.z() * c);
   Closest r;
   r.distance = offset.norm();
   const Vec3 n = r.distance > 0 ? Vec3(offset / r.distance) : Vec3::Zero();
-  r.gradient << n, -wa * n, -wb * n, -wc * n;
+  r.gradient << n, -w.x() * n, -w.y() * n, -w.z() * n;
   return r;
 }
 
-/// Ericson 5.1.9: the nearest points of segments pq and rs.
+/// The distance between segments pq and rs and its gradient.
 Closest edgeEdge(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s)
 {
-  const Vec3 d1 = q - p, d2 = s - r, w = p - r;
-  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(w), c = d1.dot(w), b = d1.dot(d2);
-  const double denominator = a * e - b * b;
-  double u = denominator > 1e-14 * a * e ? std::clamp((b * f - c * e) / denominator, 0.0, 1.0) : 0.0;
-  double v = (b * u + f) / e;
-  if (v < 0)
-    v = 0, u = std::clamp(-c / a, 0.0, 1.0);
-  else if (v > 1)
-    v = 1, u = std::clamp((b - c) / a, 0.0, 1.0);
-  const Vec3 offset = (p + u * d1) - (r + v * d2);
+  const Vec2 t = nearestOnSegments(p, q, r, s);
+  const double u = t.x(), v = t.y();
+  const Vec3 offset = (p + u * (q - p)) - (r + v * (s - r));
   Closest result;
   result.distance = offset.norm();
   const Vec3 n = result.distance > 0 ? Vec3(offset / result.distance) : Vec3::Zero();

@@ -7,43 +7,58 @@
 
 namespace virtual_origami::core
 {
-double pointTriangleDistance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c)
+Vec3 nearestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c)
 {
-  // The nearest point by the region of the triangle's plane p projects into (Ericson,
-  // Real-Time Collision Detection, 5.1.5).
+  // By the region of the triangle's plane p projects into (Ericson, Real-Time Collision
+  // Detection, 5.1.5).
   const Vec3 ab = b - a, ac = c - a, ap = p - a;
   const double d1 = ab.dot(ap), d2 = ac.dot(ap);
   if (d1 <= 0 && d2 <= 0)
-    return ap.norm();
+    return Vec3(1, 0, 0);
   const Vec3 bp = p - b;
   const double d3 = ab.dot(bp), d4 = ac.dot(bp);
   if (d3 >= 0 && d4 <= d3)
-    return bp.norm();
+    return Vec3(0, 1, 0);
   const double vc = d1 * d4 - d3 * d2;
   if (vc <= 0 && d1 >= 0 && d3 <= 0)
-    return (p - (a + d1 / (d1 - d3) * ab)).norm();
+  {
+    const double v = d1 / (d1 - d3);
+    return Vec3(1 - v, v, 0);
+  }
   const Vec3 cp = p - c;
   const double d5 = ab.dot(cp), d6 = ac.dot(cp);
   if (d6 >= 0 && d5 <= d6)
-    return cp.norm();
+    return Vec3(0, 0, 1);
   const double vb = d5 * d2 - d1 * d6;
   if (vb <= 0 && d2 >= 0 && d6 <= 0)
-    return (p - (a + d2 / (d2 - d6) * ac)).norm();
+  {
+    const double w = d2 / (d2 - d6);
+    return Vec3(1 - w, 0, w);
+  }
   const double va = d3 * d6 - d5 * d4;
   if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0)
-    return (p - (b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b))).norm();
+  {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return Vec3(0, 1 - w, w);
+  }
   const double scale = 1.0 / (va + vb + vc);
-  return (p - (a + ab * (vb * scale) + ac * (vc * scale))).norm();
+  const double v = vb * scale, w = vc * scale;
+  return Vec3(1 - v - w, v, w);
 }
 
-double segmentDistance(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s)
+Vec2 nearestOnSegments(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s)
 {
   // Ericson 5.1.9: the closest points' parameters, clamped to the segments.
   const Vec3 d1 = q - p, d2 = s - r, w = p - r;
   const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(w);
-  if (!(a > 0) || !(e > 0))
-    return a > 0 ? pointTriangleDistance(r, p, q, q) : pointTriangleDistance(p, r, s, s);
-  const double c = d1.dot(w), b = d1.dot(d2), denominator = a * e - b * b;
+  if (!(a > 0) && !(e > 0))
+    return Vec2(0, 0);
+  if (!(a > 0))
+    return Vec2(0, std::clamp(f / e, 0.0, 1.0));
+  const double c = d1.dot(w);
+  if (!(e > 0))
+    return Vec2(std::clamp(-c / a, 0.0, 1.0), 0);
+  const double b = d1.dot(d2), denominator = a * e - b * b;
   double u = denominator > 1e-14 * a * e ? std::clamp((b * f - c * e) / denominator, 0.0, 1.0) : 0.0;
   double v = (b * u + f) / e;
   if (v < 0)
@@ -56,7 +71,19 @@ double segmentDistance(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& 
     v = 1;
     u = std::clamp((b - c) / a, 0.0, 1.0);
   }
-  return ((p + u * d1) - (r + v * d2)).norm();
+  return Vec2(u, v);
+}
+
+double pointTriangleDistance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c)
+{
+  const Vec3 w = nearestOnTriangle(p, a, b, c);
+  return (p - (w.x() * a + w.y() * b + w.z() * c)).norm();
+}
+
+double segmentDistance(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s)
+{
+  const Vec2 t = nearestOnSegments(p, q, r, s);
+  return ((p + t.x() * (q - p)) - (r + t.y() * (s - r))).norm();
 }
 
 ClosestApproach closestApproach(const CurvedMesh& mesh, const Positions& x, double reach)

@@ -20,7 +20,13 @@ struct ClosestApproach
 /// apart than `reach` is not looked at).
 ClosestApproach closestApproach(const CurvedMesh& mesh, const Positions& x, double reach);
 
-/// Distance from p to triangle abc (its nearest point on the face, a side or a corner).
+/// The nearest point of triangle abc to p (on the face, a side or a corner), as its barycentric
+/// weights of a, b and c.
+Vec3 nearestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+/// The nearest points of the segments pq and rs, as their parameters: p + u·(q − p), r + v·(s − r).
+Vec2 nearestOnSegments(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s);
+
+/// Distance from p to triangle abc.
 double pointTriangleDistance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
 /// Distance between the segments pq and rs.
 double segmentDistance(const Vec3& p, const Vec3& q, const Vec3& r, const Vec3& s);
