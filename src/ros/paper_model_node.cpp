@@ -212,7 +212,11 @@ PaperModelNode::PaperModelNode(ros::NodeHandle nh, ros::NodeHandle private_nh) :
                           private_nh.param("paper_z", 0.0));
   static_tf_.sendTransform(transform(world_frame_, style_.frame_id, origin, private_nh.param("paper_yaw", 0.0)));
   pin_timer_ = nh_.createTimer(ros::Duration(0.1), &PaperModelNode::broadcastFrames, this);
-  if (pin_rate > 0)
+  // Off, the rigid faces never chase the frames: a folded model stays as folded while the
+  // curved sheet (curved_mesh_solver, which looks the frames up itself) bends to them.
+  if (!private_nh.param("follow_frames", true))
+    ROS_INFO("paper_model: follow_frames is off: pins on frames hold the curved sheet, the model stays as it is");
+  else if (pin_rate > 0)
     follow_timer_ = nh_.createTimer(ros::Duration(1.0 / pin_rate), &PaperModelNode::followPins, this);
   else
     ROS_ERROR("paper_model: pin_rate must be positive (it is %g); pins will not follow their frames", pin_rate);

@@ -29,11 +29,12 @@ if [ "$share" != "$prefix/share/virtual_origami" ]; then
 fi
 
 missing=()
-for node in paper_model spring_solver curved_mesh_solver interaction recorder replay state_markers gripper_example \
+for node in paper_model spring_solver curved_mesh_solver interaction recorder replay state_markers gripper_example crane_puff \
             fold_sequence fold_demo; do
   [ -x "$prefix/lib/virtual_origami/$node" ] || missing+=("node $node")
 done
-for file in launch/origami.launch launch/replay.launch launch/gripper_example.launch rviz/origami.rviz \
+for file in launch/origami.launch launch/replay.launch launch/gripper_example.launch launch/crane_puff.launch \
+            rviz/origami.rviz rviz/crane_puff.rviz \
             src/rviz_plugin/plugin_description.xml package.xml; do
   [ -f "$share/$file" ] || missing+=("$file")
 done

@@ -3,6 +3,8 @@
 // pinned where it lies, the other dragged on `curved_drag` (as the interaction's Drag mode drags)
 // 0.004 of the side away along the tips' line. The sheet shown when the drag stands still has the
 // tip where the mouse left it, no layer passed through another, and the body's layers opened.
+// The same with both tips pinned on tf frames that move apart, as a robot's grippers would pull
+// (curved_layers_frames.test runs that one).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,6 +14,7 @@
 #include <optional>
 #include <sstream>
 
+#include <tf2_ros/transform_broadcaster.h>
 #include <visualization_msgs/MarkerArray.h>
 #include <virtual_origami/PinVertex.h>
 #include <virtual_origami/VertexTarget.h>
@@ -30,20 +33,11 @@ namespace virtual_origami::test
 {
 using visualization_msgs::Marker;
 
-TEST(CurvedLayers, AFoldedCraneDraggedByAWingTipOpensItsBodyWithNoLayerPassingAnother)
+namespace
 {
-  PaperClient client;
-  std::vector<Marker> sheets;
-  ros::Subscriber sheet_sub = client.nh().subscribe<visualization_msgs::MarkerArray>(
-      "curved_mesh", 1000, [&](const visualization_msgs::MarkerArray::ConstPtr& a) {
-        for (const Marker& m : a->markers)
-          if (m.ns == "curved_mesh")
-            sheets.push_back(m);
-      });
-  ros::Publisher drag_pub = client.nh().advertise<VertexTarget>("curved_drag", 10);
-  ASSERT_TRUE(waitFor([&] { return drag_pub.getNumSubscribers() >= 1; }, 30)) << "nobody listens to curved_drag";
-
-  // The crane, folded through the services.
+/// The crane of the test's `sequence`, folded through the paper's services.
+void foldCrane()
+{
   std::string path;
   ASSERT_TRUE(ros::NodeHandle("~").getParam("sequence", path));
   std::ifstream in(path);
@@ -59,6 +53,35 @@ TEST(CurvedLayers, AFoldedCraneDraggedByAWingTipOpensItsBodyWithNoLayerPassingAn
       const core::Status applied = operations.apply(toMessage(step.operation));
       ASSERT_TRUE(applied) << step.note << ": " << applied.message();
     }
+}
+
+/// The sheet curved_mesh_solver makes of `paper` with this launch's parameters.
+core::Expected<core::CurvedMesh> launchedMesh(const core::Paper& paper)
+{
+  CurvedMeshSolverConfig config = CurvedMeshSolverConfig::__getDefault__();
+  ros::NodeHandle solver_params("/origami/curved_mesh_solver");
+  if (!solver_params.getParam("layers", config.layers) || !config.layers)
+    return core::Expected<core::CurvedMesh>::failure("curved_mesh_solver is not launched with layers");
+  solver_params.getParam("spacing", config.spacing);
+  return meshCurvedSheet(paper, config);
+}
+}  // namespace
+
+TEST(CurvedLayers, AFoldedCraneDraggedByAWingTipOpensItsBodyWithNoLayerPassingAnother)
+{
+  PaperClient client;
+  std::vector<Marker> sheets;
+  ros::Subscriber sheet_sub = client.nh().subscribe<visualization_msgs::MarkerArray>(
+      "curved_mesh", 1000, [&](const visualization_msgs::MarkerArray::ConstPtr& a) {
+        for (const Marker& m : a->markers)
+          if (m.ns == "curved_mesh")
+            sheets.push_back(m);
+      });
+  ros::Publisher drag_pub = client.nh().advertise<VertexTarget>("curved_drag", 10);
+  ASSERT_TRUE(waitFor([&] { return drag_pub.getNumSubscribers() >= 1; }, 30)) << "nobody listens to curved_drag";
+
+  // The crane, folded through the services.
+  ASSERT_NO_FATAL_FAILURE(foldCrane());
   const int tip0 = vertexAt(client.state(), 0, 0), tip1 = vertexAt(client.state(), 1, 1);
   ASSERT_GE(tip0, 0);
   ASSERT_GE(tip1, 0);
@@ -72,11 +95,7 @@ TEST(CurvedLayers, AFoldedCraneDraggedByAWingTipOpensItsBodyWithNoLayerPassingAn
 
   // The sheet as curved_mesh_solver meshes it, with this launch's parameters, shown as the
   // layered start draws it.
-  CurvedMeshSolverConfig config = CurvedMeshSolverConfig::__getDefault__();
-  ros::NodeHandle solver_params("/origami/curved_mesh_solver");
-  ASSERT_TRUE(solver_params.getParam("layers", config.layers) && config.layers);
-  ASSERT_TRUE(solver_params.getParam("spacing", config.spacing));
-  const core::Expected<core::CurvedMesh> mesh = meshCurvedSheet(*crane, config);
+  const core::Expected<core::CurvedMesh> mesh = launchedMesh(*crane);
   ASSERT_TRUE(mesh) << mesh.message();
   const core::LayeredStartOptions layers = core::layersFor(*crane, core::CurvedFollowOptions().layer_gap);
   const core::LayeredStart start = core::layeredStart(*mesh, *crane, layers);
@@ -131,6 +150,107 @@ TEST(CurvedLayers, AFoldedCraneDraggedByAWingTipOpensItsBodyWithNoLayerPassingAn
               spread(start.positions));
   drag.vertex = -1;
   drag_pub.publish(drag);
+}
+
+TEST(CurvedLayers, AFoldedCranePulledByBothWingTipsOnTfFramesOpensItsBody)
+{
+  PaperClient client;
+  std::vector<Marker> sheets;
+  ros::Subscriber sheet_sub = client.nh().subscribe<visualization_msgs::MarkerArray>(
+      "curved_mesh", 1000, [&](const visualization_msgs::MarkerArray::ConstPtr& a) {
+        for (const Marker& m : a->markers)
+          if (m.ns == "curved_mesh")
+            sheets.push_back(m);
+      });
+  ASSERT_NO_FATAL_FAILURE(foldCrane());
+  const PaperState folded = client.state();
+  const core::Expected<core::Paper> crane = fromMessage(folded);
+  ASSERT_TRUE(crane) << crane.message();
+  const int tips[2] = { vertexAt(folded, 0, 0), vertexAt(folded, 1, 1) };
+  ASSERT_GE(tips[0], 0);
+  ASSERT_GE(tips[1], 0);
+  const core::Vec3 at[2] = { crane->vertices[tips[0]].folded, crane->vertices[tips[1]].folded };
+  const core::Vec3 away = (at[1] - at[0]).normalized();
+  const char* frames[2] = { "curved_layers_grip0", "curved_layers_grip1" };
+
+  // Two grippers on tf, each holding a tip where it lies, then drawing it `pull` away from the
+  // other; the frames are sent again at 30 Hz, as a robot's tf is, until the test ends.
+  const double pull = 0.002 * crane->scale();
+  double drawn = 0;  // how far each gripper has drawn its tip
+  tf2_ros::TransformBroadcaster tf;
+  ros::WallTime last_sent;
+  const auto send = [&] {
+    if (ros::WallTime::now() - last_sent < ros::WallDuration(1.0 / 30))
+      return;
+    last_sent = ros::WallTime::now();
+    for (int s = 0; s < 2; ++s)
+    {
+      geometry_msgs::TransformStamped t;
+      t.header.stamp = ros::Time::now();
+      t.header.frame_id = folded.header.frame_id;
+      t.child_frame_id = frames[s];
+      const core::Vec3 p = at[s] + (s == 0 ? -drawn : drawn) * away;
+      t.transform.translation.x = p.x();
+      t.transform.translation.y = p.y();
+      t.transform.translation.z = p.z();
+      t.transform.rotation.w = 1;
+      tf.sendTransform(t);
+    }
+  };
+  const auto waitSending = [&](const std::function<bool()>& done, double seconds) {
+    return waitFor([&] { send(); return done(); }, seconds);
+  };
+  ASSERT_TRUE(waitSending([] { return false; }, 0.5) || true);
+  for (int s = 0; s < 2; ++s)
+  {
+    PinVertex::Request pin;
+    pin.vertex = tips[s];
+    pin.frame_id = frames[s];
+    const PinVertex::Response pinned = client.call<PinVertex>("pin", pin).response;
+    ASSERT_TRUE(pinned.success) << pinned.message;
+  }
+  ASSERT_TRUE(waitSending([&] { return client.state().pins.size() == 2; }, 30));
+  const PaperState pinned = client.state();
+
+  const core::Expected<core::CurvedMesh> mesh = launchedMesh(*crane);
+  ASSERT_TRUE(mesh) << mesh.message();
+  const core::LayeredStartOptions layers = core::layersFor(*crane, core::CurvedFollowOptions().layer_gap);
+  const core::LayeredStart start = core::layeredStart(*mesh, *crane, layers);
+  const double gap = layers.gapFor(*crane);
+  const int nodes[2] = { mesh->vertex_nodes[tips[0]], mesh->vertex_nodes[tips[1]] };
+  // Where the grippers hold the tips' nodes: moved as far as the frames from where the model has
+  // the tips.
+  const auto held = [&](const core::Positions& x) {
+    double off = 0;
+    for (int s = 0; s < 2; ++s)
+      off = std::max(off, (x.col(nodes[s]) - (start.positions.col(nodes[s]) + (s == 0 ? -drawn : drawn) * away)).norm());
+    return off;
+  };
+  std::optional<core::Positions> x;
+  const auto shownHeld = [&] {
+    if (sheets.empty())
+      return false;
+    x = nodePositions(sheets.back(), *mesh);
+    return x && held(*x) < 1e-9 * crane->scale();
+  };
+  ASSERT_TRUE(waitSending(shownHeld, 60)) << "the crane held by its tips is not shown as drawn";
+
+  for (int k = 1; k <= 20; ++k)
+  {
+    drawn = pull * k / 20.0;
+    ASSERT_TRUE(waitSending([] { return false; }, 1.0 / 30) || true);
+  }
+  ASSERT_TRUE(waitSending(shownHeld, 240))
+      << "no sheet with the tips where the grippers hold them: the nearest is "
+      << (x ? held(*x) : NAN) << " away";
+  // The model still the crane as folded (paper_model's `follow_frames` off): the grippers bend
+  // the sheet, they do not refold the model.
+  EXPECT_EQ(client.state().revision, pinned.revision);
+  EXPECT_LE(core::countPenetrations(*mesh, *x, gap), core::countPenetrations(*mesh, start.positions, gap));
+  const double spread = core::stackThickness(*mesh, *crane, start, start.plane_of[0], *x);
+  EXPECT_GT(spread, 0.5 * pull);
+  std::printf("curved_layers: grippers on tf drew the tips %.3g apart; the body's stack %.2g across\n", 2 * pull,
+              spread);
 }
 
 }  // namespace virtual_origami::test
