@@ -344,6 +344,8 @@ void recordLayerOrder(Paper& work, AssignmentFoldResult& result)
   }
   if (order->complete)
     work.face_orders = order->orders;
+  else
+    result.layers_unordered = order->incomplete;
   result.ordered_pairs = order->complete ? order->stacked_pairs : 0;
 }
 }  // namespace

@@ -901,6 +901,7 @@ bool PaperModelNode::foldByAssignment(FoldByAssignment::Request& req, FoldByAssi
   res.crossings = folded.crossings;
   res.ordered_pairs = folded.ordered_pairs;
   res.layer_problem = folded.layer_problem;
+  res.layers_unordered = folded.layers_unordered;
   res.compliant_faces = folded.compliant_faces;
   res.largest_bend = folded.largest_bend;
   if (!result)
@@ -918,6 +919,8 @@ bool PaperModelNode::foldByAssignment(FoldByAssignment::Request& req, FoldByAssi
   std::snprintf(text, sizeof text, "%s %.1f %% by assignment (strain %.2g, %s)", commit_it ? "folded" : "preview at",
                 100.0 * req.fraction, folded.max_strain, folded.rigid ? "rigid" : "not rigid");
   res.message = text;
+  if (!folded.layers_unordered.empty())
+    res.message += "; its flat layers are left without an order, unchecked for crossing: " + folded.layers_unordered;
   if (commit_it && req.keep)
   {
     core::AssignmentFoldAcceptance strict = acceptance;

@@ -9,6 +9,7 @@
 #include "virtual_origami/core/assignment_fold.h"
 #include "virtual_origami/core/layer_order.h"
 #include "virtual_origami/core/session.h"
+#include "virtual_origami/core/tessellations.h"
 #include "virtual_origami/solvers/crease_driver_factory.h"
 #include "virtual_origami/solvers/solver_factory.h"
 
@@ -39,6 +40,33 @@ TEST(AssignmentLayers, ALargeSparseFlatStackCarriesItsLayerOrder)
   EXPECT_GT(flat->ordered_pairs, 10000);
   EXPECT_EQ(static_cast<int>(paper.face_orders.size()), flat->ordered_pairs);
   EXPECT_EQ(layerOrderViolation(paper, paper.face_orders, options.tolerance, true), "");
+}
+
+/// A flat stack too large to order (a Miura-ori of 28 × 28 parallelograms folds flat into one
+/// stack of 31,752 overlapping pairs, more than the 20,000 a stack is bounded by; 24 × 24 makes
+/// 19,872) is answered with no order recorded, and the answer says so and why: its layers are
+/// unchecked.
+TEST(AssignmentLayers, AFlatStackTooLargeToOrderIsSaidToBeUnordered)
+{
+  Session session(miuraTessellation(28, 28).value().paper);
+  session.setSolver(makeSolver("newton"));
+  session.setCreaseDrivers(makeCreaseDriver("quasi_newton"));
+  const Expected<AssignmentFoldResult> flat = session.foldByAssignment(1.0);
+  ASSERT_TRUE(flat) << flat.message();
+  EXPECT_LE(flat->angle_error, 1e-3);
+  EXPECT_EQ(flat->ordered_pairs, 0);
+  EXPECT_TRUE(session.paper().face_orders.empty());
+  EXPECT_NE(flat->layers_unordered.find("overlapping pairs of faces is more than the 20000"), std::string::npos)
+      << flat->layers_unordered;
+
+  // A smaller one is ordered, and says nothing of it.
+  Session small(miuraTessellation(6, 6).value().paper);
+  small.setSolver(makeSolver("newton"));
+  small.setCreaseDrivers(makeCreaseDriver("quasi_newton"));
+  const Expected<AssignmentFoldResult> ordered = small.foldByAssignment(1.0);
+  ASSERT_TRUE(ordered) << ordered.message();
+  EXPECT_GT(ordered->ordered_pairs, 0);
+  EXPECT_EQ(ordered->layers_unordered, "");
 }
 
 }  // namespace

@@ -108,6 +108,10 @@ struct AssignmentFoldResult
   /// layers would cross), why.
   int ordered_pairs = 0;
   std::string layer_problem;
+  /// A committed result with faces lying flat on each other whose order was not worked out
+  /// (a stack over the bounds recordLayerOrder sets, or a search that gave up): why. Its layers
+  /// are then neither ordered nor checked against crossing, and the answer says so.
+  std::string layers_unordered;
   /// Driven creases left on the other side of flat from where they were driven (further than
   /// kAgainstTargetAngle): a fold that went the wrong way.
   int against_target = 0;
