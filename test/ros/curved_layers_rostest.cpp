@@ -55,6 +55,17 @@ void foldCrane()
     }
 }
 
+/// Every sheet curved_mesh_solver shows on `curved_mesh`, into `sheets`.
+ros::Subscriber recordSheets(ros::NodeHandle& nh, std::vector<Marker>& sheets)
+{
+  return nh.subscribe<visualization_msgs::MarkerArray>("curved_mesh", 1000,
+                                                       [&sheets](const visualization_msgs::MarkerArray::ConstPtr& a) {
+                                                         for (const Marker& m : a->markers)
+                                                           if (m.ns == "curved_mesh")
+                                                             sheets.push_back(m);
+                                                       });
+}
+
 /// The sheet curved_mesh_solver makes of `paper` with this launch's parameters.
 core::Expected<core::CurvedMesh> launchedMesh(const core::Paper& paper)
 {
@@ -71,12 +82,7 @@ TEST(CurvedLayers, AFoldedCraneDraggedByAWingTipOpensItsBodyWithNoLayerPassingAn
 {
   PaperClient client;
   std::vector<Marker> sheets;
-  ros::Subscriber sheet_sub = client.nh().subscribe<visualization_msgs::MarkerArray>(
-      "curved_mesh", 1000, [&](const visualization_msgs::MarkerArray::ConstPtr& a) {
-        for (const Marker& m : a->markers)
-          if (m.ns == "curved_mesh")
-            sheets.push_back(m);
-      });
+  const ros::Subscriber sheet_sub = recordSheets(client.nh(), sheets);
   ros::Publisher drag_pub = client.nh().advertise<VertexTarget>("curved_drag", 10);
   ASSERT_TRUE(waitFor([&] { return drag_pub.getNumSubscribers() >= 1; }, 30)) << "nobody listens to curved_drag";
 
@@ -156,12 +162,7 @@ TEST(CurvedLayers, AFoldedCranePulledByBothWingTipsOnTfFramesOpensItsBody)
 {
   PaperClient client;
   std::vector<Marker> sheets;
-  ros::Subscriber sheet_sub = client.nh().subscribe<visualization_msgs::MarkerArray>(
-      "curved_mesh", 1000, [&](const visualization_msgs::MarkerArray::ConstPtr& a) {
-        for (const Marker& m : a->markers)
-          if (m.ns == "curved_mesh")
-            sheets.push_back(m);
-      });
+  const ros::Subscriber sheet_sub = recordSheets(client.nh(), sheets);
   ASSERT_NO_FATAL_FAILURE(foldCrane());
   const PaperState folded = client.state();
   const core::Expected<core::Paper> crane = fromMessage(folded);
@@ -200,7 +201,9 @@ TEST(CurvedLayers, AFoldedCranePulledByBothWingTipsOnTfFramesOpensItsBody)
   const auto waitSending = [&](const std::function<bool()>& done, double seconds) {
     return waitFor([&] { send(); return done(); }, seconds);
   };
-  ASSERT_TRUE(waitSending([] { return false; }, 0.5) || true);
+  // Sends the frames for `seconds`, as a gripper holding still would.
+  const auto holdFor = [&](double seconds) { waitSending([] { return false; }, seconds); };
+  holdFor(0.5);  // tf knows the frames before the pins take them
   for (int s = 0; s < 2; ++s)
   {
     PinVertex::Request pin;
@@ -238,7 +241,7 @@ TEST(CurvedLayers, AFoldedCranePulledByBothWingTipsOnTfFramesOpensItsBody)
   for (int k = 1; k <= 20; ++k)
   {
     drawn = pull * k / 20.0;
-    ASSERT_TRUE(waitSending([] { return false; }, 1.0 / 30) || true);
+    holdFor(1.0 / 30);
   }
   ASSERT_TRUE(waitSending(shownHeld, 240))
       << "no sheet with the tips where the grippers hold them: the nearest is "
