@@ -70,12 +70,17 @@ core::Status CranePuff::run()
   OperationClient client(nh_.getNamespace());
   if (!client.waitForServices(options_.timeout))
     return core::failure("the paper's services are not offered in " + nh_.getNamespace());
+  const core::Expected<PaperState> before = stateAfter(0);
+  if (!before)
+    return core::failure(before.message());
+  uint64_t applied_count = 0;
   for (const core::FoldStep& step : sequence->steps)
-    for (int k = 0; k < step.repeat; ++k)
+    for (int k = 0; k < step.repeat; ++k, ++applied_count)
       if (const core::Status applied = client.apply(toMessage(step.operation)); !applied)
         return core::failure("folding " + options_.sequence + " (" + step.note + "): " + applied.message());
 
-  const core::Expected<PaperState> state = stateAfter(0);
+  // Each operation is one revision: the state the last one made is the folded crane.
+  const core::Expected<PaperState> state = stateAfter(before->revision + applied_count);
   if (!state)
     return core::failure(state.message());
   double side = 0.0;
