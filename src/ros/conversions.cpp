@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include <tf2/LinearMath/Quaternion.h>
+
 namespace virtual_origami
 {
 geometry_msgs::Point toPoint(const core::Vec3& v)
@@ -14,6 +16,25 @@ geometry_msgs::Point toPoint(const core::Vec3& v)
 }
 
 core::Vec3 toVec3(const geometry_msgs::Point& p) { return core::Vec3(p.x, p.y, p.z); }
+
+geometry_msgs::TransformStamped frameTransform(const std::string& parent, const std::string& child,
+                                               const core::Vec3& at, double yaw)
+{
+  geometry_msgs::TransformStamped t;
+  t.header.stamp = ros::Time::now();
+  t.header.frame_id = parent;
+  t.child_frame_id = child;
+  t.transform.translation.x = at.x();
+  t.transform.translation.y = at.y();
+  t.transform.translation.z = at.z();
+  tf2::Quaternion q;
+  q.setRPY(0, 0, yaw);
+  t.transform.rotation.x = q.x();
+  t.transform.rotation.y = q.y();
+  t.transform.rotation.z = q.z();
+  t.transform.rotation.w = q.w();
+  return t;
+}
 
 PaperState toMessage(const core::Paper& paper, uint64_t revision, const Pins& pins)
 {

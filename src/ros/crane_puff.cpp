@@ -27,17 +27,7 @@ void CranePuff::broadcast(const ros::WallTimerEvent&)
   if (!broadcasting_)
     return;
   for (int k = 0; k < 2; ++k)
-  {
-    geometry_msgs::TransformStamped t;
-    t.header.stamp = ros::Time::now();
-    t.header.frame_id = options_.paper_frame;
-    t.child_frame_id = options_.frame_prefix + std::to_string(k);
-    t.transform.translation.x = tips_[k].x();
-    t.transform.translation.y = tips_[k].y();
-    t.transform.translation.z = tips_[k].z();
-    t.transform.rotation.w = 1.0;
-    tf_.sendTransform(t);
-  }
+    tf_.sendTransform(frameTransform(options_.paper_frame, options_.frame_prefix + std::to_string(k), tips_[k]));
 }
 
 core::Expected<PaperState> CranePuff::stateAfter(uint64_t revision)

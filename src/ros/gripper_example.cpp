@@ -69,15 +69,7 @@ void GripperExample::broadcast(const ros::WallTimerEvent&)
   std::lock_guard<std::mutex> lock(mutex_);
   if (!broadcasting_)
     return;
-  geometry_msgs::TransformStamped t;
-  t.header.stamp = ros::Time::now();
-  t.header.frame_id = options_.paper_frame;
-  t.child_frame_id = options_.frame;
-  t.transform.translation.x = gripper_.x();
-  t.transform.translation.y = gripper_.y();
-  t.transform.translation.z = gripper_.z();
-  t.transform.rotation.w = 1.0;
-  tf_.sendTransform(t);
+  tf_.sendTransform(frameTransform(options_.paper_frame, options_.frame, gripper_));
 }
 
 ros::Time GripperExample::moveTo(const core::Vec3& position)

@@ -11,7 +11,6 @@
 
 #include <Eigen/Geometry>
 #include <geometry_msgs/TransformStamped.h>
-#include <tf2/LinearMath/Quaternion.h>
 #include <tf2/exceptions.h>
 #include <visualization_msgs/MarkerArray.h>
 
@@ -35,25 +34,6 @@ std::string defaultJournalName(const ros::NodeHandle& nh)
     if (c == '/')
       c = '_';
   return "session" + ns + ".jsonl";
-}
-
-geometry_msgs::TransformStamped transform(const std::string& parent, const std::string& child, const core::Vec3& at,
-                                          double yaw)
-{
-  geometry_msgs::TransformStamped t;
-  t.header.stamp = ros::Time::now();
-  t.header.frame_id = parent;
-  t.child_frame_id = child;
-  t.transform.translation.x = at.x();
-  t.transform.translation.y = at.y();
-  t.transform.translation.z = at.z();
-  tf2::Quaternion q;
-  q.setRPY(0, 0, yaw);
-  t.transform.rotation.x = q.x();
-  t.transform.rotation.y = q.y();
-  t.transform.rotation.z = q.z();
-  t.transform.rotation.w = q.w();
-  return t;
 }
 
 /// A face's frame: origin at its centroid, z along its front normal, x along its first edge.
@@ -210,7 +190,7 @@ PaperModelNode::PaperModelNode(ros::NodeHandle nh, ros::NodeHandle private_nh) :
 
   const core::Vec3 origin(private_nh.param("paper_x", 0.0), private_nh.param("paper_y", 0.0),
                           private_nh.param("paper_z", 0.0));
-  static_tf_.sendTransform(transform(world_frame_, style_.frame_id, origin, private_nh.param("paper_yaw", 0.0)));
+  static_tf_.sendTransform(frameTransform(world_frame_, style_.frame_id, origin, private_nh.param("paper_yaw", 0.0)));
   pin_timer_ = nh_.createTimer(ros::Duration(0.1), &PaperModelNode::broadcastFrames, this);
   // Off, the rigid faces never chase the frames: a folded model stays as folded while the
   // curved sheet (curved_mesh_solver, which looks the frames up itself) bends to them.
@@ -643,7 +623,7 @@ void PaperModelNode::broadcastFrames(const ros::TimerEvent&)
   for (const auto& [vertex, pin] : pins_)
     if (vertex < static_cast<int>(session_.paper().vertices.size()))
       frames.push_back(
-          transform(style_.frame_id, "pin_" + std::to_string(vertex), session_.paper().vertices[vertex].folded, 0.0));
+          frameTransform(style_.frame_id, "pin_" + std::to_string(vertex), session_.paper().vertices[vertex].folded));
   if (!frames.empty())
     tf_.sendTransform(frames);
 }

@@ -185,18 +185,7 @@ TEST(CurvedLayers, AFoldedCranePulledByBothWingTipsOnTfFramesOpensItsBody)
       return;
     last_sent = ros::WallTime::now();
     for (int s = 0; s < 2; ++s)
-    {
-      geometry_msgs::TransformStamped t;
-      t.header.stamp = ros::Time::now();
-      t.header.frame_id = folded.header.frame_id;
-      t.child_frame_id = frames[s];
-      const core::Vec3 p = at[s] + (s == 0 ? -drawn : drawn) * away;
-      t.transform.translation.x = p.x();
-      t.transform.translation.y = p.y();
-      t.transform.translation.z = p.z();
-      t.transform.rotation.w = 1;
-      tf.sendTransform(t);
-    }
+      tf.sendTransform(frameTransform(folded.header.frame_id, frames[s], at[s] + (s == 0 ? -drawn : drawn) * away));
   };
   const auto waitSending = [&](const std::function<bool()>& done, double seconds) {
     return waitFor([&] { send(); return done(); }, seconds);

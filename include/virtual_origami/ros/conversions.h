@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <geometry_msgs/Point.h>
+#include <geometry_msgs/TransformStamped.h>
 #include <virtual_origami/Operation.h>
 #include <virtual_origami/PaperState.h>
 
@@ -17,6 +18,9 @@ namespace virtual_origami
 {
 geometry_msgs::Point toPoint(const core::Vec3& v);
 core::Vec3 toVec3(const geometry_msgs::Point& p);
+/// Frame `child` at `at` in `parent`, turned by `yaw` about parent's z, stamped now.
+geometry_msgs::TransformStamped frameTransform(const std::string& parent, const std::string& child,
+                                               const core::Vec3& at, double yaw = 0.0);
 
 /// A pinned vertex: held where it is (empty frame) or following a tf frame.
 struct PinnedVertex
