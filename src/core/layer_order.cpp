@@ -10,6 +10,9 @@
 #include <sstream>
 #include <string>
 
+#include <CGAL/Bbox_3.h>
+#include <CGAL/box_intersection_d.h>
+
 #include "virtual_origami/core/face_orders.h"
 #include "virtual_origami/core/flat_vertices.h"
 #include "virtual_origami/core/planar_geometry.h"
@@ -651,27 +654,74 @@ private:
   std::vector<std::vector<int>> watch_;
 };
 
-/// The faces of `paper` in groups that lie flat on one another (connected by stacking, and with
-/// `unfolded_sheets` by unfolded creases).
-std::vector<std::vector<int>> stacksOf(const Paper& paper, double tolerance, bool unfolded_sheets)
+/// Where stacksOf stopped: a stack of more overlapping pairs than it was asked to look for.
+struct StackTooLarge
 {
+};
+
+/// The faces of `paper` in groups that lie flat on one another (connected by stacking, and with
+/// `unfolded_sheets` by unfolded creases). Candidate pairs are those whose boxes meet (CGAL's box
+/// intersection: a 10,000-face sheet part folded is a few thousand pairs, where every pair was
+/// 50 million). With `max_pairs` > 0, throws StackTooLarge once one group has more stacked pairs
+/// (a flat-folded Miura-ori of 10,000 faces lies in one stack of 48 million).
+std::vector<std::vector<int>> stacksOf(const Paper& paper, double tolerance, bool unfolded_sheets, long max_pairs = 0)
+{
+  using Box = CGAL::Box_intersection_d::Box_with_handle_d<double, 3, const int*,
+                                                          CGAL::Box_intersection_d::ID_FROM_HANDLE>;
   const int n = static_cast<int>(paper.faces.size());
   std::vector<int> parent(n);
   std::iota(parent.begin(), parent.end(), 0);
   const std::function<int(int)> root = [&](int f) { return parent[f] == f ? f : parent[f] = root(parent[f]); };
-  std::vector<Eigen::AlignedBox3d> boxes(n);
+  std::vector<long> pairs_in(n, 0);  // stacked pairs found in each group, at its root
+  std::vector<int> ids(n);
+  std::iota(ids.begin(), ids.end(), 0);
+  std::vector<Box> boxes;
+  boxes.reserve(n);
+  const double half = 0.5 * tolerance;  // boxes within the tolerance of each other meet
   for (int f = 0; f < n; ++f)
+  {
+    CGAL::Bbox_3 bounds;
     for (int v : paper.faces[f].vertices)
-      boxes[f].extend(paper.vertices[v].folded);
-  std::vector<char> stacked(n, 0);
-  for (int f = 0; f < n; ++f)
-    for (int g = f + 1; g < n; ++g)
     {
-      if (boxes[f].exteriorDistance(boxes[g]) > tolerance || !facesStacked(paper, f, g, tolerance))
-        continue;
-      parent[root(f)] = root(g);
-      stacked[f] = stacked[g] = 1;
+      const Vec3& p = paper.vertices[v].folded;
+      bounds += CGAL::Bbox_3(p.x() - half, p.y() - half, p.z() - half, p.x() + half, p.y() + half, p.z() + half);
     }
+    boxes.emplace_back(bounds, &ids[f]);
+  }
+  // The stacked pairs, each group's count kept as they are found (a union-find of its own).
+  std::vector<std::pair<int, int>> stacked_pairs;
+  std::vector<int> group(n);
+  std::iota(group.begin(), group.end(), 0);
+  const std::function<int(int)> group_of_face = [&](int f) {
+    return group[f] == f ? f : group[f] = group_of_face(group[f]);
+  };
+  CGAL::box_self_intersection_d(
+      boxes.begin(), boxes.end(),
+      [&](const Box& x, const Box& y) {
+        const int f = std::min(*x.handle(), *y.handle()), g = std::max(*x.handle(), *y.handle());
+        if (!facesStacked(paper, f, g, tolerance))
+          return;
+        stacked_pairs.emplace_back(f, g);
+        const int a = group_of_face(f), b = group_of_face(g);
+        if (a != b)
+        {
+          group[a] = b;
+          pairs_in[b] += pairs_in[a];
+        }
+        if (max_pairs > 0 && ++pairs_in[b] > max_pairs)
+          throw StackTooLarge{};
+      },
+      std::ptrdiff_t(10), CGAL::Box_intersection_d::CLOSED);
+  // Joined in the order of the pairs (f, g), as every pair was once tried: the groups' roots,
+  // and so the order their faces are searched in below, are the same whatever order the boxes
+  // met in.
+  std::sort(stacked_pairs.begin(), stacked_pairs.end());
+  std::vector<char> stacked(n, 0);
+  for (const auto& [f, g] : stacked_pairs)
+  {
+    parent[root(f)] = root(g);
+    stacked[f] = stacked[g] = 1;
+  }
   std::map<int, std::vector<int>> groups;
   for (int f = 0; f < n; ++f)
     if (stacked[f])
@@ -717,14 +767,19 @@ std::vector<std::vector<int>> stacksOf(const Paper& paper, double tolerance, boo
 Expected<LayerOrder> solveLayerOrder(const Paper& paper, const LayerOrderOptions& options)
 {
   LayerOrder result;
-  if (static_cast<int>(paper.faces.size()) > options.max_paper_faces)
+  std::vector<std::vector<int>> stacks;
+  try
+  {
+    stacks = stacksOf(paper, options.tolerance, options.unfolded_sheets, options.max_pairs);
+  }
+  catch (const StackTooLarge&)
   {
     result.complete = false;
-    result.incomplete = "a paper of " + std::to_string(paper.faces.size()) + " faces is more than the " +
-                        std::to_string(options.max_paper_faces) + " whose stacks are looked for";
+    result.incomplete = "a stack of more than the " + std::to_string(options.max_pairs) +
+                        " overlapping pairs of faces whose layer order is worked out";
     return result;
   }
-  for (const std::vector<int>& faces : stacksOf(paper, options.tolerance, options.unfolded_sheets))
+  for (const std::vector<int>& faces : stacks)
   {
     if (static_cast<int>(faces.size()) > options.max_faces)
     {

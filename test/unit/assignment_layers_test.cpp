@@ -56,7 +56,7 @@ TEST(AssignmentLayers, AFlatStackTooLargeToOrderIsSaidToBeUnordered)
   EXPECT_LE(flat->angle_error, 1e-3);
   EXPECT_EQ(flat->ordered_pairs, 0);
   EXPECT_TRUE(session.paper().face_orders.empty());
-  EXPECT_NE(flat->layers_unordered.find("overlapping pairs of faces is more than the 20000"), std::string::npos)
+  EXPECT_NE(flat->layers_unordered.find("more than the 20000 overlapping pairs of faces"), std::string::npos)
       << flat->layers_unordered;
 
   // A smaller one is ordered, and says nothing of it.

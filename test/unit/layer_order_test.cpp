@@ -11,6 +11,7 @@
 #include "virtual_origami/core/flat_vertices.h"
 #include "virtual_origami/core/kinematics.h"
 #include "virtual_origami/core/layer_order.h"
+#include "virtual_origami/core/tessellations.h"
 
 using namespace virtual_origami::core;
 using namespace virtual_origami::core::test;
@@ -252,4 +253,37 @@ TEST(LayerOrder, AFaceAcrossAnUnfoldedCreaseOfAnotherSheetLiesOnOneSideOfBothIts
       refused.message().find("face " + std::to_string(right) + " (about (0.85, 0.5) on the sheet) would pass through"),
       std::string::npos)
       << refused.message();
+}
+
+// Stacks are looked for on papers of any size, and a stack too large to order is answered at
+// once: a Miura-ori of 4,900 faces part folded has no stack at all (it was answered "a paper of
+// 4900 faces is more than the 4000 whose stacks are looked for", so a fold by assignment of it
+// said its flat layers were left unordered), and folded flat it lies in one stack of millions of
+// pairs, said to be more than the bound.
+TEST(LayerOrder, AnySizeOfPaperIsSearchedForStacksAndOneTooLargeIsSaidSo)
+{
+  LayerOrderOptions options;
+  options.max_faces = 1000;
+  options.max_pairs = 20000;
+  options.unfolded_sheets = true;
+
+  const Expected<Tessellation> part = miuraTessellationFolded(70, 70, 1.0, 1.0, 70.0 * M_PI / 180.0, 1.0);
+  ASSERT_TRUE(part) << part.message();
+  ASSERT_EQ(part->paper.faces.size(), 4900u);
+  options.tolerance = 1e-5 * part->paper.scale();
+  const Expected<LayerOrder> none = solveLayerOrder(part->paper, options);
+  ASSERT_TRUE(none) << none.message();
+  EXPECT_TRUE(none->complete) << none->incomplete;
+  EXPECT_EQ(none->stacked_pairs, 0);
+
+  const Expected<Tessellation> pattern = miuraTessellation(70, 70, 1.0, 1.0, 70.0 * M_PI / 180.0);
+  ASSERT_TRUE(pattern) << pattern.message();
+  const std::optional<Paper> flat = foldedTo(pattern->paper, pattern->target_fold_angle);
+  ASSERT_TRUE(flat);
+  const Expected<LayerOrder> too_large = solveLayerOrder(*flat, options);
+  ASSERT_TRUE(too_large) << too_large.message();
+  EXPECT_FALSE(too_large->complete);
+  EXPECT_TRUE(too_large->orders.empty());
+  EXPECT_NE(too_large->incomplete.find("more than the 20000 overlapping pairs of faces"), std::string::npos)
+      << too_large->incomplete;
 }

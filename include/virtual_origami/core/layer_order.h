@@ -31,10 +31,10 @@ struct LayerOrderOptions
   /// Stacks of more overlapping pairs than this are not ordered either (0: no such bound). The
   /// checks grow with the overlapping triples, which a sparse stack has few of: a flat-folded
   /// waterbomb tessellation's stack of 330 faces (16,049 pairs) is ordered in 0.36 s, a flat
-  /// Miura-ori's of 156 faces, every pair overlapping (12,090), in 0.47 s.
+  /// Miura-ori's of 156 faces, every pair overlapping (12,090), in 0.47 s. The search for stacks
+  /// stops as soon as one has more, so a sheet folded flat into millions of pairs is answered at
+  /// once.
   int max_pairs = 0;
-  /// Papers of more faces than this are not searched for stacks at all (pairs grow with its square).
-  int max_paper_faces = 4000;
   /// Whether faces joined by an unfolded crease are held to be one sheet (tortilla–tortilla).
   /// flatFold holds them so (the crane, flapping bird and frog base scripts obey it), and so does
   /// fold by assignment for its flat results (on Origami Simulator's library it changes none);
