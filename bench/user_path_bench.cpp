@@ -56,6 +56,7 @@
 #include <xmlrpcpp/XmlRpcClient.h>
 
 #include "virtual_origami/core/tessellations.h"
+#include "virtual_origami/numerics/heap_reuse.h"
 #include "virtual_origami/ros/conversions.h"
 #include "virtual_origami/ros/fold_slider.h"
 #include "virtual_origami/ros/service_call.h"
@@ -916,6 +917,8 @@ std::vector<std::string> split(const std::string& list)
 
 int main(int argc, char** argv)
 {
+  // As the nodes it measures beside its in-process commit (heap_reuse.h).
+  numerics::keepFreedMemory();
   ros::init(argc, argv, "user_path_bench");
   ros::NodeHandle pnh("~");
   const std::string prefix = pnh.param<std::string>("csv_prefix", "docs/bench/user_path");

@@ -4,10 +4,13 @@
 
 #include <ros/ros.h>
 
+#include "virtual_origami/numerics/heap_reuse.h"
 #include "virtual_origami/ros/paper_model_node.h"
 
 int main(int argc, char** argv)
 {
+  // Its solves make their matrices afresh: freed memory is kept for the next (heap_reuse.h).
+  virtual_origami::numerics::keepFreedMemory();
   ros::init(argc, argv, "paper_model");
   ros::NodeHandle private_nh("~");
   try

@@ -276,6 +276,13 @@ void QuasiNewtonDriver::DriveRun::refactorAfresh()
 /// lands planned once per pattern (and shared with the driver's clones), the values summed.
 void QuasiNewtonDriver::DriveRun::assembleGaussNewton()
 {
+  if (setup_.triplets.empty())
+  {
+    // A new set-up (a commit's fresh clone) takes the planned count at once: grown entry by
+    // entry, the list was copied over and over, a seventh of a 10,000-vertex release.
+    const std::lock_guard<std::mutex> planning(driver_.assembly_->mutex);
+    setup_.triplets.reserve(driver_.assembly_->entries.size());
+  }
   energy_.gaussNewtonTriplets(x_, setup_.free_index, setup_.triplets);
   Eigen::SparseMatrix<double>& m = setup_.gauss_newton_matrix;
   if (setup_.slots.size() != setup_.triplets.size())
