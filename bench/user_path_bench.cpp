@@ -918,7 +918,7 @@ std::vector<std::string> split(const std::string& list)
 int main(int argc, char** argv)
 {
   // As the nodes it measures beside its in-process commit (heap_reuse.h).
-  numerics::keepFreedMemory();
+  numerics::keepFreedMemory(numerics::ThreadHeaps::Shared);
   ros::init(argc, argv, "user_path_bench");
   ros::NodeHandle pnh("~");
   const std::string prefix = pnh.param<std::string>("csv_prefix", "docs/bench/user_path");

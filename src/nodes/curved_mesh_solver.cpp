@@ -4,8 +4,9 @@
 
 int main(int argc, char** argv)
 {
-  // Its solves make their matrices afresh: freed memory is kept for the next (heap_reuse.h).
-  virtual_origami::numerics::keepFreedMemory();
+  // Its frames and the factors made for them at once: a heap per thread, freed memory kept
+  // (heap_reuse.h).
+  virtual_origami::numerics::keepFreedMemory(virtual_origami::numerics::ThreadHeaps::PerThread);
   ros::init(argc, argv, "curved_mesh_solver");
   virtual_origami::CurvedMeshSolverNode node(ros::NodeHandle(), ros::NodeHandle("~"));
   ros::spin();

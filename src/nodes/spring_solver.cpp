@@ -6,8 +6,9 @@
 
 int main(int argc, char** argv)
 {
-  // Its solves make their matrices afresh: freed memory is kept for the next (heap_reuse.h).
-  virtual_origami::numerics::keepFreedMemory();
+  // Its service threads take turns at solves that make their matrices afresh: one heap, and
+  // freed memory kept for the next (heap_reuse.h).
+  virtual_origami::numerics::keepFreedMemory(virtual_origami::numerics::ThreadHeaps::Shared);
   ros::init(argc, argv, "spring_solver");
   virtual_origami::SpringSolverNode node(ros::NodeHandle(), ros::NodeHandle("~"));
   ros::spin();

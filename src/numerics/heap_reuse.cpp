@@ -6,12 +6,14 @@
 
 namespace virtual_origami::numerics
 {
-bool keepFreedMemory()
+bool keepFreedMemory(ThreadHeaps heaps)
 {
   // Above any one allocation a solve makes (a factor at 100,000 vertices is some hundreds of
   // megabytes), so none is mapped apart and unmapped when freed.
-  const bool no_maps = mallopt(M_MMAP_THRESHOLD, INT_MAX) == 1;
-  const bool no_trim = mallopt(M_TRIM_THRESHOLD, INT_MAX) == 1;
-  return no_maps && no_trim;
+  bool taken = mallopt(M_MMAP_THRESHOLD, INT_MAX) == 1;
+  taken = mallopt(M_TRIM_THRESHOLD, INT_MAX) == 1 && taken;
+  if (heaps == ThreadHeaps::Shared)
+    taken = mallopt(M_ARENA_MAX, 1) == 1 && taken;
+  return taken;
 }
 }  // namespace virtual_origami::numerics

@@ -1,14 +1,18 @@
 // The solving processes keep the memory they free for their next allocations
-// (numerics/heap_reuse.h): a block as large as a 10,000-vertex factor, freed, stays in the heap.
+// (numerics/heap_reuse.h): a block as large as a 10,000-vertex factor, freed, stays in the heap;
+// with a heap per thread (curved_mesh_solver's), a second thread's block is new memory.
 #include <gtest/gtest.h>
 #include <malloc.h>
 
 #include <cstdlib>
 
+#include "heap_reuse_probe.h"
 #include "virtual_origami/numerics/heap_reuse.h"
 
 namespace
 {
+using virtual_origami::test::freshBytesOfASecondThread;
+
 constexpr size_t kBlock = size_t(256) << 20;  // over the C library's largest own threshold (32 MiB)
 
 struct Held
@@ -19,7 +23,7 @@ struct Held
 
 Held allocateAndFree()
 {
-  char* block = static_cast<char*>(std::malloc(kBlock));
+  void* block = virtual_origami::test::allocated(kBlock);
   EXPECT_NE(block, nullptr);
   const size_t mapped = mallinfo2().hblkhd;
   std::free(block);
@@ -34,8 +38,11 @@ TEST(HeapReuse, ALargeBlockFreedStaysInTheHeapForTheNextAllocation)
   EXPECT_GE(before.mapped, kBlock);
   EXPECT_LT(before.free, kBlock);
 
-  ASSERT_TRUE(virtual_origami::numerics::keepFreedMemory());
+  ASSERT_TRUE(virtual_origami::numerics::keepFreedMemory(virtual_origami::numerics::ThreadHeaps::PerThread));
   const Held after = allocateAndFree();
   EXPECT_LT(after.mapped, kBlock);
   EXPECT_GE(after.free, kBlock);
+
+  // A heap per thread: what this thread freed is not where another thread allocates.
+  EXPECT_GE(freshBytesOfASecondThread(), virtual_origami::test::kThreadBlock);
 }
