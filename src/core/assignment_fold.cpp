@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <functional>
 #include <limits>
+#include <optional>
 
 #include "virtual_origami/core/compliant_faces.h"
 #include "virtual_origami/core/face_crossings.h"
@@ -536,25 +537,48 @@ std::vector<int> facesBesideStuckCreases(const Paper& before, const Paper& after
 }
 }  // namespace
 
-void prepareAssignmentPreviews(const Paper& paper, CreaseDriver& driver, const std::vector<int>& held)
+namespace
 {
-  std::vector<char> fixed(paper.vertices.size(), 0);
+/// What a fold by assignment of `paper` works on: its paper (locked faces made compliant), driven
+/// targets and held vertices (`held` and one anchor per piece), as foldOnce makes them (the driven
+/// set, not the fraction, is what set-ups depend on). Nothing where `held` names a vertex not on
+/// the paper (the fold refuses it) or no crease is driven.
+struct AssignmentWork
+{
+  Paper paper;
+  std::vector<double> targets;
+  std::vector<char> fixed;
+};
+
+std::optional<AssignmentWork> assignmentWork(const Paper& paper, const std::vector<int>& held)
+{
+  AssignmentWork work{ paper, {}, std::vector<char>(paper.vertices.size(), 0) };
   for (int v : held)
   {
-    if (v < 0 || static_cast<size_t>(v) >= fixed.size())
-      return;
-    fixed[v] = 1;
+    if (v < 0 || static_cast<size_t>(v) >= work.fixed.size())
+      return std::nullopt;
+    work.fixed[v] = 1;
   }
-  // As foldOnce makes its frame's paper, targets and held vertices (the driven set, not the
-  // fraction, is what the driver's set-up depends on).
-  Paper work = paper;
-  makeLockedFacesCompliant(work);
+  makeLockedFacesCompliant(work.paper);
   for (int v : pieceAnchors(paper))
-    fixed[v] = 1;
-  const std::vector<double> targets = creaseTargets(work);
-  if (std::none_of(targets.begin(), targets.end(), [](double t) { return std::isfinite(t); }))
-    return;
-  driver.prepare(work, targets, fixed);
+    work.fixed[v] = 1;
+  work.targets = creaseTargets(work.paper);
+  if (std::none_of(work.targets.begin(), work.targets.end(), [](double t) { return std::isfinite(t); }))
+    return std::nullopt;
+  return work;
+}
+}  // namespace
+
+void prepareAssignmentPreviews(const Paper& paper, CreaseDriver& driver, const std::vector<int>& held)
+{
+  if (std::optional<AssignmentWork> work = assignmentWork(paper, held))
+    driver.prepare(work->paper, work->targets, work->fixed);
+}
+
+void prepareAssignmentClosure(const Paper& paper, ShapeSolver& rigid, const std::vector<int>& held)
+{
+  if (std::optional<AssignmentWork> work = assignmentWork(paper, held))
+    rigid.prepare(work->paper, work->fixed);
 }
 
 Expected<AssignmentFoldResult> foldByAssignment(Paper& paper, const AssignmentFoldRequest& request,

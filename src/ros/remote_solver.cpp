@@ -6,6 +6,7 @@
 #include <memory>
 #include <thread>
 
+#include <ros/console.h>
 #include <ros/service.h>
 #include <virtual_origami/Solve.h>
 
@@ -24,35 +25,29 @@ core::SolveReport RemoteSolver::solve(core::Paper& paper, const std::vector<char
   return solveLoosely(paper, fixed, 0.0);
 }
 
-core::SolveReport RemoteSolver::solveLoosely(core::Paper& paper, const std::vector<char>& fixed, double looser)
+/// Calls the solver with `call`'s request within the timeout for a paper of `vertices` (made again
+/// where a connection broke); false with `message` where it did not answer.
+bool RemoteSolver::callWithin(Solve& call, size_t vertices, std::string& message)
 {
-  core::SolveReport report;
   if (!ros::service::waitForService(service_, ros::Duration(timeout_)))
   {
-    report.message = "the solver service " + service_ + " is not running";
-    return report;
+    message = "the solver service " + service_ + " is not running";
+    return false;
   }
-  Solve call;
-  call.request.paper = toMessage(paper, 0, {});
-  call.request.looser_tolerance = looser;
-  call.request.stall_window = limits_.stall_window;  // a closure's (core/assignment_fold.cpp)
-  for (size_t v = 0; v < fixed.size(); ++v)
-    if (fixed[v])
-      call.request.fixed_vertices.push_back(static_cast<int>(v));
   // roscpp's call has no deadline, and a stopped solver keeps its connection open: the call runs
   // on a thread of its own, and the model gives up on it after the timeout. The thread ends
   // when the solver answers or its connection breaks; a few stalled ones are refused at once.
   if (stalled_->load() >= kMaxStalledCalls)
   {
-    report.message = "the solver service " + service_ + " has not answered " + std::to_string(kMaxStalledCalls) +
+    message = "the solver service " + service_ + " has not answered " + std::to_string(kMaxStalledCalls) +
                      " calls; it seems stopped";
-    return report;
+    return false;
   }
   // A connection made per call was now and then lost under load (seen in contention_bench: one
   // call in 60; callService now avoids roscpp's cause of it). A connection can still break: the
   // solve is a pure function, so a lost call is made again within the deadline.
   // The solver's own budget grows with the paper beyond 10,000 vertices; so does the wait for it.
-  const double timeout = core::budgetForSize(timeout_, paper.vertices.size());
+  const double timeout = core::budgetForSize(timeout_, vertices);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout);
   auto shared = std::make_shared<Solve>(std::move(call));
   for (int attempt = 1;; ++attempt)
@@ -71,19 +66,44 @@ core::SolveReport RemoteSolver::solveLoosely(core::Paper& paper, const std::vect
       }).detach();
       char seconds[32];
       std::snprintf(seconds, sizeof seconds, "%g", timeout);
-      report.message = "the solver service " + service_ + " did not answer within solver_timeout (" + seconds +
+      message = "the solver service " + service_ + " did not answer within solver_timeout (" + seconds +
                        " s for this paper's size)";
-      return report;
+      return false;
     }
     if (done.get())
       break;
     if (attempt == kCallAttempts || std::chrono::steady_clock::now() >= deadline)
     {
-      report.message = "the call to " + service_ + " failed (" + std::to_string(attempt) + " tries)";
-      return report;
+      message = "the call to " + service_ + " failed (" + std::to_string(attempt) + " tries)";
+      return false;
     }
   }
   call = std::move(*shared);
+  return true;
+}
+
+namespace
+{
+/// A call of the solver for `paper` around `fixed`.
+Solve solveCall(const core::Paper& paper, const std::vector<char>& fixed)
+{
+  Solve call;
+  call.request.paper = toMessage(paper, 0, {});
+  for (size_t v = 0; v < fixed.size(); ++v)
+    if (fixed[v])
+      call.request.fixed_vertices.push_back(static_cast<int>(v));
+  return call;
+}
+}  // namespace
+
+core::SolveReport RemoteSolver::solveLoosely(core::Paper& paper, const std::vector<char>& fixed, double looser)
+{
+  core::SolveReport report;
+  Solve call = solveCall(paper, fixed);
+  call.request.looser_tolerance = looser;
+  call.request.stall_window = limits_.stall_window;  // a closure's (core/assignment_fold.cpp)
+  if (!callWithin(call, paper.vertices.size(), report.message))
+    return report;
   report.iterations = call.response.iterations;
   report.max_strain = call.response.max_strain;
   report.message = call.response.message;
@@ -98,6 +118,15 @@ core::SolveReport RemoteSolver::solveLoosely(core::Paper& paper, const std::vect
     paper.vertices[v].folded = toVec3(call.response.positions[v]);
   report.converged = true;
   return report;
+}
+
+void RemoteSolver::prepare(const core::Paper& paper, const std::vector<char>& fixed)
+{
+  Solve call = solveCall(paper, fixed);
+  call.request.prepare = true;
+  std::string message;
+  if (!callWithin(call, paper.vertices.size(), message))
+    ROS_DEBUG("%s", message.c_str());  // a readiness, not an answer: the first solve makes it
 }
 
 }  // namespace virtual_origami

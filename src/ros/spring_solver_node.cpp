@@ -65,6 +65,15 @@ bool SpringSolverNode::solve(Solve::Request& req, Solve::Response& res)
     }
     fixed[v] = 1;
   }
+  if (req.prepare)
+  {
+    solver_->prepare(*paper, fixed);
+    res.success = true;
+    res.message = solver_->name() + ": prepared";
+    for (const core::Vertex& v : paper->vertices)
+      res.positions.push_back(toPoint(v.folded));
+    return true;
+  }
   // This solve's stall window and budget (callbacks take turns: ros::spin), then the node's limits again.
   const core::SolveLimits configured = solver_->limits();
   core::SolveLimits limits = configured;

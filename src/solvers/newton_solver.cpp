@@ -347,19 +347,44 @@ SolveReport NewtonSolver::solveLoosely(Paper& paper, const std::vector<char>& fi
   return solveWithin(paper, fixed, limits, true);
 }
 
+namespace
+{
+/// Set-ups kept: a turn's and a fold's (each holds a factor of the pattern's size).
+constexpr size_t kKeptSetups = 2;
+}  // namespace
+
+NewtonSolver::Setup& NewtonSolver::setupFor(const Paper& paper, const std::vector<char>& fixed)
+{
+  auto kept = std::find_if(setups_.begin(), setups_.end(),
+                           [&](const std::unique_ptr<Setup>& s) { return s->matches(paper, fixed); });
+  if (kept == setups_.end())
+  {
+    if (setups_.size() >= kKeptSetups)
+      setups_.pop_back();
+    setups_.insert(setups_.begin(), std::make_unique<Setup>(paper, fixed));
+  }
+  else
+    std::rotate(setups_.begin(), kept, kept + 1);
+  return *setups_.front();
+}
+
+void NewtonSolver::prepare(const Paper& paper, const std::vector<char>& fixed)
+{
+  setupFor(paper, fixed).system->analyse();
+}
+
 SolveReport NewtonSolver::solveWithin(Paper& paper, const std::vector<char>& fixed, const SolveLimits& limits,
                                       bool frame)
 {
   const double floor = frame ? std::min(options_.min_damping, options_.frame_damping) : options_.min_damping;
   numerics::SolveBudget budget(limits);
   SolveReport report;
-  if (!setup_ || !setup_->matches(paper, fixed))
-    setup_ = std::make_unique<Setup>(paper, fixed);
-  const std::vector<RigidFace>& faces = setup_->faces;
-  const std::vector<Spring>& springs = setup_->springs;
-  const std::vector<int>& free_index = setup_->free_index;
-  const int free_count = setup_->free_count;
-  ReducedSystem& system = *setup_->system;
+  Setup& setup = setupFor(paper, fixed);
+  const std::vector<RigidFace>& faces = setup.faces;
+  const std::vector<Spring>& springs = setup.springs;
+  const std::vector<int>& free_index = setup.free_index;
+  const int free_count = setup.free_count;
+  ReducedSystem& system = *setup.system;
   const Positions start = foldedPositions(paper);
   Positions x = start, trial = start;
   const double residual_tolerance = limits.tolerance * paper.scale();

@@ -5,6 +5,7 @@
 // answered, a refusal changes nothing, and the published state stays a valid model.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <climits>
@@ -35,6 +36,7 @@
 #include "virtual_origami/core/data_folder.h"
 #include "virtual_origami/core/tessellations.h"
 #include "virtual_origami/core/validity.h"
+#include "virtual_origami/solvers/newton_solver.h"
 #include "virtual_origami/ros/conversions.h"
 
 using namespace virtual_origami;
@@ -546,6 +548,43 @@ TEST_F(Faults, SolverStopsAStalledSolveWhenAsked)
   ASSERT_TRUE(callService("/origami/solve", negative));
   EXPECT_FALSE(negative.response.success);
   EXPECT_NE(negative.response.message.find("stall window"), std::string::npos) << negative.response.message;
+}
+
+// A prepare asks the solver to ready itself for a pattern (paper_model does it for a pattern just
+// loaded): it answers success with the positions as given, and the solve after it is the one a
+// solve alone gives.
+TEST_F(Faults, SolverPreparedForAPatternMovesNothingAndSolvesAsBefore)
+{
+  core::Paper paper = core::tessellationWithVertices(core::TessellationKind::Miura, 400).value().paper;
+  std::srand(11);
+  for (core::Vertex& v : paper.vertices)
+    v.folded += 0.001 * paper.scale() * core::Vec3::Random();
+  Solve prepare, solve;
+  prepare.request.paper = toMessage(paper, 0, {});
+  prepare.request.prepare = true;
+  ASSERT_TRUE(callService("/origami/solve", prepare));
+  EXPECT_TRUE(prepare.response.success) << prepare.response.message;
+  ASSERT_EQ(prepare.response.positions.size(), paper.vertices.size());
+  for (size_t v = 0; v < paper.vertices.size(); ++v)
+    EXPECT_EQ(toVec3(prepare.response.positions[v]), paper.vertices[v].folded) << "vertex " << v;
+  EXPECT_EQ(prepare.response.iterations, 0);
+
+  solve.request.paper = prepare.request.paper;
+  ASSERT_TRUE(callService("/origami/solve", solve));
+  EXPECT_TRUE(solve.response.success) << solve.response.message;
+  core::Paper alone = paper;
+  core::NewtonSolver solver;
+  core::SolveLimits limits = solver.limits();
+  limits.tolerance = 1e-10;  // spring_solver's
+  limits.max_iterations = 1000;
+  solver.setLimits(limits);
+  const core::SolveReport report = solver.solve(alone, {});
+  ASSERT_TRUE(report.converged) << report.message;
+  ASSERT_EQ(solve.response.positions.size(), alone.vertices.size());
+  double largest = 0.0;
+  for (size_t v = 0; v < alone.vertices.size(); ++v)
+    largest = std::max(largest, (toVec3(solve.response.positions[v]) - alone.vertices[v].folded).norm());
+  EXPECT_LE(largest, 1e-9 * paper.scale());
 }
 
 TEST_F(Faults, SolverRefusesPapersThatAreNotOne)

@@ -150,6 +150,11 @@ struct AssignmentFoldAcceptance
 /// a vertex not on the paper (the frame refuses it).
 void prepareAssignmentPreviews(const Paper& paper, CreaseDriver& driver, const std::vector<int>& held = {});
 
+/// Readies `rigid` (ShapeSolver::prepare) for the closures of folds by assignment of `paper`
+/// around `held`: the paper and held vertices a commit closes rigidly. Nothing where `held` names
+/// a vertex not on the paper.
+void prepareAssignmentClosure(const Paper& paper, ShapeSolver& rigid, const std::vector<int>& held = {});
+
 /// What makes `result` wrong by `acceptance` (figures included, for the answer), or "" when
 /// nothing does or the caller keeps it anyway.
 std::string assignmentFoldProblems(const AssignmentFoldResult& result, const AssignmentFoldAcceptance& acceptance);

@@ -64,6 +64,15 @@ public:
     return solve(paper, fixed);
   }
 
+  /// Makes ready what a solve of `paper` around `fixed` would make first (a factorising solver:
+  /// the pattern's ordering and symbolic factor), moving nothing: a model readies its solver
+  /// for a pattern just loaded, so the first fold's closure does not pay for it. A solver that
+  /// keeps nothing between solves does nothing.
+  virtual void prepare(const Paper& paper, const std::vector<char>& fixed)
+  {
+    (void)paper;
+    (void)fixed;
+  }
   const SolveLimits& limits() const { return limits_; }
   void setLimits(const SolveLimits& limits) { limits_ = limits; }
 

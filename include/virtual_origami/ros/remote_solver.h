@@ -7,6 +7,7 @@
 #include <string>
 
 #include <ros/node_handle.h>
+#include <virtual_origami/Solve.h>
 
 #include "virtual_origami/core/shape_solver.h"
 
@@ -21,8 +22,13 @@ public:
   /// stalled solver reports not converged, so the operation is refused and the model stays as it was.
   core::SolveReport solve(core::Paper& paper, const std::vector<char>& fixed) override;
   core::SolveReport solveLoosely(core::Paper& paper, const std::vector<char>& fixed, double looser) override;
+  /// Asks the solver to ready itself for `paper` around `fixed` (Solve's `prepare`), within the
+  /// same timeout; where it does not answer the first solve readies it instead.
+  void prepare(const core::Paper& paper, const std::vector<char>& fixed) override;
 
 private:
+  bool callWithin(Solve& call, size_t vertices, std::string& message);
+
   ros::NodeHandle nh_;
   std::string service_;
   double timeout_;
