@@ -40,7 +40,7 @@ bool RemoteSolver::callWithin(Solve& call, size_t vertices, std::string& message
   if (stalled_->load() >= kMaxStalledCalls)
   {
     message = "the solver service " + service_ + " has not answered " + std::to_string(kMaxStalledCalls) +
-                     " calls; it seems stopped";
+              " calls; it seems stopped";
     return false;
   }
   // A connection made per call was now and then lost under load (seen in contention_bench: one
@@ -67,7 +67,7 @@ bool RemoteSolver::callWithin(Solve& call, size_t vertices, std::string& message
       char seconds[32];
       std::snprintf(seconds, sizeof seconds, "%g", timeout);
       message = "the solver service " + service_ + " did not answer within solver_timeout (" + seconds +
-                       " s for this paper's size)";
+                " s for this paper's size)";
       return false;
     }
     if (done.get())
