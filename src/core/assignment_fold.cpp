@@ -152,6 +152,19 @@ void addStage(SolveReport& total, const SolveReport& stage)
 /// stage of Origami Simulator's library balances within the first run, which is then the
 /// driver's whole call as before (with first runs of 50, restarting the few stages that take
 /// 50–100 iterations changed their path: a Rotating Star's 100 % 1.3 -> 3.1 s).
+/// A driver's frames set aside for a commit made in it, and put back after it however it ends.
+class FramesAside
+{
+public:
+  explicit FramesAside(CreaseDriver& driver) : driver_(driver) { driver_.setFramesAside(); }
+  ~FramesAside() { driver_.putFramesBack(); }
+  FramesAside(const FramesAside&) = delete;
+  FramesAside& operator=(const FramesAside&) = delete;
+
+private:
+  CreaseDriver& driver_;
+};
+
 constexpr int kFirstRun = 100;
 constexpr int kLaterRun = 20;
 
@@ -429,12 +442,15 @@ Expected<AssignmentFoldResult> foldOnce(Paper& paper, const AssignmentFoldReques
         largest_target = std::max(largest_target, std::abs(t));
     const double furthest = std::abs(request.fraction - from) * largest_target;
     const int stages = std::max(1, static_cast<int>(std::ceil(furthest / request.max_stage_angle - 1e-9)));
-    // A commit runs on fresh clones of the driver: what it makes depends on the paper and the
-    // fraction alone, not on what previews left in the driver (a kept factorisation, the last
-    // frames), so applying the log again gives the same paper; and others may be using the
-    // driver meanwhile. One stage (a slide's step) stays near a balanced state: no detour
-    // through softer faces needed there.
-    const std::unique_ptr<CreaseDriver> fresh = driver.clone();
+    // A commit runs on fresh clones of the driver, or in it with its frames set aside
+    // (in_driver): what it makes depends on the paper and the fraction alone, not on what
+    // previews left in the driver (a kept factorisation, the last frames). One stage (a slide's
+    // step) stays near a balanced state: no detour through softer faces needed there.
+    std::optional<FramesAside> aside;
+    if (request.in_driver)
+      aside.emplace(driver);
+    const std::unique_ptr<CreaseDriver> clone = request.in_driver ? nullptr : driver.clone();
+    CreaseDriver& fresh = clone ? *clone : driver;
     // Faces that bend give the fold its way already; through soft faces as well, a curved pleat
     // crept for 20 s (2,300 iterations, 50 to 100 %) where stiff ones take 1.5 s to the same end.
     const bool soft_path = stages > 1 && request.path_stiffness > 0 &&
@@ -442,7 +458,7 @@ Expected<AssignmentFoldResult> foldOnce(Paper& paper, const AssignmentFoldReques
     std::unique_ptr<CreaseDriver> soft = soft_path ? driver.clone() : nullptr;
     if (soft)
       soft->setFaceStiffness(request.path_stiffness);
-    CreaseDriver& path = soft ? *soft : *fresh;
+    CreaseDriver& path = soft ? *soft : fresh;
     // A commit going on from a preview frame (request.committed) starts on the branch the user
     // saw: the goal is driven in one stage with the driver's own faces first, and taken where
     // the rigid solver alone closes that balance (a rigid state within reach: no path through
@@ -455,12 +471,17 @@ Expected<AssignmentFoldResult> foldOnce(Paper& paper, const AssignmentFoldReques
     if (request.committed && stages > 1 && rigid)
     {
       // A hundred iterations at most: one stage that crawls is no shortcut.
-      const std::unique_ptr<CreaseDriver> once = driver.clone();
-      SolveLimits limits = once->limits();
+      const std::unique_ptr<CreaseDriver> once_clone = request.in_driver ? nullptr : driver.clone();
+      CreaseDriver& once = once_clone ? *once_clone : driver;
+      const SolveLimits given = once.limits();
+      SolveLimits limits = given;
       limits.max_iterations = std::min(limits.max_iterations, kFirstRun);
-      once->setLimits(limits);
+      once.setLimits(limits);
       Paper tried = work;
-      const SolveReport report = driveToBalance(*once, tried, goal, fixed, request.settled_move);
+      const SolveReport report = driveToBalance(once, tried, goal, fixed, request.settled_move);
+      once.setLimits(given);
+      if (request.in_driver)
+        driver.setFramesAside();  // the stages from the frame start as a fresh clone's would
       measureAngles(tried);
       AssignmentFoldResult turned;
       countStuck(*request.committed, tried, goal, turned);
@@ -487,7 +508,7 @@ Expected<AssignmentFoldResult> foldOnce(Paper& paper, const AssignmentFoldReques
     {
       if (!result.solve.diverged)
       {
-        addStage(result.solve, driveToBalance(*fresh, work, goal, fixed, request.settled_move));
+        addStage(result.solve, driveToBalance(fresh, work, goal, fixed, request.settled_move));
         measureAngles(work);
       }
     }

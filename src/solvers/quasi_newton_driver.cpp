@@ -53,4 +53,55 @@ void QuasiNewtonDriver::prepare(const Paper& paper, const std::vector<double>& t
   DriveRun(*this, copy, target, fixed).prepareFirstFrame();
 }
 
+/// What a driver's calls go on from (QuasiNewtonDriver::Setup's last frames).
+struct QuasiNewtonDriver::Frames
+{
+  Positions last, before_last, last_start;
+  std::vector<double> last_target, before_last_target;
+  bool last_balanced = true;
+  bool last_continued = false;
+  double last_face_energy = 0.0;
+};
+
+void QuasiNewtonDriver::setFramesAside()
+{
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (!setup_)
+    return;
+  Setup& setup = *setup_;
+  Frames now{ std::move(setup.last),        std::move(setup.before_last),        std::move(setup.last_start),
+              std::move(setup.last_target), std::move(setup.before_last_target), setup.last_balanced,
+              setup.last_continued,         setup.last_face_energy };
+  if (!aside_)
+    aside_ = std::make_unique<Frames>(std::move(now));
+  const Frames none;
+  setup.last = setup.before_last = setup.last_start = setup.prepared_start = Positions();
+  setup.last_target.clear();
+  setup.before_last_target.clear();
+  setup.last_balanced = none.last_balanced;
+  setup.last_continued = none.last_continued;
+  setup.last_face_energy = none.last_face_energy;
+  setup.gauss_newton.reset();
+  setup.factor_frames.clear();
+}
+
+void QuasiNewtonDriver::putFramesBack()
+{
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (!aside_)
+    return;
+  std::unique_ptr<Frames> frames = std::move(aside_);
+  if (!setup_)
+    return;
+  Setup& setup = *setup_;
+  setup.last = std::move(frames->last);
+  setup.before_last = std::move(frames->before_last);
+  setup.last_start = std::move(frames->last_start);
+  setup.last_target = std::move(frames->last_target);
+  setup.before_last_target = std::move(frames->before_last_target);
+  setup.last_balanced = frames->last_balanced;
+  setup.last_continued = frames->last_continued;
+  setup.last_face_energy = frames->last_face_energy;
+}
+
 }  // namespace virtual_origami::core

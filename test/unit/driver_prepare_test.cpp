@@ -1,12 +1,14 @@
 // A crease driver prepared ahead of its first preview frame (CreaseDriver::prepare, what
 // paper_model does in the background after a new pattern): the frames are the ones an unprepared
 // driver makes, bit for bit, and the first pays for no factorisation; a used driver's frames are
-// left as they were.
+// left as they were. A commit made in the previews' driver (its frames set aside) is the one a
+// fresh clone makes, bit for bit, and the frames after it go on from the slide.
 #include <gtest/gtest.h>
 
 #include "virtual_origami/core/assignment_fold.h"
 #include "virtual_origami/core/tessellations.h"
 #include "virtual_origami/solvers/crease_driver_factory.h"
+#include "virtual_origami/solvers/solver_factory.h"
 
 namespace virtual_origami::core
 {
@@ -89,6 +91,63 @@ TEST(DriverPrepare, HeldVertexNotOnThePaperPreparesNothing)
   const auto frames = slide(paper, *d, 0.0, 1);
   ASSERT_TRUE(frames[0]);
   EXPECT_GE(frames[0]->solve.factorizations, 1);
+}
+
+// A release after a slide, made in the slide's driver under a commit's limits (the set-up its
+// frames made serving it, as paper_model's releases are), at the slide's fraction (one stage) and
+// further on (first tried in one stage from the frame): the paper a fresh clone commits, bit for
+// bit. Its frames set aside meanwhile, the driver's next frame goes on from the slide as a twin's
+// that made no commit does (a prediction along the last frames), not from the commit's motion.
+TEST(DriverPrepare, ACommitInTheSlidesDriverIsAFreshClonesAndTheSlideGoesOnAfterIt)
+{
+  const Paper flat = miuraTessellation(12, 12).value().paper;
+  const SolveLimits frame_limits{ 1e-6, 1, 0.0 };
+  const auto commit_template = makeCreaseDriver("quasi_newton");
+  const auto rigid = makeSolver("newton");
+  for (const double release_at : { 0.2, 0.6 })
+  {
+    const auto slid = makeCreaseDriver("quasi_newton");
+    const auto twin = makeCreaseDriver("quasi_newton");
+    for (CreaseDriver* d : { slid.get(), twin.get() })
+      d->setLimits(frame_limits);
+    Paper frame = flat, twin_frame = flat;
+    slide(frame, *slid, 0.0, 20);
+    slide(twin_frame, *twin, 0.0, 20);
+    ASSERT_TRUE(foldedPositions(frame) == foldedPositions(twin_frame));
+
+    AssignmentFoldRequest release;
+    release.fraction = release_at;
+    release.committed = &flat;
+    Paper in_clone = frame;
+    const auto cloned = commit_template->clone();
+    const auto by_clone = foldByAssignment(in_clone, release, *cloned, rigid.get());
+    ASSERT_TRUE(by_clone) << by_clone.message();
+
+    Paper in_driver = frame;
+    release.in_driver = true;
+    slid->setLimits(commit_template->limits());
+    const auto by_driver = foldByAssignment(in_driver, release, *slid, rigid.get());
+    slid->setLimits(frame_limits);
+    ASSERT_TRUE(by_driver) << by_driver.message();
+    EXPECT_TRUE(by_driver->rigid) << release_at;
+    EXPECT_GT(by_driver->solve.iterations, 0) << release_at;
+    EXPECT_EQ(by_driver->solve.iterations, by_clone->solve.iterations) << release_at;
+    // The constant matrix the slide factorised is not made again.
+    EXPECT_LE(by_driver->solve.factorizations, by_clone->solve.factorizations) << release_at;
+    EXPECT_TRUE(foldedPositions(in_driver) == foldedPositions(in_clone)) << release_at;
+
+    // The slide goes on (the release undone): the next frames start where the twin's do.
+    const auto next = slide(frame, *slid, 0.2, 3);
+    const auto twin_next = slide(twin_frame, *twin, 0.2, 3);
+    for (size_t k = 0; k < next.size(); ++k)
+    {
+      ASSERT_TRUE(next[k] && twin_next[k]);
+      EXPECT_EQ(next[k]->solve.factorizations, twin_next[k]->solve.factorizations) << release_at << ", " << k;
+      // Gone on from the commit's motion instead, the first frames kept 1.7 times the strain.
+      EXPECT_NEAR(next[k]->max_strain, twin_next[k]->max_strain, 1e-3 * twin_next[k]->max_strain)
+          << release_at << ", " << k;
+    }
+  }
 }
 
 }  // namespace

@@ -52,6 +52,47 @@ void expectFoldedTowardsTargets(const Paper& paper)
   EXPECT_GT(driven, 0);
 }
 
+/// A crease driver that drives with the one it wraps, counting the clones made of it and its
+/// clones, and recording each call's time budget (a commit's limits have none).
+class WatchedDriver : public CreaseDriver
+{
+public:
+  WatchedDriver(std::unique_ptr<CreaseDriver> inner, std::shared_ptr<int> clones)
+    : inner_(std::move(inner)), clones_(std::move(clones))
+  {
+    limits_ = inner_->limits();
+    face_stiffness_ = inner_->faceStiffness();
+  }
+  std::string name() const override { return inner_->name(); }
+  SolveReport drive(Paper& paper, const std::vector<double>& target, const std::vector<char>& fixed) override
+  {
+    budgets.push_back(limits_.max_seconds);
+    inner_->setLimits(limits_);
+    inner_->setFaceStiffness(face_stiffness_);
+    return inner_->drive(paper, target, fixed);
+  }
+  std::unique_ptr<CreaseDriver> clone() const override
+  {
+    ++*clones_;
+    auto copy = std::make_unique<WatchedDriver>(inner_->clone(), clones_);
+    copy->setLimits(limits_);
+    copy->setFaceStiffness(face_stiffness_);
+    return copy;
+  }
+  void prepare(const Paper& paper, const std::vector<double>& target, const std::vector<char>& fixed) override
+  {
+    inner_->prepare(paper, target, fixed);
+  }
+  void setFramesAside() override { inner_->setFramesAside(); }
+  void putFramesBack() override { inner_->putFramesBack(); }
+
+  std::vector<double> budgets;
+
+private:
+  std::unique_ptr<CreaseDriver> inner_;
+  std::shared_ptr<int> clones_;
+};
+
 std::string tempPath(const std::string& name)
 {
   return (std::filesystem::temp_directory_path() /
@@ -189,6 +230,46 @@ TEST(FoldByAssignmentSession, AReleaseAfterASlideCommitsFromTheLastPreviewBalanc
   EXPECT_LE(angles_apart, 1e-6);
   // It went on from the preview: the slide's previews were balanced, the release polished them.
   EXPECT_LE(from_preview, 1e-3 * slid.paper().scale());
+}
+
+// The release goes on in the previews' driver (its set-up, made by the slide, serves the commit:
+// at 10,000 vertices a fresh clone's was most of the release), under the commit driver's limits,
+// cloning neither driver; the previews' own budget is theirs again after it.
+TEST(FoldByAssignmentSession, AReleaseGoesOnInThePreviewsDriverUnderTheCommitsLimits)
+{
+  const auto clones = std::make_shared<int>(0);
+  const auto commits = std::make_shared<WatchedDriver>(makeCreaseDriver(), clones);
+  const auto previews = std::make_shared<WatchedDriver>(makeCreaseDriver(), clones);
+  SolveLimits frame = previews->limits();
+  frame.max_seconds = 0.5;
+  previews->setLimits(frame);
+  ASSERT_EQ(commits->limits().max_seconds, 0.0);
+  Session session(miuraWithTargets());
+  session.setSolver(makeSolver("newton"));
+  session.setCreaseDrivers(commits, previews);
+  for (int percent = 5; percent <= 30; percent += 5)
+    ASSERT_TRUE(session.foldByAssignment(0.01 * percent, false).ok());
+  ASSERT_FALSE(previews->budgets.empty());
+  for (double budget : previews->budgets)
+    EXPECT_EQ(budget, 0.5);
+  const size_t preview_calls = previews->budgets.size();
+  const int clones_before = *clones;
+
+  const auto released = session.foldByAssignment(0.3);
+  ASSERT_TRUE(released.ok()) << released.message();
+  EXPECT_TRUE(released->rigid);
+  EXPECT_LE(released->max_strain, 1e-9);
+  EXPECT_EQ(*clones, clones_before);
+  EXPECT_TRUE(commits->budgets.empty());
+  ASSERT_GT(previews->budgets.size(), preview_calls);
+  for (size_t k = preview_calls; k < previews->budgets.size(); ++k)
+    EXPECT_EQ(previews->budgets[k], 0.0) << "call " << k;
+  EXPECT_EQ(previews->limits().max_seconds, 0.5);
+
+  // No preview on show: a commit from the committed paper runs in a fresh clone, as before.
+  const auto further = session.foldByAssignment(0.4);
+  ASSERT_TRUE(further.ok()) << further.message();
+  EXPECT_GT(*clones, clones_before);
 }
 
 TEST(FoldByAssignmentSession, ARecordedFoldOfAnotherPaperIsRefusedAndChangesNothing)

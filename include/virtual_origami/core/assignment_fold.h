@@ -46,6 +46,15 @@ public:
   virtual void prepare(const Paper& /*paper*/, const std::vector<double>& /*target*/,
                        const std::vector<char>& /*fixed*/)
   {}
+  /// Sets aside what later calls would go on from (the last frames) and forgets a kept
+  /// factorisation, keeping what the pattern alone decides (a set-up): the next calls compute
+  /// what a fresh clone's would, without making the set-up again. Called again before
+  /// putFramesBack, it forgets the calls since and keeps the first frames aside. Nothing by
+  /// default.
+  virtual void setFramesAside() {}
+  /// The frames set aside back, as if the calls since had not been made (they leave only the
+  /// factorisation they kept, where they made it). Nothing by default.
+  virtual void putFramesBack() {}
 
   const SolveLimits& limits() const { return limits_; }
   void setLimits(const SolveLimits& limits) { limits_ = limits; }
@@ -90,6 +99,11 @@ struct AssignmentFoldRequest
   /// The committed paper a commit goes on from when it starts at a preview frame: the creases
   /// asked to turn, and those that did not, are counted from it (from the paper given if null).
   const Paper* committed = nullptr;
+  /// A commit in `driver` itself (the driver of the previews it goes on from, under a commit's
+  /// limits), its frames set aside meanwhile (CreaseDriver::setFramesAside): it computes what
+  /// fresh clones would, on the set-up the previews made, where a clone makes that set-up again;
+  /// the previews after it go on as they would have. False: in fresh clones.
+  bool in_driver = false;
 };
 
 /// The strain below which a taken result counts as rigid (what the rigid solver closes to).

@@ -106,6 +106,12 @@ public:
   /// frame (the kept matrix's step among its directions). The last frames stay as they were.
   void prepare(const Paper& paper, const std::vector<double>& target, const std::vector<char>& fixed) override;
   std::unique_ptr<CreaseDriver> clone() const override;
+  /// The last frames set aside and the kept Gauss–Newton factorisation forgotten; the set-up
+  /// (the energy, the constant matrix's factor, the matrices' memory) kept for the next calls.
+  void setFramesAside() override;
+  /// The frames back; the factorisation the calls since kept stays (where they made it), and a
+  /// first frame no longer takes prepare's.
+  void putFramesBack() override;
 
   const QuasiNewtonOptions& options() const { return options_; }
 
@@ -115,6 +121,8 @@ private:
   QuasiNewtonOptions options_;
   std::mutex mutex_;
   std::unique_ptr<Setup> setup_;
+  struct Frames;
+  std::unique_ptr<Frames> aside_;  // setFramesAside's, until putFramesBack
   // The Gauss–Newton matrix's symbolic analysis, shared with this driver's clones (a commit's
   // fresh clone copies it instead of analysing again; it depends on the pattern alone).
   std::shared_ptr<numerics::SpdFactorization::SharedAnalysis> analysis_;
