@@ -152,6 +152,9 @@ void addStage(SolveReport& total, const SolveReport& stage)
 /// stage of Origami Simulator's library balances within the first run, which is then the
 /// driver's whole call as before (with first runs of 50, restarting the few stages that take
 /// 50–100 iterations changed their path: a Rotating Star's 100 % 1.3 -> 3.1 s).
+constexpr int kFirstRun = 100;
+constexpr int kLaterRun = 20;
+
 /// A driver's frames set aside for a commit made in it, and put back after it however it ends.
 class FramesAside
 {
@@ -164,9 +167,6 @@ public:
 private:
   CreaseDriver& driver_;
 };
-
-constexpr int kFirstRun = 100;
-constexpr int kLaterRun = 20;
 
 /// The driver run towards a balance within its own limits (their iterations and seconds count
 /// over all its runs): a first run of kFirstRun iterations, then runs of kLaterRun, stopped once a

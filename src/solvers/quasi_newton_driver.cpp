@@ -53,9 +53,11 @@ void QuasiNewtonDriver::prepare(const Paper& paper, const std::vector<double>& t
   DriveRun(*this, copy, target, fixed).prepareFirstFrame();
 }
 
-/// What a driver's calls go on from (QuasiNewtonDriver::Setup's last frames).
+/// What a driver's calls go on from (QuasiNewtonDriver::Setup's last frames), and the set-up
+/// they were made on.
 struct QuasiNewtonDriver::Frames
 {
+  const Setup* made_on = nullptr;
   Positions last, before_last, last_start;
   std::vector<double> last_target, before_last_target;
   bool last_balanced = true;
@@ -69,9 +71,15 @@ void QuasiNewtonDriver::setFramesAside()
   if (!setup_)
     return;
   Setup& setup = *setup_;
-  Frames now{ std::move(setup.last),        std::move(setup.before_last),        std::move(setup.last_start),
-              std::move(setup.last_target), std::move(setup.before_last_target), setup.last_balanced,
-              setup.last_continued,         setup.last_face_energy };
+  Frames now{ &setup,
+              std::move(setup.last),
+              std::move(setup.before_last),
+              std::move(setup.last_start),
+              std::move(setup.last_target),
+              std::move(setup.before_last_target),
+              setup.last_balanced,
+              setup.last_continued,
+              setup.last_face_energy };
   if (!aside_)
     aside_ = std::make_unique<Frames>(std::move(now));
   const Frames none;
@@ -91,8 +99,8 @@ void QuasiNewtonDriver::putFramesBack()
   if (!aside_)
     return;
   std::unique_ptr<Frames> frames = std::move(aside_);
-  if (!setup_)
-    return;
+  if (!setup_ || setup_.get() != frames->made_on)
+    return;  // a new set-up since (another pattern): the frames were of the old one
   Setup& setup = *setup_;
   setup.last = std::move(frames->last);
   setup.before_last = std::move(frames->before_last);
