@@ -84,6 +84,10 @@ bool SpringSolverNode::solve(Solve::Request& req, Solve::Response& res)
                                        solver_->solveLoosely(*paper, fixed, req.looser_tolerance) :
                                        solver_->solve(*paper, fixed);
   solver_->setLimits(configured);
+  ROS_DEBUG("spring_solver: %zu vertices, %d held: %s after %d iterations in %.2f s, strain %g: %s",
+            paper->vertices.size(), static_cast<int>(req.fixed_vertices.size()),
+            report.converged && !report.diverged ? "converged" : "not converged", report.iterations, report.seconds,
+            report.max_strain, report.message.c_str());
   res.success = report.converged && !report.diverged;
   res.message = solver_->name() + ": " + report.message;
   res.iterations = report.iterations;
