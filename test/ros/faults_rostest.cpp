@@ -169,6 +169,16 @@ protected:
   std::mutex ops_mutex_;
   std::vector<Operation> operations_;
 };
+
+/// A 400-vertex Miura-ori, flat, each vertex moved by up to `shake` of the sheet (seeded).
+core::Paper shakenMiura(unsigned seed, double shake)
+{
+  core::Paper paper = core::tessellationWithVertices(core::TessellationKind::Miura, 400).value().paper;
+  std::srand(seed);
+  for (core::Vertex& v : paper.vertices)
+    v.folded += shake * paper.scale() * core::Vec3::Random();
+  return paper;
+}
 }  // namespace
 
 TEST_F(Faults, CreaseFieldsNonFiniteOrHuge)
@@ -523,10 +533,7 @@ TEST_F(Faults, SolverGetsMalformedPapers)
 /// window is refused.
 TEST_F(Faults, SolverStopsAStalledSolveWhenAsked)
 {
-  core::Paper paper = core::tessellationWithVertices(core::TessellationKind::Miura, 400).value().paper;
-  std::srand(7);
-  for (core::Vertex& v : paper.vertices)
-    v.folded += 0.03 * paper.scale() * core::Vec3::Random();
+  const core::Paper paper = shakenMiura(7, 0.03);
   Solve stalled, to_limit;
   stalled.request.paper = toMessage(paper, 0, {});
   for (int v : paper.faces.front().vertices)
@@ -555,10 +562,7 @@ TEST_F(Faults, SolverStopsAStalledSolveWhenAsked)
 // solve alone gives.
 TEST_F(Faults, SolverPreparedForAPatternMovesNothingAndSolvesAsBefore)
 {
-  core::Paper paper = core::tessellationWithVertices(core::TessellationKind::Miura, 400).value().paper;
-  std::srand(11);
-  for (core::Vertex& v : paper.vertices)
-    v.folded += 0.001 * paper.scale() * core::Vec3::Random();
+  const core::Paper paper = shakenMiura(11, 0.001);
   Solve prepare, solve;
   prepare.request.paper = toMessage(paper, 0, {});
   prepare.request.prepare = true;
