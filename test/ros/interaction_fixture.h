@@ -85,8 +85,9 @@ protected:
             if (m.ns == "front")
               front_ = m;
         });
+    const ros::Time reset_at = ros::Time::now();
     ASSERT_TRUE(client_.trigger("reset").response.success);
-    base_ = client_.state().revision;
+    base_ = client_.stateSince(reset_at).revision;
     ASSERT_TRUE(waitFor([&] { return feedback_pub_.getNumSubscribers() > 0; }, 30));
     ASSERT_TRUE(waitFor([&] { return loadMenu(); }, 30)) << "no interactive marker `paper` with a menu";
     // A wait for the node to have taken the reset, as the two above: once, with ctest's other

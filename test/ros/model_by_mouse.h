@@ -202,6 +202,7 @@ protected:
     operations_sub_ = client_.nh().subscribe<Operation>(
         "operations", 100, [this](const Operation::ConstPtr& op) { operations_.push_back(*op); });
     ASSERT_TRUE(waitFor([&] { return operations_sub_.getNumPublishers() > 0; }, 30));
+    const ros::Time reset_at = ros::Time::now();
     ASSERT_TRUE(client_.trigger("reset").response.success);
     ASSERT_TRUE(waitFor([&] { return !operations_.empty(); }, 10));
     operations_.clear();  // the reset
@@ -211,7 +212,7 @@ protected:
       ASSERT_TRUE(waitFor([&] { return tool_pub_.getNumSubscribers() > 0; }, 30));
     }
     ASSERT_TRUE(waitFor([&] { return loadMenu(); }, 30)) << "no interactive marker `paper` with a menu";
-    revision_ = client_.state().revision;
+    revision_ = client_.stateSince(reset_at).revision;
     ASSERT_TRUE(waitFor([&] { return statuses_ > 0 && status_.revision == revision_; }, 10));
     received_at_start_ = status_.feedback_received;
   }

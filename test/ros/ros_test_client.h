@@ -145,6 +145,14 @@ public:
         << "state stayed at revision " << state_.revision << ", expected " << revision;
     return state_;
   }
+  /// The latest state once it is one published at `since` or later: a service's answer and the
+  /// state it made come on two connections, and the answer may come first.
+  const PaperState& stateSince(const ros::Time& since)
+  {
+    EXPECT_TRUE(waitFor([&] { return states_ > 0 && state_.header.stamp >= since; }, 30.0))
+        << "no state published since " << since;
+    return state_;
+  }
   /// States received so far: a test that restarts the model waits for one past it.
   int received() const { return states_; }
   /// The first state received after `count` states.
