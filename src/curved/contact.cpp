@@ -299,9 +299,7 @@ LayerContact::LayerContact(const CurvedMesh& mesh, const Paper& paper, const Cur
     const int f0 = t0 >= 0 ? mesh.triangles[t0].face : -1, f1 = t1 >= 0 ? mesh.triangles[t1].face : -1;
     edge_face_[e] = f0 < 0 ? f1 : (f1 < 0 || f1 == f0 ? f0 : -1);
   }
-  node_faces_.resize(mesh.nodes.size());
-  for (size_t i = 0; i < mesh.nodes.size(); ++i)
-    node_faces_[i] = mesh.facesOfNode(paper, static_cast<int>(i));
+  node_faces_ = mesh.facesOfNodes(paper);
 }
 
 int LayerContact::sideFor(int node, int triangle, double signed_distance) const

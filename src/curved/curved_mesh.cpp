@@ -14,7 +14,8 @@ namespace virtual_origami::core
 namespace
 {
 /// The paper edge both nodes lie on, or -1.
-int sharedPaperEdge(const CurvedMesh& mesh, const Paper& paper, int a, int b)
+int sharedPaperEdge(const CurvedMesh& mesh, const Paper& paper, const std::map<std::pair<int, int>, int>& paper_edge_of,
+                    int a, int b)
 {
   const MeshNode& na = mesh.nodes[a];
   const MeshNode& nb = mesh.nodes[b];
@@ -30,7 +31,11 @@ int sharedPaperEdge(const CurvedMesh& mesh, const Paper& paper, int a, int b)
                -1;
   }
   if (na.paper_vertex >= 0 && nb.paper_vertex >= 0)
-    return paper.findEdge(na.paper_vertex, nb.paper_vertex);
+  {
+    // The first of parallel edges, as Paper::findEdge gives it.
+    const auto found = paper_edge_of.find(std::minmax(na.paper_vertex, nb.paper_vertex));
+    return found == paper_edge_of.end() ? -1 : found->second;
+  }
   return -1;
 }
 }  // namespace
@@ -64,9 +69,39 @@ std::vector<int> CurvedMesh::facesOfNode(const Paper& paper, int node) const
   return { n.paper_face };
 }
 
+std::vector<std::vector<int>> CurvedMesh::facesOfNodes(const Paper& paper) const
+{
+  std::vector<std::vector<int>> of_vertex(paper.vertices.size());
+  for (size_t f = 0; f < paper.faces.size(); ++f)
+    for (int v : paper.faces[f].vertices)
+      if (of_vertex[v].empty() || of_vertex[v].back() != static_cast<int>(f))
+        of_vertex[v].push_back(static_cast<int>(f));
+  std::vector<std::vector<int>> out(nodes.size());
+  for (size_t i = 0; i < nodes.size(); ++i)
+  {
+    const MeshNode& n = nodes[i];
+    if (n.paper_vertex >= 0)
+      out[i] = of_vertex[n.paper_vertex];
+    else if (n.paper_edge >= 0)
+    {
+      for (int f : paper.edges[n.paper_edge].faces)
+        if (f >= 0)
+          out[i].push_back(f);
+    }
+    else
+      out[i] = { n.paper_face };
+  }
+  return out;
+}
+
 Status linkMesh(CurvedMesh& mesh, const Paper& paper)
 {
   mesh.edges.clear();
+  // The paper's edges by their vertices, for mesh edges between two paper vertices (one scan of
+  // every edge each was quadratic in the pattern's size).
+  std::map<std::pair<int, int>, int> paper_edge_of;
+  for (size_t e = 0; e < paper.edges.size(); ++e)
+    paper_edge_of.emplace(std::minmax(paper.edges[e].vertices[0], paper.edges[e].vertices[1]), static_cast<int>(e));
   std::map<std::pair<int, int>, int> edge_of;
   for (size_t t = 0; t < mesh.triangles.size(); ++t)
   {
@@ -82,7 +117,7 @@ Status linkMesh(CurvedMesh& mesh, const Paper& paper)
       {
         MeshEdge edge;
         edge.nodes = { a, b };
-        edge.paper_edge = sharedPaperEdge(mesh, paper, a, b);
+        edge.paper_edge = sharedPaperEdge(mesh, paper, paper_edge_of, a, b);
         it = edge_of.emplace(key, static_cast<int>(mesh.edges.size())).first;
         mesh.edges.push_back(edge);
       }
@@ -181,6 +216,7 @@ void applyToPaper(const CurvedMesh& mesh, const Positions& positions, Paper& pap
 
 MeshQuality meshQuality(const CurvedMesh& mesh, const Paper& paper)
 {
+  const std::vector<std::vector<int>> node_faces = mesh.facesOfNodes(paper);
   MeshQuality q;
   q.min_angle = M_PI;
   q.min_edge = std::numeric_limits<double>::infinity();
@@ -211,7 +247,7 @@ MeshQuality meshQuality(const CurvedMesh& mesh, const Paper& paper)
     bool in_face = true;
     for (int n : tri)
     {
-      const std::vector<int> faces = mesh.facesOfNode(paper, n);
+      const std::vector<int>& faces = node_faces[n];
       in_face = in_face && std::find(faces.begin(), faces.end(), mesh.triangles[t].face) != faces.end();
     }
     q.crossing_triangles += in_face ? 0 : 1;

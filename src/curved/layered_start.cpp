@@ -127,9 +127,10 @@ LayeredStart layeredStart(const CurvedMesh& mesh, const Paper& paper, const Laye
   for (int f = 0; f < faces; ++f)
     moved[f] = along_normal[f] + basis[f] * y.segment<2>(2 * f);
 
+  const std::vector<std::vector<int>> node_faces = mesh.facesOfNodes(paper);
   for (size_t i = 0; i < mesh.nodes.size(); ++i)
   {
-    const std::vector<int> of = mesh.facesOfNode(paper, static_cast<int>(i));
+    const std::vector<int>& of = node_faces[i];
     Vec3 lift = Vec3::Zero();
     for (int f : of)
       lift += moved[f];
@@ -162,9 +163,10 @@ double stackThickness(const CurvedMesh& mesh, const Paper& paper, const LayeredS
     return 0.0;
   const Vec3 normal = paper.faceNormal(static_cast<int>(first - start.plane_of.begin()));
   double low = std::numeric_limits<double>::infinity(), high = -low;
+  const std::vector<std::vector<int>> node_faces = mesh.facesOfNodes(paper);
   for (int i = 0; i < x.cols(); ++i)
   {
-    const std::vector<int> faces = mesh.facesOfNode(paper, i);
+    const std::vector<int>& faces = node_faces[i];
     if (std::none_of(faces.begin(), faces.end(), [&](int f) { return start.plane_of[f] == plane; }))
       continue;
     const double height = normal.dot(x.col(i));

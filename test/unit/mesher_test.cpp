@@ -225,6 +225,24 @@ TEST(Meshers, CgalMeshConformsToEveryReferencePattern)
   expectConformingMeshes("cgal", cgal, true);
 }
 
+// All nodes' faces at once, as each node's: paper vertices, nodes on edges, inside faces and
+// beside the creases (the strips of a layered start).
+TEST(Meshers, TheFacesOfEveryNodeAtOnceAreEachNodesFaces)
+{
+  for (const Pattern& pattern : patterns())
+  {
+    BubbleMeshOptions options;
+    options.spacing = 0.07 * pattern.paper.scale();
+    options.crease_strip = 0.002 * pattern.paper.scale();
+    const Expected<CurvedMesh> mesh = bubbleMesh(pattern.paper, options);
+    ASSERT_TRUE(mesh.ok()) << pattern.name << ": " << mesh.message();
+    const std::vector<std::vector<int>> faces = mesh->facesOfNodes(pattern.paper);
+    ASSERT_EQ(faces.size(), mesh->nodes.size());
+    for (size_t i = 0; i < faces.size(); ++i)
+      EXPECT_EQ(faces[i], mesh->facesOfNode(pattern.paper, static_cast<int>(i))) << pattern.name << ", node " << i;
+  }
+}
+
 TEST(Meshers, BubbleMeshAnglesNearASharpCornerStayNearTheCornersAngle)
 {
   const Paper paper = degree4Vertex({ 30 * kDeg, 90 * kDeg, 150 * kDeg, 90 * kDeg });
