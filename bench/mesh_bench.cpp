@@ -6,9 +6,11 @@
 // 0.2 … 0.025, every solution
 // measured against its own mesher's finest solution, itself balanced to 1e-11 and converged by
 // that refinement (the distances to the next finer mesh keep falling), so the error falls with
-// the spacing as far as the meshes resolve the curl. Every figure from this one run.
+// the spacing as far as the meshes resolve the curl; and the time to mesh a Miura-ori of 2,500 to
+// 100,000 vertices at curved_mesh_solver's spacing (mesh_scaling.csv): it meshes every state's
+// crease pattern. Every figure from this one run.
 //
-//   mesh_bench [output directory, default docs/bench] [all | quality | resolution]
+//   mesh_bench [output directory, default docs/bench] [all | quality | resolution | scaling]
 //              [bend q/k in side², default 1e-3] [pull, a fraction of the half turn, default 0.4]
 #include <algorithm>
 #include <cmath>
@@ -24,6 +26,7 @@
 #include "virtual_origami/core/crease.h"
 #include "virtual_origami/core/geometry.h"
 #include "virtual_origami/core/reference_patterns.h"
+#include "virtual_origami/core/tessellations.h"
 #include "virtual_origami/curved/bubble_mesh.h"
 #include "virtual_origami/curved/cgal_mesh.h"
 #include "virtual_origami/curved/seed_scenes.h"
@@ -116,6 +119,54 @@ bool qualityTable(const std::string& path, const Meshers& meshers)
                     q.min_angle / kDeg, q.max_angle / kDeg, q.mean_radius_ratio, q.well_shaped, best * 1e3);
         std::fflush(stdout);
       }
+  return true;
+}
+
+/// The time to mesh Miura-ori crease patterns (γ 60°, tessellationWithVertices) of 2,500 to
+/// 100,000 vertices at curved_mesh_solver's default spacing, a tenth of the sheet: every vertex is
+/// a node, so the time per node says whether meshing stays linear in the pattern's size.
+bool scalingTable(const std::string& path, const Meshers& meshers)
+{
+  std::ofstream csv(path);
+  if (!csv)
+  {
+    std::cerr << "cannot write " << path << "\n";
+    return false;
+  }
+  csv << "pattern,mesher,vertices,nodes,triangles,mesh_ms,per_node_us\n";
+  for (long vertices : { 2500L, 10000L, 25000L, 50000L, 100000L })
+  {
+    const Expected<Tessellation> pattern = tessellationWithVertices(TessellationKind::Miura, vertices);
+    if (!pattern)
+    {
+      std::cerr << pattern.message() << "\n";
+      return false;
+    }
+    for (const auto& [name, mesher] : meshers)
+    {
+      // Best of three: the time of the mesher, not of the machine's other load.
+      double best = 1e30;
+      Expected<CurvedMesh> mesh = Expected<CurvedMesh>::failure("not run");
+      for (int r = 0; r < 3; ++r)
+      {
+        const double t0 = now();
+        mesh = mesher(pattern->paper, 0.1 * pattern->paper.scale());
+        best = std::min(best, now() - t0);
+      }
+      if (!mesh.ok())
+      {
+        std::cerr << "miura " << vertices << " " << name << ": " << mesh.message() << "\n";
+        return false;
+      }
+      const double per_node = best / static_cast<double>(mesh->nodes.size());
+      csv << "miura_60," << name << "," << pattern->paper.vertices.size() << "," << mesh->nodes.size() << ","
+          << mesh->triangles.size() << "," << best * 1e3 << "," << per_node * 1e6 << "\n";
+      std::printf("miura_60 %-6s %6zu vertices: %6zu nodes %6zu triangles, %.1f ms, %.2f µs a node\n", name.c_str(),
+                  pattern->paper.vertices.size(), mesh->nodes.size(), mesh->triangles.size(), best * 1e3,
+                  per_node * 1e6);
+      std::fflush(stdout);
+    }
+  }
   return true;
 }
 
@@ -217,6 +268,8 @@ int main(int argc, char** argv)
   if ((part == "all" || part == "quality") && !qualityTable(dir + "/meshers.csv", meshers))
     return 1;
   if ((part == "all" || part == "resolution") && !resolutionSweep(dir + "/mesh_resolution.csv", meshers, bend, pull))
+    return 1;
+  if ((part == "all" || part == "scaling") && !scalingTable(dir + "/mesh_scaling.csv", meshers))
     return 1;
   return 0;
 }

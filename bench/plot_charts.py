@@ -307,6 +307,14 @@ def chart_meshers(tables):
                          f"{fmt(num(r['min_angle_deg']))}° | {fmt(num(r['mean_radius_ratio']))} | "
                          f"{fmt(num(r['share_45_75']), 2)} | {fmt(num(r['mesh_ms']))} ms |")
         tables["meshers"] = "\n".join(lines)
+    scaling = rows("mesh_scaling.csv")
+    if scaling:
+        lines = ["| pattern | mesher | vertices | nodes | triangles | time | per node |",
+                 "|---|---|---|---|---|---|---|"]
+        for r in scaling:
+            lines.append(f"| {r['pattern']} | {r['mesher']} | {int(num(r['vertices'])):,} | {int(num(r['nodes'])):,} | "
+                         f"{int(num(r['triangles'])):,} | {fmt(num(r['mesh_ms']))} ms | {fmt(num(r['per_node_us']))} µs |")
+        tables["mesh_scaling"] = "\n".join(lines)
     data = rows("mesh_resolution.csv")
     if not data:
         return
