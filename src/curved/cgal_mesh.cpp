@@ -9,6 +9,7 @@
 #include <string>
 #include <tuple>
 #include <utility>
+#include <vector>
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Delaunay_mesh_face_base_2.h>
@@ -105,9 +106,15 @@ Status floodFill(Triangulation& cdt, const std::vector<Point>& seeds)
 {
   for (auto f = cdt.all_faces_begin(); f != cdt.all_faces_end(); ++f)
     f->info() = -1;
+  // Each seed located from the face the seed before lay in: the seeds of neighbouring paper
+  // faces lie near each other, and a walk from the triangulation's start for each made the flood
+  // fill grow faster than the pattern (a fifth of the mesher's time at 50,000 vertices).
+  Triangulation::Face_handle hint;
   for (size_t s = 0; s < seeds.size(); ++s)
   {
-    const Triangulation::Face_handle start = cdt.locate(seeds[s]);
+    const Triangulation::Face_handle start = hint == nullptr ? cdt.locate(seeds[s]) : cdt.locate(seeds[s], hint);
+    if (start != nullptr && !cdt.is_infinite(start))
+      hint = start;
     if (start == nullptr || cdt.is_infinite(start))
       return failure("paper face " + std::to_string(s) + " lies outside the triangulation");
     if (start->info() >= 0)
@@ -139,13 +146,48 @@ Status floodFill(Triangulation& cdt, const std::vector<Point>& seeds)
   return success();
 }
 
+/// The paper's edges binned by the grid cells their boxes, widened by `tolerance`, cover: the
+/// edges a point can lie within `tolerance` of (a scan of every edge per node on an edge made
+/// meshing quadratic in the pattern's size).
+class EdgeBins
+{
+public:
+  EdgeBins(const Paper& paper, double tolerance)
+    : cell_(paper.scale() / std::max(1.0, std::sqrt(static_cast<double>(paper.edges.size()))))
+  {
+    for (size_t e = 0; e < paper.edges.size(); ++e)
+    {
+      const Vec2& a = paper.vertices[paper.edges[e].vertices[0]].crease_pattern;
+      const Vec2& b = paper.vertices[paper.edges[e].vertices[1]].crease_pattern;
+      const Vec2 lo = a.cwiseMin(b).array() - tolerance, hi = a.cwiseMax(b).array() + tolerance;
+      for (long x = cellOf(lo.x()); x <= cellOf(hi.x()); ++x)
+        for (long y = cellOf(lo.y()); y <= cellOf(hi.y()); ++y)
+          bins_[{ x, y }].push_back(static_cast<int>(e));  // in ascending order
+    }
+  }
+
+  /// The edges binned where `p` lies, in ascending order.
+  const std::vector<int>& near(const Vec2& p) const
+  {
+    static const std::vector<int> none;
+    const auto found = bins_.find({ cellOf(p.x()), cellOf(p.y()) });
+    return found == bins_.end() ? none : found->second;
+  }
+
+private:
+  long cellOf(double v) const { return static_cast<long>(std::floor(v / cell_)); }
+
+  double cell_;
+  std::map<std::pair<long, long>, std::vector<int>> bins_;
+};
+
 /// The paper edge a node inside an edge lies on, and where along it; -1 when none is within
-/// `tolerance`.
-std::pair<int, double> paperEdgeAt(const Paper& paper, const Vec2& p, double tolerance)
+/// `tolerance` (the tolerance `bins` were made with).
+std::pair<int, double> paperEdgeAt(const Paper& paper, const EdgeBins& bins, const Vec2& p, double tolerance)
 {
   int best = -1;
   double best_distance = tolerance, best_t = 0;
-  for (size_t e = 0; e < paper.edges.size(); ++e)
+  for (const int e : bins.near(p))
   {
     const Vec2& a = paper.vertices[paper.edges[e].vertices[0]].crease_pattern;
     const Vec2& b = paper.vertices[paper.edges[e].vertices[1]].crease_pattern;
@@ -154,7 +196,7 @@ std::pair<int, double> paperEdgeAt(const Paper& paper, const Vec2& p, double tol
     const double distance = (a + t * ab - p).norm();
     if (distance <= best_distance)
     {
-      best = static_cast<int>(e);
+      best = e;
       best_distance = distance;
       best_t = t;
     }
@@ -235,6 +277,8 @@ Expected<CurvedMesh> cgalMesh(const Paper& paper, const CgalMeshOptions& options
     std::map<std::pair<double, double>, int> vertex_at;
     for (size_t v = 0; v < paper.vertices.size(); ++v)
       vertex_at[{ paper.vertices[v].crease_pattern.x(), paper.vertices[v].crease_pattern.y() }] = static_cast<int>(v);
+    const double node_tolerance = 1e-9 * scale;
+    const EdgeBins edge_bins(paper, node_tolerance);
     std::vector<std::tuple<int, double, Triangulation::Vertex_handle>> on_edges;
     std::vector<std::pair<int, Triangulation::Vertex_handle>> in_faces;
     for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v)
@@ -254,7 +298,7 @@ Expected<CurvedMesh> cgalMesh(const Paper& paper, const CgalMeshOptions& options
       } while (++f != done);
       if (constrained)
       {
-        const auto [edge, t] = paperEdgeAt(paper, p, 1e-9 * scale);
+        const auto [edge, t] = paperEdgeAt(paper, edge_bins, p, node_tolerance);
         if (edge < 0)
           return Failure::failure("meshing failed: a node on a constraint lies on no paper edge");
         on_edges.emplace_back(edge, t, v);
