@@ -113,10 +113,9 @@ Status floodFill(Triangulation& cdt, const std::vector<Point>& seeds)
   for (size_t s = 0; s < seeds.size(); ++s)
   {
     const Triangulation::Face_handle start = hint == nullptr ? cdt.locate(seeds[s]) : cdt.locate(seeds[s], hint);
-    if (start != nullptr && !cdt.is_infinite(start))
-      hint = start;
     if (start == nullptr || cdt.is_infinite(start))
       return failure("paper face " + std::to_string(s) + " lies outside the triangulation");
+    hint = start;
     if (start->info() >= 0)
       return failure("paper faces " + std::to_string(start->info()) + " and " + std::to_string(s) +
                      " are not separated by edges");

@@ -58,9 +58,9 @@ struct CurvedMesh
   Vec3 restPosition(int node) const;
   /// Every paper face a node belongs to (one inside a face, two on a crease, more at a vertex).
   std::vector<int> facesOfNode(const Paper& paper, int node) const;
-  /// facesOfNode of every node, in ascending order, at once: in time proportional to the mesh
-  /// and the paper (each facesOfNode of a paper vertex scans every face: a loop over the nodes
-  /// took seconds at 25,000 vertices).
+  /// facesOfNode of every node at once, each in the order facesOfNode gives: in time
+  /// proportional to the mesh and the paper (each facesOfNode of a paper vertex scans every
+  /// face: a loop over the nodes took seconds at 25,000 vertices).
   std::vector<std::vector<int>> facesOfNodes(const Paper& paper) const;
 };
 
