@@ -20,6 +20,7 @@
 #include <functional>
 #include <iostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bench_common.h"
@@ -80,30 +81,44 @@ Expected<CurvedMesh> cgal(const Paper& paper, double spacing)
 
 using Meshers = std::vector<std::pair<std::string, Mesher>>;
 
-/// Quality and time of each mesher on each pattern, spacing relative to the sheet.
-bool qualityTable(const std::string& path, const Meshers& meshers)
+/// A CSV file at `path` with its header written; closed (false) where it cannot be written.
+std::ofstream csvWithHeader(const std::string& path, const std::string& header)
 {
   std::ofstream csv(path);
   if (!csv)
-  {
     std::cerr << "cannot write " << path << "\n";
-    return false;
+  else
+    csv << header << "\n";
+  return csv;
+}
+
+/// The mesh and the best of three meshing times: the mesher's time, not the machine's other load.
+std::pair<Expected<CurvedMesh>, double> meshTimed(const Mesher& mesher, const Paper& paper, double spacing)
+{
+  double best = 1e30;
+  Expected<CurvedMesh> mesh = Expected<CurvedMesh>::failure("not run");
+  for (int r = 0; r < 3; ++r)
+  {
+    const double t0 = now();
+    mesh = mesher(paper, spacing);
+    best = std::min(best, now() - t0);
   }
-  csv << "pattern,mesher,spacing,nodes,triangles,min_angle_deg,max_angle_deg,mean_radius_ratio,share_45_75,mesh_ms\n";
+  return { std::move(mesh), best };
+}
+
+/// Quality and time of each mesher on each pattern, spacing relative to the sheet.
+bool qualityTable(const std::string& path, const Meshers& meshers)
+{
+  std::ofstream csv = csvWithHeader(
+      path, "pattern,mesher,spacing,nodes,triangles,min_angle_deg,max_angle_deg,mean_radius_ratio,share_45_75,mesh_ms");
+  if (!csv)
+    return false;
   for (const Pattern& pattern : referencePatterns())
     for (double relative : { 0.2, 0.1, 0.05, 0.025 })
       for (const auto& [name, mesher] : meshers)
       {
         const double spacing = relative * pattern.paper.scale();
-        // Best of three: the time of the mesher, not of the machine's other load.
-        double best = 1e30;
-        Expected<CurvedMesh> mesh = Expected<CurvedMesh>::failure("not run");
-        for (int r = 0; r < 3; ++r)
-        {
-          const double t0 = now();
-          mesh = mesher(pattern.paper, spacing);
-          best = std::min(best, now() - t0);
-        }
+        const auto [mesh, best] = meshTimed(mesher, pattern.paper, spacing);
         if (!mesh.ok())
         {
           std::cerr << pattern.name << " " << name << " " << spacing << ": " << mesh.message() << "\n";
@@ -127,13 +142,9 @@ bool qualityTable(const std::string& path, const Meshers& meshers)
 /// a node, so the time per node says whether meshing stays linear in the pattern's size.
 bool scalingTable(const std::string& path, const Meshers& meshers)
 {
-  std::ofstream csv(path);
+  std::ofstream csv = csvWithHeader(path, "pattern,mesher,vertices,nodes,triangles,mesh_ms,per_node_us");
   if (!csv)
-  {
-    std::cerr << "cannot write " << path << "\n";
     return false;
-  }
-  csv << "pattern,mesher,vertices,nodes,triangles,mesh_ms,per_node_us\n";
   for (long vertices : { 2500L, 10000L, 25000L, 50000L, 100000L })
   {
     const Expected<Tessellation> pattern = tessellationWithVertices(TessellationKind::Miura, vertices);
@@ -144,15 +155,7 @@ bool scalingTable(const std::string& path, const Meshers& meshers)
     }
     for (const auto& [name, mesher] : meshers)
     {
-      // Best of three: the time of the mesher, not of the machine's other load.
-      double best = 1e30;
-      Expected<CurvedMesh> mesh = Expected<CurvedMesh>::failure("not run");
-      for (int r = 0; r < 3; ++r)
-      {
-        const double t0 = now();
-        mesh = mesher(pattern->paper, 0.1 * pattern->paper.scale());
-        best = std::min(best, now() - t0);
-      }
+      const auto [mesh, best] = meshTimed(mesher, pattern->paper, 0.1 * pattern->paper.scale());
       if (!mesh.ok())
       {
         std::cerr << "miura " << vertices << " " << name << ": " << mesh.message() << "\n";

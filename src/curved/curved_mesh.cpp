@@ -78,19 +78,7 @@ std::vector<std::vector<int>> CurvedMesh::facesOfNodes(const Paper& paper) const
         of_vertex[v].push_back(static_cast<int>(f));
   std::vector<std::vector<int>> out(nodes.size());
   for (size_t i = 0; i < nodes.size(); ++i)
-  {
-    const MeshNode& n = nodes[i];
-    if (n.paper_vertex >= 0)
-      out[i] = of_vertex[n.paper_vertex];
-    else if (n.paper_edge >= 0)
-    {
-      for (int f : paper.edges[n.paper_edge].faces)
-        if (f >= 0)
-          out[i].push_back(f);
-    }
-    else
-      out[i] = { n.paper_face };
-  }
+    out[i] = nodes[i].paper_vertex >= 0 ? of_vertex[nodes[i].paper_vertex] : facesOfNode(paper, static_cast<int>(i));
   return out;
 }
 
