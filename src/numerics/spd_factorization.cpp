@@ -9,6 +9,7 @@
 #include <Eigen/CholmodSupport>
 
 #include "nested_dissection.h"
+#include "one_core_openmp.h"
 
 namespace virtual_origami::numerics
 {
@@ -65,6 +66,12 @@ private:
   cholmod_factor* symbolic_ = nullptr;
 };
 
+bool factorisationsOnOneCore()
+{
+  const char* asked = std::getenv("OMP_NUM_THREADS");
+  return !(asked && std::atoi(asked) > 1);
+}
+
 namespace
 {
 using SetInt = void (*)(int);
@@ -75,15 +82,16 @@ using SetInt = void (*)(int);
 /// time in libgomp and the kernel's futexes, and took half the CPU time on one thread. So the
 /// threads that factorise keep to one core (no nested OpenMP level), unless OMP_NUM_THREADS asks
 /// for more. Per thread (OpenMP's settings are), once; looked up in the process, where CHOLMOD
-/// loaded libgomp (absent: a CHOLMOD without OpenMP, nothing to do).
+/// loaded libgomp (absent: a CHOLMOD without OpenMP, nothing to do). Where this library's
+/// GOMP_parallel is the one CHOLMOD calls (one_core_openmp.cpp), its regions skip libgomp
+/// altogether; this covers a process where it is not.
 void keepFactorisationsOnOneCore()
 {
   thread_local bool done = false;
   if (done)
     return;
   done = true;
-  const char* asked = std::getenv("OMP_NUM_THREADS");
-  if (asked && std::atoi(asked) > 1)
+  if (!factorisationsOnOneCore())
     return;
   static const auto set_max_active_levels = reinterpret_cast<SetInt>(dlsym(RTLD_DEFAULT, "omp_set_max_active_levels"));
   static const auto set_num_threads = reinterpret_cast<SetInt>(dlsym(RTLD_DEFAULT, "omp_set_num_threads"));
