@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "grid_laplacian.h"
 #include "virtual_origami/numerics/blas_kernels.h"
 #include "virtual_origami/numerics/spd_factorization.h"
 
@@ -26,20 +27,8 @@ TEST(BlasKernels, FactorisationsRunOnTheKernelsForTheCpu)
 {
   // A factorisation with supernodes (each a BLAS call): the 2-D Laplacian of a 40 × 40 grid
   // plus the identity, solved against a known solution.
-  const int side = 40, n = side * side;
-  std::vector<Eigen::Triplet<double>> entries;
-  for (int i = 0; i < side; ++i)
-    for (int j = 0; j < side; ++j)
-    {
-      const int k = i * side + j;
-      entries.emplace_back(k, k, 5.0);
-      if (i + 1 < side)
-        entries.emplace_back(k + side, k, -1.0);
-      if (j + 1 < side)
-        entries.emplace_back(k + 1, k, -1.0);
-    }
-  Eigen::SparseMatrix<double> lower(n, n);
-  lower.setFromTriplets(entries.begin(), entries.end());
+  const int n = 40 * 40;
+  const Eigen::SparseMatrix<double> lower = virtual_origami::test::gridLaplacianLower(40);
   const Eigen::SparseMatrix<double> full = lower.selfadjointView<Eigen::Lower>();
   const Eigen::VectorXd solution = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
   SpdFactorization factor;

@@ -5,11 +5,11 @@
 
 #include <cstdlib>
 #include <string>
-#include <vector>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "grid_laplacian.h"
 #include "virtual_origami/numerics/spd_factorization.h"
 
 using ::testing::HasSubstr;
@@ -71,20 +71,8 @@ TEST(OneCoreOpenMp, ASupernodalFactorisationThroughItSolves)
 {
   // The 2-D Laplacian of a 70 × 70 grid plus the identity (4,900 rows: nested dissection, large
   // supernodes, every region of CHOLMOD's numeric factorisation), against a known solution.
-  const int side = 70, n = side * side;
-  std::vector<Eigen::Triplet<double>> entries;
-  for (int i = 0; i < side; ++i)
-    for (int j = 0; j < side; ++j)
-    {
-      const int k = i * side + j;
-      entries.emplace_back(k, k, 5.0);
-      if (i + 1 < side)
-        entries.emplace_back(k + side, k, -1.0);
-      if (j + 1 < side)
-        entries.emplace_back(k + 1, k, -1.0);
-    }
-  Eigen::SparseMatrix<double> lower(n, n);
-  lower.setFromTriplets(entries.begin(), entries.end());
+  const int n = 70 * 70;
+  const Eigen::SparseMatrix<double> lower = virtual_origami::test::gridLaplacianLower(70);
   const Eigen::SparseMatrix<double> full = lower.selfadjointView<Eigen::Lower>();
   const Eigen::VectorXd solution = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
   SpdFactorization factor;
