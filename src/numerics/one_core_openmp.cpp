@@ -4,7 +4,7 @@
 // threads allowed. Kept to one thread (lockBlas), each region still costs libgomp a team's
 // set-up and, at its closing barrier, a futex system call: about 18,600 of each in one
 // factorisation of a 10,000-vertex Gauss–Newton matrix, where they took a third of its time on
-// this machine (123 → 85 ms; 23 → 12 ms at 2,500 vertices: docs/SOLVERS.md). CHOLMOD is the
+// this machine (123 → 86 ms; 23 → 12.6 ms at 2,500 vertices: docs/SOLVERS.md). CHOLMOD is the
 // only user of OpenMP in the process, and a region's outlined body asks OpenMP only for its
 // thread's number and the team's size (omp_get_thread_num, omp_get_num_threads), which outside
 // any team are 0 and 1: so a region kept to one thread runs its body directly, the same

@@ -3,7 +3,6 @@
 #include <cctype>
 #include <cstdlib>
 #include <string>
-#include <vector>
 
 #include <gtest/gtest.h>
 

@@ -58,7 +58,8 @@ TEST(OneCoreOpenMp, ARegionRunsOnceAsThreadZeroOfATeamOfOne)
 {
   if (moreThreadsAsked())
     GTEST_SKIP() << "OMP_NUM_THREADS asks for more threads: libgomp runs the regions";
-  ASSERT_NE(dlsym(RTLD_DEFAULT, "omp_get_thread_num"), nullptr) << "no OpenMP runtime in the process";
+  if (!dlsym(RTLD_DEFAULT, "omp_get_thread_num"))
+    GTEST_SKIP() << "no OpenMP runtime in the process: this CHOLMOD enters no region";
   Seen seen;
   // As CHOLMOD asks: four threads, no flags.
   reinterpret_cast<Parallel>(dlsym(RTLD_DEFAULT, "GOMP_parallel"))(recordRegion, &seen, 4, 0);
