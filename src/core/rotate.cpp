@@ -367,13 +367,26 @@ Expected<Paper> solveInStages(const Paper& start, double from, double turn,
     // A stage that turns nothing starts where the model is; one with two solved states before it
     // starts where their parabola leads (a line misses by the square of the step, worse than the
     // guide: a 30° turn from the flat sheet in 10° stages); else the guide, if any, gives the start.
+    bool extrapolated = true;
     if (to != done && earlier.size() >= kEarlierStates)
       extrapolate(earlier, current, done, to, fixed, attempt);
     else if (to != done && done != 0 && earlier.size() == 1 && earlier[0].second == 0 && flat)
       extrapolateFromFlat(*earlier[0].first, *flat, current, done, to, fixed, attempt);
-    else if (to != done && guide)
-      guide(current, to, attempt);
-    SolveReport stage = looser > 0 ? solver.solveLoosely(attempt, fixed, looser) : solver.solve(attempt, fixed);
+    else
+    {
+      extrapolated = false;
+      if (to != done && guide)
+        guide(current, to, attempt);
+    }
+    // Only a stage started from solved states of the turn balances loosely. The drag's later
+    // frames extrapolate from one started otherwise (by the guide): left at the looser strain it
+    // lies off the turn along the near-flat sheet's soft modes, the extrapolation multiplies
+    // that, and each later preview creeps back in linearly convergent steps (a 10,000-vertex
+    // Miura-ori's 1° and 1.5° previews took 3 and 5 of Newton's steps, one each after a first
+    // preview balanced to 1e-10; docs/SOLVERS.md "The drag's first preview balanced tight").
+    // Still as a frame (solveLoosely at 0): at the solver's own damping floor its steps creep.
+    SolveReport stage = looser > 0 ? solver.solveLoosely(attempt, fixed, extrapolated ? looser : 0.0) :
+                                     solver.solve(attempt, fixed);
     iterations += stage.iterations;
     seconds += stage.seconds;
     if (stage.diverged || !stage.converged)

@@ -22,7 +22,12 @@ RemoteSolver::RemoteSolver(ros::NodeHandle nh, std::string service, double timeo
 
 core::SolveReport RemoteSolver::solve(core::Paper& paper, const std::vector<char>& fixed)
 {
-  return solveLoosely(paper, fixed, 0.0);
+  return solveRemotely(paper, fixed, 0.0, false);
+}
+
+core::SolveReport RemoteSolver::solveLoosely(core::Paper& paper, const std::vector<char>& fixed, double looser)
+{
+  return solveRemotely(paper, fixed, looser, true);
 }
 
 /// Calls the solver with `call`'s request within the timeout for a paper of `vertices` (made again
@@ -96,11 +101,13 @@ Solve solveCall(const core::Paper& paper, const std::vector<char>& fixed)
 }
 }  // namespace
 
-core::SolveReport RemoteSolver::solveLoosely(core::Paper& paper, const std::vector<char>& fixed, double looser)
+core::SolveReport RemoteSolver::solveRemotely(core::Paper& paper, const std::vector<char>& fixed, double looser,
+                                              bool frame)
 {
   core::SolveReport report;
   Solve call = solveCall(paper, fixed);
   call.request.looser_tolerance = looser;
+  call.request.frame = frame;
   call.request.stall_window = limits_.stall_window;  // a closure's (core/assignment_fold.cpp)
   if (!callWithin(call, paper.vertices.size(), report.message))
     return report;

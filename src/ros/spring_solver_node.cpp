@@ -80,7 +80,7 @@ bool SpringSolverNode::solve(Solve::Request& req, Solve::Response& res)
   limits.stall_window = req.stall_window;
   limits.max_seconds = core::budgetForSize(configured.max_seconds, paper->vertices.size());
   solver_->setLimits(limits);
-  const core::SolveReport report = req.looser_tolerance > 0 ?
+  const core::SolveReport report = req.frame || req.looser_tolerance > 0 ?
                                        solver_->solveLoosely(*paper, fixed, req.looser_tolerance) :
                                        solver_->solve(*paper, fixed);
   solver_->setLimits(configured);

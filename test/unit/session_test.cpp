@@ -373,6 +373,32 @@ TEST(Session, ATurnCommittedAfterItsPreviewsIsItsLastPreviewAndItsReplay)
   EXPECT_TRUE(wrong.paper() == flat);
 }
 
+/// A drag's first preview, started by the guide, is balanced to the solver's own tolerance even
+/// where previews are looser: the later ones extrapolate from it. Left at the looser strain, a
+/// 5,000-vertex Miura-ori's next previews took 3, 4 and 2 of Newton's steps; from a tight first
+/// one they take at most one each (docs/SOLVERS.md "The drag's first preview balanced tight").
+TEST(Session, ADragsFirstTurnPreviewIsBalancedToTheSolversToleranceForTheNextToFollow)
+{
+  MiuraCornerTurn turn;
+  turn.flat = tessellationWithVertices(TessellationKind::Miura, 5000).value().paper;
+  turn.request.axis_edge = test::slantedCreaseOf(turn.flat, 0);
+  ASSERT_GE(turn.request.axis_edge, 0);
+  Session session(turn.flat);
+  equipForTurns(session);
+  session.setTurnPreviewTolerance(1e-8);
+  for (double degrees : { 0.5, 1.0, 1.5, 2.0 })
+  {
+    turn.request.angle = degrees * M_PI / 180;
+    const Expected<RotateResult> preview = session.rotate(turn.request, false);
+    ASSERT_TRUE(preview) << preview.message();
+    if (degrees == 0.5)
+      EXPECT_LE(preview->solve.max_strain, SolveLimits{}.tolerance);
+    else
+      EXPECT_LE(preview->solve.iterations, 1) << degrees << "°";
+    EXPECT_LE(preview->solve.max_strain, 1e-8) << degrees << "°";
+  }
+}
+
 /// With a looser balance for previews (paper_model's turn_preview_tolerance), a drag's previews
 /// converge at that strain in fewer of Newton's steps; the commit at the last preview's angle is
 /// balanced from there to the solver's own tolerance, and its replay lands on it bit for bit.

@@ -60,8 +60,8 @@ public:
   /// was given (rolled back) and the report says so; a diverged shape is never published.
   virtual SolveReport solve(Paper& paper, const std::vector<char>& fixed) = 0;
   /// As solve(), converged at the strain `looser` where that is looser than the solver's own
-  /// tolerance: a frame of a drag, balanced again when it is committed. A solver that cannot
-  /// stop there solves as solve() does.
+  /// tolerance: a frame of a drag, balanced again when it is committed (`looser` 0: a frame
+  /// balanced to the solver's own tolerance). A solver that cannot stop there solves as solve() does.
   virtual SolveReport solveLoosely(Paper& paper, const std::vector<char>& fixed, double looser)
   {
     (void)looser;

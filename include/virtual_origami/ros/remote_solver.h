@@ -27,6 +27,8 @@ public:
   void prepare(const core::Paper& paper, const std::vector<char>& fixed) override;
 
 private:
+  /// One Solve call: `looser` and `frame` as the request's looser_tolerance and frame.
+  core::SolveReport solveRemotely(core::Paper& paper, const std::vector<char>& fixed, double looser, bool frame);
   bool callWithin(Solve& call, size_t vertices, std::string& message);
 
   ros::NodeHandle nh_;
