@@ -30,28 +30,32 @@ Eigen::Matrix3d skew(const Eigen::Vector3d& q)
 }
 
 /// The reduced Gauss–Newton matrix over the free vertices (3 rows each). Its pattern is
-/// ordered once, block by block (approximate minimum degree on the vertex graph, so the 3 × 3
-/// blocks stay together), and stored as the upper triangle in that order: every step only
-/// refills values in place and factors them numerically.
+/// ordered once and stored as one triangle in that order: every step only refills values in
+/// place and factors them numerically. A small model's order is approximate minimum degree on
+/// the vertex graph (the 3 × 3 blocks together), its upper triangle factored as it stands. A
+/// large model's is the one CHOLMOD's analysis picks (nested dissection, numerics/
+/// nested_dissection.h), in which its lower triangle is stored: CHOLMOD then factors the values
+/// as they are, where in any other order it first copies the matrix into its own, twice
+/// transposed, at every factorisation (7 % of a 10,000-vertex turn preview's time, with the
+/// allocations and page faults of the copies).
 class ReducedSystem
 {
 public:
   ReducedSystem(const std::vector<RigidFace>& faces, const std::vector<int>& free_index, int free_count)
-    : faces_(faces), free_index_(free_index), size_(3 * free_count)
+    : faces_(faces), free_index_(free_index), size_(3 * free_count), neighbours_(free_count)
   {
     // Which free vertices share a face.
-    std::vector<std::vector<int>> neighbours(free_count);
     for (const RigidFace& face : faces)
       for (int v : face.vertices)
         for (int w : face.vertices)
           if (free_index[v] >= 0 && free_index[w] >= 0)
-            neighbours[free_index[v]].push_back(free_index[w]);
+            neighbours_[free_index[v]].push_back(free_index[w]);
     std::vector<Eigen::Triplet<double>> block_pattern;
     for (int i = 0; i < free_count; ++i)
     {
-      std::sort(neighbours[i].begin(), neighbours[i].end());
-      neighbours[i].erase(std::unique(neighbours[i].begin(), neighbours[i].end()), neighbours[i].end());
-      for (int j : neighbours[i])
+      std::sort(neighbours_[i].begin(), neighbours_[i].end());
+      neighbours_[i].erase(std::unique(neighbours_[i].begin(), neighbours_[i].end()), neighbours_[i].end());
+      for (int j : neighbours_[i])
         block_pattern.emplace_back(i, j, 1.0);
     }
     SparseMatrix blocks(free_count, free_count);
@@ -59,29 +63,12 @@ public:
     Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> inverse;
     Eigen::AMDOrdering<int>()(blocks, inverse);
     const Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> order = inverse.inverse();
-    block_order_ = order.indices();  // new position of each free vertex
-
-    std::vector<Eigen::Triplet<double>> triplets;
+    rows_.resize(size_);
     for (int i = 0; i < free_count; ++i)
-      for (int j : neighbours[i])
-        for (int a = 0; a < 3; ++a)
-          for (int b = 0; b < 3; ++b)
-            if (row(i, a) <= row(j, b))
-              triplets.emplace_back(row(i, a), row(j, b), 0.0);
-    matrix_.resize(size_, size_);
-    matrix_.setFromTriplets(triplets.begin(), triplets.end());
-    matrix_.makeCompressed();
-    // Where each face's 3 × 3 blocks land among the stored values (-1: below the diagonal).
-    slots_.resize(faces.size());
-    for (size_t f = 0; f < faces.size(); ++f)
-      for (int v : faces[f].vertices)
-        for (int w : faces[f].vertices)
-          if (free_index[v] >= 0 && free_index[w] >= 0)
-            for (int b = 0; b < 3; ++b)
-              for (int a = 0; a < 3; ++a)
-                slots_[f].push_back(slot(row(free_index[v], a), row(free_index[w], b)));
-    for (int i = 0; i < size_; ++i)
-      diagonal_.push_back(slot(i, i));
+      for (int a = 0; a < 3; ++a)
+        rows_[3 * i + a] = 3 * order.indices()[i] + a;  // the blocks' new positions
+    first_rows_ = rows_;
+    storePattern(true);
   }
 
   /// The pattern's analysis, once: at the first factorisation, not before (a solve that starts
@@ -93,9 +80,18 @@ public:
       return;
     if (size_ >= kSupernodalRows)
     {
-      supernodal_ = std::make_unique<Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Upper>>();
+      // Rows renumbered in the order CHOLMOD's analysis picks, the lower triangle stored in it,
+      // and analysed again in that order as given.
+      const std::vector<int> order = numerics::choleskyOrdering(matrix_);
+      std::vector<int> position(order.size());
+      for (size_t k = 0; k < order.size(); ++k)
+        position[order[k]] = static_cast<int>(k);
+      for (int& r : rows_)
+        r = position[r];
+      storePattern(false);
+      supernodal_ = std::make_unique<Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>>();
       supernodal_->cholmod().print = 0;  // not definite is an answer (the damping rises)
-      numerics::analyzeWithNestedDissection(*supernodal_, matrix_);
+      numerics::analyzeInGivenOrder(*supernodal_, matrix_);
     }
     else
       solver_.analyzePattern(matrix_);
@@ -105,6 +101,7 @@ public:
   /// Fills the matrix for the fitted rotations, adds μ on the diagonal and factors it.
   bool factor(const std::vector<Eigen::Matrix3d>& rotations, double mu)
   {
+    analyse();
     double* values = matrix_.valuePtr();
     std::fill(values, values + matrix_.nonZeros(), 0.0);
     std::vector<Eigen::Vector3d> q;
@@ -143,7 +140,6 @@ public:
     }
     for (int i : diagonal_)
       values[i] += mu;
-    analyse();
     if (supernodal_)
     {
       const std::unique_lock<std::mutex> blas = numerics::lockBlas();
@@ -158,26 +154,62 @@ public:
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const
   {
     Eigen::VectorXd ordered(size_);
-    for (int i = 0; i < size_ / 3; ++i)
-      ordered.segment<3>(3 * block_order_[i]) = rhs.segment<3>(3 * i);
+    for (int k = 0; k < size_; ++k)
+      ordered[rows_[k]] = rhs[k];
     const Eigen::VectorXd solution = supernodal_ ? [&]() {
       const std::unique_lock<std::mutex> blas = numerics::lockBlas();
       return Eigen::VectorXd(supernodal_->solve(ordered));
     }()
                                                  : Eigen::VectorXd(solver_.solve(ordered));
     Eigen::VectorXd result(size_);
-    for (int i = 0; i < size_ / 3; ++i)
-      result.segment<3>(3 * i) = solution.segment<3>(3 * block_order_[i]);
+    for (int k = 0; k < size_; ++k)
+      result[k] = solution[rows_[k]];
     return result;
   }
 
 private:
-  int row(int free_vertex, int axis) const { return 3 * block_order_[free_vertex] + axis; }
+  int row(int free_vertex, int axis) const { return rows_[3 * free_vertex + axis]; }
 
+  /// The matrix's pattern in the rows' order, its upper or lower triangle stored, and where each
+  /// face's 3 × 3 blocks and the diagonal land among its values.
+  void storePattern(bool upper)
+  {
+    upper_ = upper;
+    std::vector<Eigen::Triplet<double>> triplets;
+    for (int i = 0; i < size_ / 3; ++i)
+      for (int j : neighbours_[i])
+        for (int a = 0; a < 3; ++a)
+          for (int b = 0; b < 3; ++b)
+            if (upper ? row(i, a) <= row(j, b) : row(i, a) >= row(j, b))
+              triplets.emplace_back(row(i, a), row(j, b), 0.0);
+    matrix_.resize(size_, size_);
+    matrix_.setFromTriplets(triplets.begin(), triplets.end());
+    matrix_.makeCompressed();
+    // Where each face's 3 × 3 blocks land among the stored values (-1: the other triangle).
+    // Of an entry's two mirrored blocks, the one the first order's upper triangle holds fills
+    // it, in either order: the same sums, so the same factor (a block and its mirror's
+    // transpose differ in rounding).
+    slots_.assign(faces_.size(), {});
+    for (size_t f = 0; f < faces_.size(); ++f)
+      for (int v : faces_[f].vertices)
+        for (int w : faces_[f].vertices)
+          if (free_index_[v] >= 0 && free_index_[w] >= 0)
+            for (int b = 0; b < 3; ++b)
+              for (int a = 0; a < 3; ++a)
+              {
+                const int i = 3 * free_index_[v] + a, j = 3 * free_index_[w] + b;
+                slots_[f].push_back(first_rows_[i] <= first_rows_[j] ? slot(rows_[i], rows_[j]) : -1);
+              }
+    diagonal_.clear();
+    for (int i = 0; i < size_; ++i)
+      diagonal_.push_back(slot(i, i));
+  }
+
+  /// Where the entry (r, c) or its mirror is stored.
   int slot(int r, int c) const
   {
-    if (r > c)
-      return -1;
+    if (upper_ ? r > c : r < c)
+      std::swap(r, c);
     const int* rows = matrix_.innerIndexPtr();
     const int begin = matrix_.outerIndexPtr()[c], end = matrix_.outerIndexPtr()[c + 1];
     return static_cast<int>(std::lower_bound(rows + begin, rows + end, r) - rows);
@@ -186,7 +218,10 @@ private:
   const std::vector<RigidFace>& faces_;
   const std::vector<int>& free_index_;
   int size_;
-  Eigen::VectorXi block_order_;
+  std::vector<std::vector<int>> neighbours_;  // the free vertices sharing a face with each
+  std::vector<int> rows_;                     // the matrix row of each free vertex's coordinate
+  std::vector<int> first_rows_;               // the same in minimum degree's order
+  bool upper_ = true;
   SparseMatrix matrix_;
   std::vector<std::vector<int>> slots_;
   std::vector<int> diagonal_;
@@ -195,10 +230,10 @@ private:
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Upper, Eigen::NaturalOrdering<int>> solver_;
   // Large models (a tessellation of thousands of vertices): CHOLMOD's supernodal Cholesky,
   // which factors a 10,000-vertex Miura-ori's matrix several times faster than the simplicial
-  // one (the damping μ > 0 keeps the matrix definite), in its own nested-dissection order: a
-  // fifth less time per factorisation there than in the minimum-degree one.
+  // one (the damping μ > 0 keeps the matrix definite), in nested dissection's order: a fifth
+  // less time per factorisation there than in the minimum-degree one.
   static constexpr int kSupernodalRows = 3000;
-  std::unique_ptr<Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Upper>> supernodal_;
+  std::unique_ptr<Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>> supernodal_;
 };
 
 /// Gradient of the rigid-face energy over the free vertices (3 per vertex): with the
