@@ -33,6 +33,7 @@
 #include <virtual_origami/Solve.h>
 
 #include "ros_test_client.h"
+#include "../unit/test_models.h"
 #include "virtual_origami/core/data_folder.h"
 #include "virtual_origami/core/rotate.h"
 #include "virtual_origami/core/tessellations.h"
@@ -556,10 +557,7 @@ TEST_F(Faults, SolverBalancesAFrameAtItsOwnToleranceAsAFrame)
   const core::Paper flat = core::tessellationWithVertices(core::TessellationKind::Miura, 1100).value().paper;
   core::RotateRequest turn;
   turn.face = 0;
-  for (int e : flat.faces[0].edges)
-    if (flat.edges[e].isCrease() && std::abs(flat.vertices[flat.edges[e].vertices[1]].crease_pattern.y() -
-                                             flat.vertices[flat.edges[e].vertices[0]].crease_pattern.y()) > 1e-9)
-      turn.axis_edge = e;  // a zigzag crease of the corner face
+  turn.axis_edge = core::test::slantedCreaseOf(flat, 0);
   ASSERT_GE(turn.axis_edge, 0);
   turn.angle = 0.5 * M_PI / 180;
   SolveRecorder recorder;
