@@ -315,6 +315,9 @@ QuasiNewtonDriver::DriveRun::Trial QuasiNewtonDriver::DriveRun::lineSearch(const
                                                                            double slope)
 {
   Trial out;
+  const bool remember = options_.remember_frame_step && subspace_frame_;
+  if (remember)
+    out.step_length = setup_.frame_step;
   for (int k = 0; k < options_.max_line_search; ++k, out.step_length *= 0.5)
   {
     trial_ = x_;
@@ -325,6 +328,8 @@ QuasiNewtonDriver::DriveRun::Trial QuasiNewtonDriver::DriveRun::lineSearch(const
     if (out.energy.energy <= now_.energy + options_.armijo * out.step_length * slope)
     {
       out.accepted = true;
+      if (remember)
+        rememberFrameStep(k, out.step_length);
       return out;
     }
     // A long linear step along turning faces stretches them (by about half the turn squared)
@@ -338,6 +343,8 @@ QuasiNewtonDriver::DriveRun::Trial QuasiNewtonDriver::DriveRun::lineSearch(const
       {
         out.accepted = true;
         out.restored = true;
+        if (remember)
+          rememberFrameStep(k, out.step_length);
         return out;
       }
     }
@@ -354,6 +361,22 @@ QuasiNewtonDriver::DriveRun::Trial QuasiNewtonDriver::DriveRun::lineSearch(const
     out.step_length = 1.0;
   }
   return out;
+}
+
+/// A subspace frame's line search took `length` at its trial `k` (0: the first): the next frame
+/// starts there, and back towards the whole step after frames that took their first trial.
+void QuasiNewtonDriver::DriveRun::rememberFrameStep(int k, double length)
+{
+  if (k > 0)
+  {
+    setup_.frame_step = length;
+    setup_.frame_first_trials = 0;
+  }
+  else if (++setup_.frame_first_trials >= options_.frame_step_growth_frames && setup_.frame_step < 1.0)
+  {
+    setup_.frame_step = std::min(1.0, 2.0 * setup_.frame_step);
+    setup_.frame_first_trials = 0;
+  }
 }
 
 /// Moves to the accepted trial: the curvature pair recorded, and whether to factorise afresh or

@@ -57,6 +57,7 @@ private:
   Trial lineSearch(const Eigen::MatrixX3d& direction, double slope);
   void take(const Eigen::MatrixX3d& direction, const Trial& trial, double step_size);
   void restoreFinalFaces();
+  void rememberFrameStep(int k, double length);
   SolveReport finish();
 
   // The directions and the matrices they use (quasi_newton_steps.cpp).

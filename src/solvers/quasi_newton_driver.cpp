@@ -63,6 +63,8 @@ struct QuasiNewtonDriver::Frames
   bool last_balanced = true;
   bool last_continued = false;
   double last_face_energy = 0.0;
+  double frame_step = 1.0;
+  int frame_first_trials = 0;
 };
 
 void QuasiNewtonDriver::setFramesAside()
@@ -79,7 +81,9 @@ void QuasiNewtonDriver::setFramesAside()
               std::move(setup.before_last_target),
               setup.last_balanced,
               setup.last_continued,
-              setup.last_face_energy };
+              setup.last_face_energy,
+              setup.frame_step,
+              setup.frame_first_trials };
   if (!aside_)
     aside_ = std::make_unique<Frames>(std::move(now));
   const Frames none;
@@ -89,6 +93,8 @@ void QuasiNewtonDriver::setFramesAside()
   setup.last_balanced = none.last_balanced;
   setup.last_continued = none.last_continued;
   setup.last_face_energy = none.last_face_energy;
+  setup.frame_step = none.frame_step;
+  setup.frame_first_trials = none.frame_first_trials;
   setup.gauss_newton.reset();
   setup.factor_frames.clear();
 }
@@ -110,6 +116,8 @@ void QuasiNewtonDriver::putFramesBack()
   setup.last_balanced = frames->last_balanced;
   setup.last_continued = frames->last_continued;
   setup.last_face_energy = frames->last_face_energy;
+  setup.frame_step = frames->frame_step;
+  setup.frame_first_trials = frames->frame_first_trials;
 }
 
 }  // namespace virtual_origami::core

@@ -65,6 +65,10 @@ struct QuasiNewtonDriver::Setup
   double factor_seconds = 0.0;    // wall time the last factorisation took
   double restore_seconds = 0.0;   // wall time the last restoring step took
   double evaluate_seconds = 0.0;  // wall time the last energy pass of a line search took
+  // The step length the subspace frames' line searches start at (remember_frame_step), and how
+  // many frames in a row took their first trial at it.
+  double frame_step = 1.0;
+  int frame_first_trials = 0;
   // The last two frames this driver returned (as in the paper) and their targets, and where
   // the last one started.
   Positions last, before_last, last_start;

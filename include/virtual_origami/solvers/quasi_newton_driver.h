@@ -88,6 +88,12 @@ struct QuasiNewtonOptions
   int subspace_directions = 6;
   /// A subspace frame that ends with more strain than this restores its faces once more.
   double restore_strain = 5e-4;
+  /// A subspace frame's line search starts at the step length the frames before it took, not
+  /// the whole step: in a fast slide (5 % a frame) the whole step overshoots frame after frame,
+  /// and each halving costs an energy pass and a restoring step (a third of a frame). The
+  /// length grows back to whole after `frame_step_growth_frames` frames that took their first trial.
+  bool remember_frame_step = true;
+  int frame_step_growth_frames = 2;
 };
 
 class QuasiNewtonDriver : public CreaseDriver
