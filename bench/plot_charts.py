@@ -1055,6 +1055,10 @@ USER_ACTIONS = [
                        "`fold_by_assignment` preview)"),
     ("slider_release_40", "slider let go at 40 %: the commit from the last preview"),
     ("slider_release_100", "slider let go at 100 %: the commit from the last preview"),
+    ("slider_flick_preview", "slider flicked from 0 to 100 % in one move: its one preview"),
+    ("slider_flick_release", "the flicked slider let go at once: the commit from that preview"),
+    ("slider_flick_held_release", "the flicked slider held still for 0.5 s (its previews catching up with the "
+                                  "handle), then let go: the commit"),
     ("turn_preview", "`rotate` preview of the corner face, 0.5°, 1°, … 10° (a mouse's drag; `turn_steps`)"),
     ("turn_commit", "`rotate` commit, 10°"),
     ("drag_vertex_preview", "`drag_vertex` preview, the corner vertex lifted 0.4 % of the sheet a step to 2 % (40 % state)"),

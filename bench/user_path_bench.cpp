@@ -289,6 +289,7 @@ public:
           std::lock_guard<std::mutex> lock(mutex_);
           state_ = s;
           state_at_ = Clock::now();
+          markers_seen_at_state_ = markers_seen_;
         },
         ros::VoidConstPtr(), hints);
     status_sub_ = nh_.subscribe<InteractionStatus>(
@@ -399,8 +400,10 @@ public:
   }
 
   /// The slider pressed at 0, moved in `steps` equal moves to `target` (each preview waited
-  /// for), released there. Rows: one per preview, then the release.
-  std::vector<Row> slide(double target, int steps, const std::string& release_action)
+  /// for), held still `hold` seconds, released there. Rows: one per preview (`preview_action`),
+  /// then the release.
+  std::vector<Row> slide(double target, int steps, const std::string& release_action, double hold = 0.0,
+                         const std::string& preview_action = "slider_preview")
   {
     std::vector<Row> rows;
     const SliderTrack track = sliderTrack(paper(), SliderStyle{});
@@ -414,7 +417,7 @@ public:
       const NodeCpu::Sample cpu = cpu_.now();
       const auto t0 = Clock::now();
       send(InteractiveMarkerFeedback::POSE_UPDATE, sliderPoint(track, f));
-      Row row("slider_preview", f);
+      Row row(preview_action, f);
       // The node's status after the update it applied: the preview's answer came back.
       if (waitFor([&] { return updatesApplied() > applied; }, timeout_))
       {
@@ -428,6 +431,8 @@ public:
         row.message = "the interaction node applied no update";
       rows.push_back(row);
     }
+    if (hold > 0)
+      ros::WallDuration(hold).sleep();
     const uint64_t before = revision();
     const int markers = markersSeen();
     const NodeCpu::Sample cpu = cpu_.now();
@@ -439,7 +444,16 @@ public:
     if (waitFor([&] { return revision() > before; }, timeout_))
     {
       row.answer_ms = msSince(t0, stateAt());
-      row.markers_ms = markersAfter(t0, markers);
+      // The commit's markers come after its state (paper_model publishes them so); a preview of
+      // the slider catching up with its held handle may have been drawn after t0 and before it.
+      int at_state = markers;
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        at_state = markers_seen_at_state_;
+      }
+      row.markers_ms = markersAfter(t0, at_state, 1.0);
+      if (std::isnan(row.markers_ms))
+        row.markers_ms = markersAfter(t0, markers);
       row.cpuSince(cpu, cpu_.now());
       row.success = true;
       row.message = "committed, revision " + std::to_string(revision());
@@ -696,6 +710,7 @@ private:
   ros::ServiceClient fold_, rotate_, drag_, undo_;
   std::mutex mutex_;
   int markers_seen_ = 0;
+  int markers_seen_at_state_ = 0;  // markers_seen_ when the last state came
   Clock::time_point markers_at_, state_at_, status_at_;
   visualization_msgs::MarkerArray::ConstPtr markers_;
   PaperState::ConstPtr state_;
@@ -1107,8 +1122,27 @@ int main(int argc, char** argv)
       path.undo();  // back to the flat pattern
     }
     // The slider from 0 to 100 %, released.
+    bool released = false;
     for (const Row& r : path.slide(1.0, steps_100, "slider_release_100"))
+    {
       write(r);
+      released = r.action == "slider_release_100" && r.success;
+    }
+    // Flicked from 0 to 100 % in one move (faster than a frame: one preview, far behind the
+    // handle), let go at once, and let go after half a second held still (its previews catch up).
+    for (const auto& [hold, release] : { std::pair<double, const char*>{ 0.0, "slider_flick_release" },
+                                         std::pair<double, const char*>{ 0.5, "slider_flick_held_release" } })
+    {
+      // From the flat pattern: the last release undone (where it was refused, nothing to undo).
+      if (!released || !path.undo())
+        break;
+      released = false;
+      for (const Row& r : path.slide(1.0, 1, release, hold, "slider_flick_preview"))
+      {
+        write(r);
+        released = r.action == release && r.success;
+      }
+    }
   }
   std::printf("wrote %s.csv and %s_breakdown.csv\n", prefix.c_str(), prefix.c_str());
   return 0;

@@ -2,6 +2,7 @@
 // while it moves and commits it on release.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "virtual_origami/core/gesture_model.h"
 
@@ -9,6 +10,14 @@ namespace virtual_origami::core
 {
 namespace
 {
+/// A slider preview within this (rad, RMS) of its fraction has caught up with the handle.
+constexpr double kSliderCaughtUp = 2e-4;
+/// A preview that came no nearer than this share of the nearest one before it did not come nearer;
+/// three such in a row end the catching up: the frames have reached the balance the fraction has
+/// (a frame's first steps from a flick may go no nearer).
+constexpr double kSliderProgress = 0.99;
+constexpr int kSliderStalledFrames = 3;
+
 /// Fractions are committed to 0.1 %: what the percent shows is what is recorded.
 double tidy(double fraction)
 {
@@ -29,6 +38,7 @@ void GestureModel::slideMove(double fraction)
   if (state_ != GestureState::Sliding)
     return;
   slider_fraction_ = tidy(fraction);
+  slider_moved_at_ = clock_();
   move_pending_ = true;
 }
 
@@ -39,9 +49,39 @@ void GestureModel::updateSlider()
   // One preview per batch of moves: the call waits for the solver, and the moves that came
   // meanwhile were coalesced into the latest, so previews go as fast as the solver keeps up.
   if (!slider_previewed_ || *slider_previewed_ != slider_fraction_)
-    if (send(FoldByAssignmentCall{ slider_fraction_, true }).success)
+  {
+    const PaperReply reply = send(FoldByAssignmentCall{ slider_fraction_, true });
+    if (reply.success)
+    {
       slider_previewed_ = slider_fraction_;
+      slider_behind_ = reply.angle_error;
+      slider_stalled_ = 0;
+    }
+  }
   ++updates_;
+}
+
+bool GestureModel::catchUpSlider()
+{
+  if (state_ != GestureState::Sliding || move_pending_ || !slider_previewed_ || *slider_previewed_ != slider_fraction_ ||
+      clock_() - slider_moved_at_ < settings_.slider_catch_up_after)
+    return false;
+  // Each frame is one step of the solver (at 10,000 vertices a tenth of the way): on while they
+  // still come nearer, and not past a hundredth of a degree (nothing the eye sees).
+  if (!(slider_behind_ > kSliderCaughtUp) || slider_stalled_ >= kSliderStalledFrames)
+    return false;
+  const PaperReply reply = send(FoldByAssignmentCall{ slider_fraction_, true });
+  const double behind = reply.success ? reply.angle_error : std::numeric_limits<double>::quiet_NaN();
+  if (behind < kSliderProgress * slider_behind_)
+  {
+    slider_behind_ = behind;  // the nearest so far
+    slider_stalled_ = 0;
+  }
+  else if (std::isnan(behind))
+    slider_behind_ = behind;  // no answer of how far: no more
+  else
+    ++slider_stalled_;
+  return true;
 }
 
 void GestureModel::slideRelease(double fraction)

@@ -298,9 +298,12 @@ Expected<Computed<AssignmentFoldResult>> computeFoldByAssignment(Workspace works
       core::foldByAssignment(paper, request, *fold_driver, workspace.solver.get(), workspace.held);
   if (!result && from_preview && commit)
   {
+    const std::string from_frame = result.message();
     request.committed = nullptr;
     paper = std::move(workspace.paper);
     result = core::foldByAssignment(paper, request, *fold_driver, workspace.solver.get(), workspace.held);
+    if (result)
+      result->solve.message = "not from the last preview (" + from_frame + "): from the committed paper";
   }
   if (!result)
     return Answer::failure(result.message());

@@ -31,6 +31,7 @@ core::GestureSettings gestureSettings(const ros::NodeHandle& private_nh)
   s.layer_gap = private_nh.param("layer_gap", s.layer_gap);
   s.fold_frames = std::max(1, private_nh.param("fold_frames", s.fold_frames));
   s.view_turn = private_nh.param("view_turn", s.view_turn);
+  s.slider_catch_up_after = private_nh.param("slider_catch_up_after", s.slider_catch_up_after);
   std::vector<double> view;
   if (private_nh.getParam("view_direction", view) && view.size() == 3)
     s.view_direction = core::Vec3(view[0], view[1], view[2]);
@@ -142,6 +143,8 @@ void InteractionNode::handleEvents(const ros::TimerEvent&)
     model_.tick();
     publishStatus();
   }
+  else if (model_.state() == core::GestureState::Sliding)
+    model_.catchUpSlider();  // the handle rests: its previews go on to it
 }
 
 void InteractionNode::handlePrompt(const ros::TimerEvent&)

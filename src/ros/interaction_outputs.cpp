@@ -211,6 +211,8 @@ core::PaperReply InteractionNode::send(const core::PaperRequest& request)
                           core::PaperReply r = c.preview ? keptReply(fold_previews_, fold_.getService(), srv) :
                                                            reply(fold_, srv);
                           r.revision = srv.response.revision;
+                          if (r.answered)
+                            r.angle_error = srv.response.angle_error;
                           return r;
                         },
                         [&](const core::CommandCall& c) {

@@ -920,6 +920,14 @@ bool PaperModelNode::foldByAssignment(FoldByAssignment::Request& req, FoldByAssi
     std::lock_guard<std::mutex> drivers(drivers_mutex_);
     preview_budget_.record(budget_set_at, folded.solve.seconds, secondsSince(answer_start), vertices);
   }
+  else if (secondsSince(answer_start) > 1.0 || !folded.solve.message.empty())
+    // What a slow commit cost (a release from a preview far behind its handle, or one that
+    // folded from the committed paper instead), for whoever wonders why it took long.
+    ROS_INFO("paper_model: fold by assignment to %.1f %% answered in %.2f s: the crease driver %d iterations, "
+             "%d factorisations, %d back-substitutions in %.2f s%s%s",
+             100.0 * req.fraction, secondsSince(answer_start), folded.solve.iterations, folded.solve.factorizations,
+             folded.solve.back_substitutions, folded.solve.seconds, folded.solve.message.empty() ? "" : "; ",
+             folded.solve.message.c_str());
   return true;
 }
 

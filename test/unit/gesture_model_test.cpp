@@ -589,6 +589,60 @@ TEST_F(GestureModelTest, TheSliderPreviewsWhileMovingAndCommitsOnRelease)
   EXPECT_EQ(model.state(), GestureState::Idle);
 }
 
+/// A fast slide's previews fall behind the handle (each one step of the solver). Held still, the
+/// handle's previews go on at its fraction while they come nearer, and stop after three that come
+/// no nearer; never while the handle moves, nor before it has rested `slider_catch_up_after`.
+TEST_F(GestureModelTest, TheSlidersPreviewsCatchUpWithTheHandleWhileItRests)
+{
+  load(Paper::square(1.0));
+  // paper_model's answers, in turn: how far each preview fell short of its fraction (rad).
+  const std::vector<double> behind = { 1.6, 0.8, 0.9, 0.4, 0.2, 0.1, 0.05, 0.025, 0.0125, 0.01, 0.0101, 0.01, 0.01 };
+  size_t answered = 0;
+  out.reply = [&](const PaperRequest& r) {
+    PaperReply reply{ true, true, "", 0, false };
+    if (std::get<FoldByAssignmentCall>(r).preview)
+      reply.angle_error = behind[std::min(answered++, behind.size() - 1)];
+    return reply;
+  };
+  model.slidePress();
+  model.slideMove(1.0);
+  model.update();
+  EXPECT_FALSE(model.catchUpSlider()) << "the handle has only just stopped";
+  now += 0.05;
+  EXPECT_FALSE(model.catchUpSlider());
+  model.slideMove(0.9);
+  now += 0.2;
+  EXPECT_FALSE(model.catchUpSlider()) << "a move waits for the update, not for a catch-up";
+  model.update();
+  now += 0.2;
+  int caught_up = 0;
+  while (model.catchUpSlider() && caught_up < 100)
+    ++caught_up;
+  // The first catch-up farther (a flick's first steps), then nearer down to 0.01, then three no nearer.
+  EXPECT_EQ(caught_up, 11);
+  const std::vector<FoldByAssignmentCall> calls = out.sent<FoldByAssignmentCall>();
+  ASSERT_EQ(calls.size(), 13u);
+  for (size_t k = 1; k < calls.size(); ++k)
+  {
+    EXPECT_TRUE(calls[k].preview);
+    EXPECT_DOUBLE_EQ(calls[k].fraction, 0.9);
+  }
+  EXPECT_EQ(model.updates(), 2u) << "catching up is no update of the pointer's";
+  model.slideRelease(0.9);
+  EXPECT_FALSE(out.sent<FoldByAssignmentCall>().back().preview);
+  EXPECT_FALSE(model.catchUpSlider()) << "let go";
+  // A preview that answers nothing of its distance (an older paper_model) is not followed up.
+  out.forget();
+  out.reply = nullptr;
+  model.slidePress();
+  model.slideMove(0.5);
+  model.update();
+  now += 1.0;
+  EXPECT_FALSE(model.catchUpSlider());
+  EXPECT_EQ(out.sent<FoldByAssignmentCall>().size(), 1u);
+  model.slideRelease(0.5);
+}
+
 TEST_F(GestureModelTest, ReleasesKeepRefusedFoldsOnlyWhenTheMenuSaysSo)
 {
   load(Paper::square(1.0));

@@ -75,6 +75,8 @@ struct GestureSettings
   bool view_turn = true;                   // the seed's view turn in rotate mode
   Vec3 view_direction{ 0, 0, -1 };         // without a camera
   GestureMode mode = GestureMode::Crease;  // at the start
+  // The slider held still this long (s) after its last move: its previews catch up with it.
+  double slider_catch_up_after = 0.1;
 };
 
 /// What the interaction status reports of the gestures.
@@ -106,6 +108,12 @@ public:
   void slidePress();
   void slideMove(double fraction);
   void slideRelease(double fraction);
+  /// The slider's handle held still (`slider_catch_up_after` since its last move): one more
+  /// preview at its fraction while the previews fall behind it and still come nearer.
+  /// A fast slide's frames (one solver step each) lag the handle; while it rests they go on to
+  /// it, so the paper shown comes to where the handle is and its release has less left to fold.
+  /// True when it asked for a preview.
+  bool catchUpSlider();
   /// The next frame of the animated fold; `finishFold`: all the frames left, at once.
   void tick();
   void finishFold();
@@ -369,6 +377,11 @@ private:
   // The fold slider.
   double slider_fraction_ = 0.0, fraction_at_press_ = 0.0;
   std::optional<double> slider_previewed_;  // the fraction last previewed in this drag
+  double slider_moved_at_ = 0.0;            // clock seconds of the handle's last move
+  // How far (rad, RMS) the nearest preview at the handle's fraction fell short of it, and how many
+  // previews since came no nearer.
+  double slider_behind_ = 0.0;
+  int slider_stalled_ = 0;
   /// The fraction the slider committed and the revision it made: the handle stays there.
   std::optional<std::pair<uint64_t, double>> committed_fraction_;
 

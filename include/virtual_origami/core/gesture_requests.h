@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <variant>
@@ -89,6 +90,9 @@ struct PaperReply
   /// drag_vertex: the rigid faces cannot follow, but bent paper reaches the target and a curved
   /// model is there to bend it.
   bool curved_reaches = false;
+  /// fold_by_assignment: the driven creases' RMS distance (rad) from where the fraction asked
+  /// them, as answered (a slider preview that fell behind its handle; NaN when not given).
+  double angle_error = std::numeric_limits<double>::quiet_NaN();
 };
 
 }  // namespace virtual_origami::core
