@@ -19,9 +19,8 @@ configure: deps
 build: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
-# OpenBLAS picks its kernels by the CPU, and their rounding differs. A few tests sit close to
-# tolerances and iteration counts measured with its AVX-512 (SkylakeX) kernels; version 0.3.21
-# gives an AVX-512 AMD EPYC its Haswell kernels, under which two of them fail (docs/RELIABILITY.md,
+# OpenBLAS picks its kernels by the CPU, and their rounding differs. A few tests sat close to
+# tolerances and iteration counts measured with its AVX-512 (SkylakeX) kernels (docs/RELIABILITY.md,
 # "BLAS kernels"). Where the CPU has AVX-512, the tests run on the SkylakeX kernels.
 TEST_BLAS_CORE := $(shell grep -qw avx512f /proc/cpuinfo 2>/dev/null && echo SkylakeX)
 
