@@ -385,10 +385,14 @@ Expected<Paper> solveInStages(const Paper& start, double from, double turn,
     // Miura-ori's 1° and 1.5° previews took 3 and 5 of Newton's steps, one each after a first
     // preview balanced to 1e-10; docs/SOLVERS.md "The drag's first preview balanced tight").
     // Still as a frame (solveLoosely at 0): at the solver's own damping floor its steps creep.
-    SolveReport stage = looser > 0 ? solver.solveLoosely(attempt, fixed, extrapolated ? looser : 0.0) :
-                                     solver.solve(attempt, fixed);
-    iterations += stage.iterations;
-    seconds += stage.seconds;
+    const auto solveStage = [&](bool from_solved_states) {
+      const SolveReport r = looser > 0 ? solver.solveLoosely(attempt, fixed, from_solved_states ? looser : 0.0) :
+                                         solver.solve(attempt, fixed);
+      iterations += r.iterations;
+      seconds += r.seconds;
+      return r;
+    };
+    SolveReport stage = solveStage(extrapolated);
     // An extrapolated start the solver does not close within its budget is tried once more from
     // the guide's. How far from a rigid state an extrapolation lands near the flat sheet, and so
     // how many of shape matching's linearly converging steps it takes, turns on the rounding: a
@@ -398,9 +402,7 @@ Expected<Paper> solveInStages(const Paper& start, double from, double turn,
     {
       attempt = turnedBy(current, to);
       guide(current, to, attempt);
-      stage = looser > 0 ? solver.solveLoosely(attempt, fixed, 0.0) : solver.solve(attempt, fixed);
-      iterations += stage.iterations;
-      seconds += stage.seconds;
+      stage = solveStage(false);
     }
     if (stage.diverged || !stage.converged)
     {
